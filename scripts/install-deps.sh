@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages pupwave needs to build, test and benchmark.
+# Runs apt-get only for packages that are missing, so it is quick on a prepared machine.
+set -euo pipefail
+
+packages=(
+  # build
+  build-essential cmake pkg-config
+  # libraries found by CMake with find_package
+  libeigen3-dev libopenimageio-dev libopenexr-dev python3-imath libopenvdb-dev
+  libboost-iostreams-dev libzstd-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # anchors and helpers for the rate-distortion harness and volume comparisons
+  libopenjp2-tools libjxl-tools zfp libopenvdb-tools gnuplot-nox
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "install-deps: installing ${missing[*]}"
+  sudo_cmd=""
+  [[ $(id -u) -ne 0 ]] && sudo_cmd="sudo"
+  $sudo_cmd apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,25 @@
+// `pupwave`: one binary, many subcommands; a thin layer over the library.
+#include <exception>
+#include <iostream>
+
+#include "tools/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pupwave: wavelet image and volume codec (PUPs, Kobbelt and CDF filter banks)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "pupwave 0.1.0");
+  pupwave::cli::add_info_command(app);
+  pupwave::cli::add_psnr_command(app);
+  pupwave::cli::add_compress_command(app);
+  pupwave::cli::add_decompress_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    // Library and I/O errors carry a complete message; print it and fail.
+    std::cerr << "pupwave: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
