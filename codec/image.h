@@ -1,0 +1,42 @@
+#pragma once
+// The plain in-memory image every layer exchanges: planar samples, no file-format knowledge.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pupwave {
+
+// Sample type of the file an image came from (and is written back as).
+enum class SampleType : std::uint8_t { u8 = 0, u16 = 1, f16 = 2, f32 = 3 };
+
+std::string to_string(SampleType type);
+// Bits per sample of the stored type (8, 16, 16, 32).
+int bits_per_sample(SampleType type);
+bool is_integer(SampleType type);
+// Largest representable value for integer types (255, 65535); 1.0 for float types (nominal range).
+double nominal_max(SampleType type);
+
+// A planar image: channel c occupies samples[c*width*height, (c+1)*width*height), rows of
+// `width` samples top to bottom. Every supported sample type is held exactly in float:
+// integers up to 65535 and half floats are exact in binary32.
+struct Image {
+  std::size_t width = 0;
+  std::size_t height = 0;
+  std::size_t channels = 0;
+  SampleType type = SampleType::u8;
+  std::vector<float> samples;
+
+  Image() = default;
+  Image(std::size_t w, std::size_t h, std::size_t c, SampleType t)
+      : width(w), height(h), channels(c), type(t), samples(w * h * c, 0.0f) {}
+
+  std::size_t plane_size() const { return width * height; }
+  float* plane(std::size_t c) { return samples.data() + c * plane_size(); }
+  const float* plane(std::size_t c) const { return samples.data() + c * plane_size(); }
+  float& at(std::size_t c, std::size_t x, std::size_t y) { return plane(c)[y * width + x]; }
+  float at(std::size_t c, std::size_t x, std::size_t y) const { return plane(c)[y * width + x]; }
+};
+
+}  // namespace pupwave
