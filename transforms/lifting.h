@@ -1,0 +1,244 @@
+#pragma once
+// Lifting primitives (split/merge, predict, update, scale) shared by every transform family.
+//
+// A line of n samples x[0..n) is split into two wires: the even wire e[j] = x[2j]
+// (ceil(n/2) samples, becomes the coarse band) and the odd wire o[j] = x[2j+1] (floor(n/2)
+// samples, becomes the detail band), stored as [e | o] in the layout of transform1d.h.
+// A lifting step adds to every sample of a target wire a filtered copy of the other
+// (source) wire; it is undone exactly by its mirror step, which subtracts the identical
+// sum, because the source wire is not changed by the step. Neighbours beyond the ends of
+// the source wire come from a symmetric extension chosen per end (Boundary), so every step
+// is invertible for every wire length, whatever rule is chosen.
+//
+//   predict: odd  += taps * even   (Kobbelt-Schroder "predict odd")
+//   update:  even += taps * odd    ("predict even")
+//   scale:   wire *= k
+//
+// All functions are stateless and thread safe; T is float or double (integer steps for the
+// reversible 5/3 are at the end).
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+namespace pupwave::lifting {
+
+// Symmetric extension at one end of a wire of m samples.
+enum class Extension {
+  whole_sample,  // mirror about the end sample: w[-k] = w[k], w[m-1+k] = w[m-1-k]
+  half_sample,   // mirror about the half-way point: w[-1-k] = w[k], w[m+k] = w[m-1-k]
+};
+
+// Extension rule of a wire at its left (index 0) and right (index m-1) ends.
+struct Boundary {
+  Extension left = Extension::whole_sample;
+  Extension right = Extension::whole_sample;
+};
+
+// Wire boundaries that reproduce whole-sample symmetric extension of the interleaved line
+// (JPEG 2000): for symmetric lifting filters, lifting the wires with these rules equals
+// lifting the symmetrically extended line.
+struct WireBoundaries {
+  Boundary even;  // rule for reading the even wire (in predict steps)
+  Boundary odd;   // rule for reading the odd wire (in update steps)
+};
+
+// n = length of the interleaved line. Derivation: x[-k] = x[k] maps even to even indices
+// about 0 (whole) and odd to odd indices about -1/2 (half); at the right end x[n-1+k] =
+// x[n-1-k] is whole-sample for the wire holding x[n-1] and half-sample for the other.
+constexpr WireBoundaries whole_sample_symmetric_wires(std::size_t n) {
+  const bool last_is_even = (n % 2) == 1;
+  const Extension even_right = last_is_even ? Extension::whole_sample : Extension::half_sample;
+  const Extension odd_right = last_is_even ? Extension::half_sample : Extension::whole_sample;
+  return {{Extension::whole_sample, even_right}, {Extension::half_sample, odd_right}};
+}
+
+// Index into a wire of m >= 1 samples for any integer position i, by repeated symmetric
+// reflection (handles filters longer than the wire). A wire of one sample is constant.
+constexpr std::size_t reflect_index(std::ptrdiff_t i, std::size_t m, Boundary b) {
+  if (m <= 1) return 0;
+  const auto last = static_cast<std::ptrdiff_t>(m) - 1;
+  while (i < 0 || i > last) {
+    if (i < 0) {
+      i = b.left == Extension::whole_sample ? -i : -1 - i;
+    } else {
+      i = b.right == Extension::whole_sample ? 2 * last - i : 2 * last + 1 - i;
+    }
+  }
+  return static_cast<std::size_t>(i);
+}
+
+// Filter of a lifting step: target[i] += sum_k taps[k] * source[i + offset + k].
+// Example, CDF 9/7 first predict: odd[i] += alpha (even[i] + even[i+1]) is
+// taps {alpha, alpha}, offset 0; its first update even[i] += beta (odd[i-1] + odd[i]) is
+// taps {beta, beta}, offset -1.
+struct Taps {
+  std::span<const double> taps;  // filter coefficients, in source index order
+  std::ptrdiff_t offset = 0;     // source index of taps[0] relative to the target index
+};
+
+namespace detail {
+
+// Sum of one lifting filter at target index i, reading the source through the boundary
+// rule; used near the ends where the filter overhangs the source wire.
+template <class T>
+T boundary_sum(std::span<const T> source, Boundary b, const Taps& f, std::ptrdiff_t i) {
+  T s = 0;
+  for (std::size_t k = 0; k < f.taps.size(); ++k) {
+    const std::ptrdiff_t j = i + f.offset + static_cast<std::ptrdiff_t>(k);
+    s += static_cast<T>(f.taps[k]) * source[reflect_index(j, source.size(), b)];
+  }
+  return s;
+}
+
+// target[i] += sign * (filtered source)[i]; sign = +1 lifts, -1 undoes the lift. The sum is
+// formed identically in both directions so the mirror step cancels to rounding.
+template <class T>
+void apply(std::span<const T> source, Boundary b, std::span<T> target, const Taps& f, T sign) {
+  if (source.empty() || target.empty() || f.taps.empty()) return;
+  const auto ms = static_cast<std::ptrdiff_t>(source.size());
+  const auto mt = static_cast<std::ptrdiff_t>(target.size());
+  const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
+  // Interior: i + offset >= 0 and i + offset + nk - 1 <= ms - 1.
+  const std::ptrdiff_t lo = std::min(mt, std::max<std::ptrdiff_t>(0, -f.offset));
+  const std::ptrdiff_t hi = std::max(lo, std::min(mt, ms - nk - f.offset + 1));
+  for (std::ptrdiff_t i = 0; i < lo; ++i) target[i] += sign * boundary_sum(source, b, f, i);
+  const T* src = source.data() + f.offset;
+  if (nk == 2) {  // the common two-tap step (CDF, Kobbelt K2), kept simple to vectorize
+    const T a0 = sign * static_cast<T>(f.taps[0]), a1 = sign * static_cast<T>(f.taps[1]);
+    for (std::ptrdiff_t i = lo; i < hi; ++i) target[i] += a0 * src[i] + a1 * src[i + 1];
+  } else {
+    for (std::ptrdiff_t i = lo; i < hi; ++i) {
+      T s = 0;
+      for (std::ptrdiff_t k = 0; k < nk; ++k) s += static_cast<T>(f.taps[k]) * src[i + k];
+      target[i] += sign * s;
+    }
+  }
+  for (std::ptrdiff_t i = hi; i < mt; ++i) target[i] += sign * boundary_sum(source, b, f, i);
+}
+
+}  // namespace detail
+
+// Reorders an interleaved line x[0..n) into [even wire | odd wire] in place.
+// scratch: at least floor(n/2) samples, used to hold the odd wire while compacting.
+template <class T>
+void split(std::span<T> line, std::span<T> scratch) {
+  const std::size_t n = line.size(), ne = (n + 1) / 2, no = n / 2;
+  if (scratch.size() < no) throw std::invalid_argument("lifting::split: scratch too small");
+  for (std::size_t j = 0; j < no; ++j) scratch[j] = line[2 * j + 1];
+  for (std::size_t j = 1; j < ne; ++j) line[j] = line[2 * j];
+  for (std::size_t j = 0; j < no; ++j) line[ne + j] = scratch[j];
+}
+
+// Inverse of split: [even wire | odd wire] back to the interleaved line, in place.
+// scratch: at least floor(n/2) samples.
+template <class T>
+void merge(std::span<T> line, std::span<T> scratch) {
+  const std::size_t n = line.size(), ne = (n + 1) / 2, no = n / 2;
+  if (scratch.size() < no) throw std::invalid_argument("lifting::merge: scratch too small");
+  for (std::size_t j = 0; j < no; ++j) scratch[j] = line[ne + j];
+  for (std::size_t j = ne; j-- > 1;) line[2 * j] = line[j];
+  for (std::size_t j = 0; j < no; ++j) line[2 * j + 1] = scratch[j];
+}
+
+// Predict step: odd[i] += sum_k f.taps[k] * even[i + f.offset + k].
+// even: the source wire (unchanged), read beyond its ends through even_boundary.
+// odd: the target wire, modified in place. Does nothing if either wire is empty.
+template <class T>
+void predict(std::span<const T> even, Boundary even_boundary, std::span<T> odd, const Taps& f) {
+  detail::apply<T>(even, even_boundary, odd, f, T(1));
+}
+
+// Exact mirror of predict (same arguments): odd[i] -= the same sum.
+template <class T>
+void undo_predict(std::span<const T> even, Boundary even_boundary, std::span<T> odd,
+                  const Taps& f) {
+  detail::apply<T>(even, even_boundary, odd, f, T(-1));
+}
+
+// Update step: even[i] += sum_k f.taps[k] * odd[i + f.offset + k].
+// odd: the source wire (unchanged), read beyond its ends through odd_boundary; an empty odd
+// wire (n = 1) leaves even unchanged. even: the target wire, modified in place.
+template <class T>
+void update(std::span<const T> odd, Boundary odd_boundary, std::span<T> even, const Taps& f) {
+  detail::apply<T>(odd, odd_boundary, even, f, T(1));
+}
+
+// Exact mirror of update (same arguments): even[i] -= the same sum.
+template <class T>
+void undo_update(std::span<const T> odd, Boundary odd_boundary, std::span<T> even,
+                 const Taps& f) {
+  detail::apply<T>(odd, odd_boundary, even, f, T(-1));
+}
+
+// Scale step: wire[i] *= k. k must be non-zero (else std::invalid_argument).
+template <class T>
+void scale(std::span<T> wire, double k) {
+  if (k == 0) throw std::invalid_argument("lifting::scale: factor must be non-zero");
+  const T kt = static_cast<T>(k);
+  for (T& v : wire) v *= kt;
+}
+
+// Mirror of scale: wire[i] /= k (division, not multiplication by 1/k, to stay closest).
+template <class T>
+void undo_scale(std::span<T> wire, double k) {
+  if (k == 0) throw std::invalid_argument("lifting::undo_scale: factor must be non-zero");
+  const T kt = static_cast<T>(k);
+  for (T& v : wire) v /= kt;
+}
+
+// ---- Integer (reversible) lifting, as in JPEG 2000's 5/3 -------------------------------
+//
+// An integer step adds or subtracts floor((sum_k w[k] * source[i + offset + k] + bias) /
+// 2^shift); the floor makes it map integers to integers, and the mirror step (opposite
+// direction, same arguments) restores the target bit-exactly. Sums are formed in 64 bits.
+// JPEG 2000 reversible 5/3 forward:
+//   predict: odd[i]  -= floor((even[i] + even[i+1]) / 2)      {1,1}, offset 0,  bias 0, shift 1
+//   update:  even[i] += floor((odd[i-1] + odd[i] + 2) / 4)    {1,1}, offset -1, bias 2, shift 2
+struct IntegerTaps {
+  std::span<const int32_t> weights;  // integer filter coefficients in source index order
+  std::ptrdiff_t offset = 0;         // source index of weights[0] relative to the target index
+  int64_t bias = 0;                  // added before the shift (rounding offset)
+  int shift = 0;                     // divide by 2^shift with floor rounding, 0..30
+};
+
+// Direction of an integer step: the mirror of `add` is `subtract` and vice versa.
+enum class Direction { add, subtract };
+
+namespace detail {
+
+inline int32_t integer_term(std::span<const int32_t> source, Boundary b, const IntegerTaps& f,
+                            std::ptrdiff_t i, bool interior) {
+  int64_t s = f.bias;
+  for (std::size_t k = 0; k < f.weights.size(); ++k) {
+    const std::ptrdiff_t j = i + f.offset + static_cast<std::ptrdiff_t>(k);
+    const std::size_t jj = interior ? static_cast<std::size_t>(j)
+                                    : reflect_index(j, source.size(), b);
+    s += int64_t{f.weights[k]} * source[jj];
+  }
+  return static_cast<int32_t>(s >> f.shift);  // arithmetic shift = floor division (C++20)
+}
+
+}  // namespace detail
+
+// Integer lifting step: target[i] (+= or -=) floor((sum w * source + bias) / 2^shift).
+// source: the unchanged wire, read beyond its ends through source_boundary; empty source or
+// target does nothing. The mirror step is the same call with the other Direction.
+inline void lift_integer(std::span<const int32_t> source, Boundary source_boundary,
+                         std::span<int32_t> target, const IntegerTaps& f, Direction dir) {
+  if (f.shift < 0 || f.shift > 30) throw std::invalid_argument("lifting: shift out of 0..30");
+  if (source.empty() || target.empty() || f.weights.empty()) return;
+  const auto ms = static_cast<std::ptrdiff_t>(source.size());
+  const auto nk = static_cast<std::ptrdiff_t>(f.weights.size());
+  const int32_t sign = dir == Direction::add ? 1 : -1;
+  for (std::size_t ui = 0; ui < target.size(); ++ui) {
+    const auto i = static_cast<std::ptrdiff_t>(ui);
+    const bool interior = i + f.offset >= 0 && i + f.offset + nk <= ms;
+    target[ui] += sign * detail::integer_term(source, source_boundary, f, i, interior);
+  }
+}
+
+}  // namespace pupwave::lifting
