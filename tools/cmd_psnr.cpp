@@ -1,4 +1,60 @@
+// `pupwave psnr A B`: distortion of image B against reference image A.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "codec/metrics.h"
 #include "tools/commands.h"
+#include "tools/image_io.h"
+
 namespace pupwave::cli {
-void add_psnr_command(CLI::App& app) { app.add_subcommand("psnr", "(in progress)"); }
+namespace {
+
+struct PsnrOptions {
+  std::string reference;
+  std::string test;
+};
+
+std::string format_psnr(double psnr) {
+  if (std::isinf(psnr)) return "inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4f", psnr);
+  return buf;
+}
+
+void print_row(const std::string& name, const ChannelError& e) {
+  std::printf("%-8s %14.6f %10s %12.6g\n", name.c_str(), e.mse, format_psnr(e.psnr).c_str(), e.max_abs);
+}
+
+void run_psnr(const PsnrOptions& opt) {
+  const Image a = read_image(opt.reference);
+  Image b = read_image(opt.test);
+  if (b.type != a.type) b = convert_sample_type(b, a.type);  // compare in the reference's scale
+  const ImageError err = compare_images(a, b);
+  static const char* rgba[] = {"R", "G", "B", "A"};
+  static const char* grey[] = {"Y", "A"};
+  std::printf("peak %.6g (%s)\n", err.peak, to_string(a.type).c_str());
+  std::printf("%-8s %14s %10s %12s\n", "channel", "MSE", "PSNR(dB)", "max_abs_err");
+  for (std::size_t c = 0; c < err.channels.size(); ++c)
+    print_row(a.channels <= 2 ? grey[c] : rgba[c], err.channels[c]);
+  print_row("all", err.overall);
+  if (err.has_luma) print_row("luma", err.luma);
+}
+
+}  // namespace
+
+void add_psnr_command(CLI::App& app) {
+  auto opt = std::make_shared<PsnrOptions>();
+  auto* cmd = app.add_subcommand(
+      "psnr",
+      "Compare image B against reference A: MSE, PSNR and max abs error per channel and overall,\n"
+      "and luma (Rec. 601 Y) PSNR for RGB/RGBA. Peak: 2^bits-1 for integer samples, the value\n"
+      "range of A for float samples. B is converted to A's sample type if they differ.");
+  cmd->add_option("A", opt->reference, "reference image")->required()->check(CLI::ExistingFile);
+  cmd->add_option("B", opt->test, "test image")->required()->check(CLI::ExistingFile);
+  cmd->callback([opt] { run_psnr(*opt); });
+}
+
 }  // namespace pupwave::cli

@@ -1,0 +1,161 @@
+// Image file round trips through OpenImageIO for every format, sample type and channel count.
+#include <gtest/gtest.h>
+
+#include <Imath/half.h>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <random>
+#include <string>
+#include <tuple>
+
+#include "tools/image_io.h"
+
+namespace pupwave::cli {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+  fs::path dir = fs::temp_directory_path() / ("pupwave_io_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Random samples covering the whole range of the type (negative and large values for floats).
+Image random_image(std::size_t w, std::size_t h, std::size_t c, SampleType type, unsigned seed) {
+  Image img(w, h, c, type);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(-2.0f, 3.0f);
+  for (float& v : img.samples) {
+    switch (type) {
+      case SampleType::u8: v = float(rng() % 256); break;
+      case SampleType::u16: v = float(rng() % 65536); break;
+      case SampleType::f16: v = float(Imath::half(unit(rng))); break;
+      case SampleType::f32: v = unit(rng); break;
+    }
+  }
+  return img;
+}
+
+using Case = std::tuple<std::string, SampleType, std::size_t>;
+
+class LosslessRoundTrip : public ::testing::TestWithParam<Case> {};
+
+TEST_P(LosslessRoundTrip, SamplesComeBackExactly) {
+  const auto [ext, type, channels] = GetParam();
+  const Image img = random_image(37, 23, channels, type, unsigned(channels * 7 + int(type)));
+  const fs::path path = temp_dir() / ("rt_" + std::to_string(int(type)) + "_" + std::to_string(channels) + ext);
+  SampleType stored = SampleType::u8;
+  write_image(img, path, &stored);
+  EXPECT_EQ(stored, type);
+  const Image back = read_image(path);
+  ASSERT_EQ(back.width, img.width);
+  ASSERT_EQ(back.height, img.height);
+  ASSERT_EQ(back.channels, img.channels);
+  EXPECT_EQ(back.type, img.type);
+  EXPECT_EQ(back.samples, img.samples);
+  fs::remove(path);
+}
+
+std::vector<Case> lossless_cases() {
+  std::vector<Case> cases;
+  for (std::size_t c = 1; c <= 4; ++c) {
+    for (SampleType t : {SampleType::u8, SampleType::u16}) cases.emplace_back(".png", t, c);
+    for (SampleType t : {SampleType::u8, SampleType::u16, SampleType::f32}) cases.emplace_back(".tif", t, c);
+    for (SampleType t : {SampleType::f16, SampleType::f32}) cases.emplace_back(".exr", t, c);
+  }
+  cases.emplace_back(".pgm", SampleType::u8, 1);
+  cases.emplace_back(".ppm", SampleType::u8, 3);
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFormats, LosslessRoundTrip, ::testing::ValuesIn(lossless_cases()));
+
+// Formats that cannot hold a type store the closest exact one: half in TIFF becomes float.
+TEST(ImageIo, HalfInTiffIsStoredExactlyAsFloat) {
+  const Image img = random_image(11, 7, 3, SampleType::f16, 5);
+  const fs::path path = temp_dir() / "half.tif";
+  SampleType stored = SampleType::u8;
+  write_image(img, path, &stored);
+  EXPECT_EQ(stored, SampleType::f32);
+  const Image back = read_image(path);
+  EXPECT_EQ(back.type, SampleType::f32);
+  EXPECT_EQ(back.samples, img.samples);
+  fs::remove(path);
+}
+
+TEST(ImageIo, JpegRoundTripIsCloseAndEightBit) {
+  const Image img = read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png");
+  const fs::path path = temp_dir() / "astronaut.jpg";
+  write_image(img, path);
+  const Image back = read_image(path);
+  ASSERT_EQ(back.type, SampleType::u8);
+  ASSERT_EQ(back.samples.size(), img.samples.size());
+  double sq = 0;
+  for (std::size_t i = 0; i < img.samples.size(); ++i) sq += std::pow(img.samples[i] - back.samples[i], 2);
+  EXPECT_LT(sq / double(img.samples.size()), 10.0);  // quality 95: well above 38 dB
+  fs::remove(path);
+}
+
+TEST(ImageIo, ReadsTheBundledPhotographs) {
+  const fs::path dir(PUPWAVE_TESTIMAGES_DIR);
+  const std::tuple<const char*, std::size_t, std::size_t, std::size_t> expected[] = {
+      {"camera.png", 512, 512, 1}, {"astronaut.png", 512, 512, 3},
+      {"coffee.png", 600, 400, 3}, {"chelsea.png", 451, 300, 3}};
+  for (const auto& [name, w, h, c] : expected) {
+    const Image img = read_image(dir / name);
+    EXPECT_EQ(img.width, w) << name;
+    EXPECT_EQ(img.height, h) << name;
+    EXPECT_EQ(img.channels, c) << name;
+    EXPECT_EQ(img.type, SampleType::u8) << name;
+    const auto [lo, hi] = std::minmax_element(img.samples.begin(), img.samples.end());
+    EXPECT_GE(*lo, 0.0f);
+    EXPECT_LE(*hi, 255.0f);
+    EXPECT_GT(*hi - *lo, 100.0f) << name << " looks flat";
+  }
+}
+
+TEST(ImageIo, FloatToPngIsConvertedThroughTheNominalRange) {
+  Image img(4, 1, 1, SampleType::f32);
+  img.samples = {0.0f, 0.5f, 1.0f, 2.0f};
+  const fs::path path = temp_dir() / "float.png";
+  SampleType stored = SampleType::u8;
+  write_image(img, path, &stored);
+  EXPECT_EQ(stored, SampleType::u16);
+  const Image back = read_image(path);
+  EXPECT_EQ(back.samples, (std::vector<float>{0.0f, 32768.0f, 65535.0f, 65535.0f}));
+  fs::remove(path);
+}
+
+TEST(ImageIo, AlphaIsNotPremultiplied) {
+  Image img(2, 1, 4, SampleType::u8);
+  img.samples = {200, 10, 100, 20, 50, 30, 0, 255};  // planar R,G,B,A; first pixel alpha 0
+  const fs::path path = temp_dir() / "alpha.png";
+  write_image(img, path);
+  EXPECT_EQ(read_image(path).samples, img.samples);
+  fs::remove(path);
+}
+
+TEST(ImageIo, ClearErrorsForBadInput) {
+  const fs::path dir = temp_dir();
+  EXPECT_THROW(read_image(dir / "missing.png"), std::runtime_error);
+  EXPECT_THROW(read_image(dir), std::runtime_error);
+  const fs::path junk = dir / "junk.png";
+  std::ofstream(junk) << "this is not a png";
+  try {
+    read_image(junk);
+    ADD_FAILURE() << "junk accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("junk.png"), std::string::npos) << e.what();
+  }
+  const Image img(3, 3, 1, SampleType::u8);
+  EXPECT_THROW(write_image(img, dir / "out.unknownext"), std::runtime_error);
+  EXPECT_THROW(write_image(img, dir), std::runtime_error);
+  EXPECT_THROW(write_image(img, dir / "no_such_folder" / "x.png"), std::runtime_error);
+  EXPECT_FALSE(fs::exists(dir / "out.unknownext"));
+}
+
+}  // namespace
+}  // namespace pupwave::cli

@@ -1,0 +1,39 @@
+#pragma once
+// Image files <-> the library's planar Image, through OpenImageIO. The only place that knows
+// about image file formats.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "codec/image.h"
+
+namespace pupwave::cli {
+
+// Largest image accepted on read (samples over all channels), so a hostile header cannot make
+// us allocate without bound.
+inline constexpr std::size_t kMaxImageSamples = std::size_t(1) << 31;
+
+// Reads the first subimage of an image file (PNG, JPEG, TIFF, PNM, EXR and whatever else
+// OpenImageIO reads) exactly: 8/16-bit integer, half and float samples, 1 to 4 channels.
+// Alpha is kept unassociated (as stored). Throws std::runtime_error with the reason.
+Image read_image(const std::filesystem::path& path);
+
+// Describes an image file without decoding its pixels (format, size, channels, type).
+std::string describe_image_file(const std::filesystem::path& path);
+
+// Writes an image, format chosen from the extension. When the format cannot store the image's
+// sample type (float to PNG, 16-bit to JPEG...) samples are converted to the closest type it
+// can store, mapping the nominal range (integer max <-> 1.0) with rounding and clamping;
+// `stored_as`, if given, receives the type written. The file is written atomically.
+void write_image(const Image& image, const std::filesystem::path& path,
+                 SampleType* stored_as = nullptr);
+
+// The sample type `write_image` would store `type` as in a file with this path's extension.
+SampleType storable_type(const std::filesystem::path& path, SampleType type);
+
+// Converts samples between types through the nominal range (255 <-> 65535 <-> 1.0), with
+// rounding and clamping for integer targets. Identity when the types match.
+Image convert_sample_type(const Image& image, SampleType target);
+
+}  // namespace pupwave::cli
