@@ -8,6 +8,7 @@ namespace pupwave::cli {
 
 void add_info_command(CLI::App& app);
 void add_psnr_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
 void add_compress_command(CLI::App& app);
 void add_decompress_command(CLI::App& app);
 

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "pupwave 0.1.0");
   pupwave::cli::add_info_command(app);
   pupwave::cli::add_psnr_command(app);
+  pupwave::cli::add_convert_command(app);
   pupwave::cli::add_compress_command(app);
   pupwave::cli::add_decompress_command(app);
   try {
