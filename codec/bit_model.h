@@ -1,0 +1,40 @@
+#pragma once
+// Adaptive probability of one binary context, shared by the range encoder and decoder.
+
+#include <algorithm>
+#include <cstdint>
+
+namespace pupwave {
+
+// Probabilities are 15-bit fixed point (32768 = certainty).
+inline constexpr int kProbabilityBits = 15;
+inline constexpr std::uint32_t kProbabilityOne = 1u << kProbabilityBits;
+
+// Probability that the next bit is 0, adapted after every coded bit. The adaptation rate
+// starts fast (about 1/(n+1), like a count-based estimate) and settles at 1/2^kMaxShift, so
+// a context learns quickly in a small code-block yet stays stable in a large one.
+struct BitModel {
+  std::uint16_t p0 = std::uint16_t(kProbabilityOne / 2);
+  std::uint8_t count = 0;
+
+  static constexpr int kMaxShift = 5;
+  static constexpr std::uint32_t kMinP = 31;  // keeps both sub-ranges non-empty
+
+  constexpr BitModel() = default;
+  constexpr explicit BitModel(std::uint16_t initial_p0) : p0(initial_p0) {}
+
+  void update(int bit) {
+    // shift = 1 + floor(log2(count + 1)), capped: 1, 2, 2, 3, 3, 3, 3, 4, ...
+    int shift = 1;
+    for (unsigned c = count + 1u; c > 1u && shift < kMaxShift; c >>= 1) ++shift;
+    std::uint32_t p = p0;
+    if (bit)
+      p -= p >> shift;
+    else
+      p += (kProbabilityOne - p) >> shift;
+    p0 = std::uint16_t(std::clamp<std::uint32_t>(p, kMinP, kProbabilityOne - kMinP));
+    if (count < 255) ++count;
+  }
+};
+
+}  // namespace pupwave

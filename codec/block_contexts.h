@@ -1,0 +1,89 @@
+#pragma once
+// Coding state and contexts of one code-block, shared by the bit-plane encoder and decoder
+// (EBCOT class, as in JPEG 2000 Part 1 Annex D): per-coefficient flags in a zero-padded
+// array, significance contexts from the 8 in-plane neighbours (plus the 2 neighbours across
+// slices for 3-D blocks) with orientation-dependent tables, sign contexts from the signs of
+// the 4 (or 6) direct neighbours, refinement contexts, and the run-mode context.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "codec/bit_model.h"
+#include "transforms/subband.h"
+
+namespace pupwave {
+
+// Flags of one coefficient.
+enum : std::uint8_t {
+  kSignificant = 1,  // a 1 bit has been coded
+  kVisited = 2,      // coded in this bit-plane's significance propagation pass
+  kRefined = 4,      // has had at least one magnitude refinement bit
+  kNegative = 8,     // sign, valid once significant
+};
+
+// Context numbering inside a block's model array.
+inline constexpr int kSignContext0 = 9;    // 9 significance contexts come first
+inline constexpr int kRefineContext0 = 14;  // then 5 sign contexts, then 3 refinement
+inline constexpr int kRunContext = 17;
+inline constexpr int kBlockContexts = 18;
+
+// Stripe height of the scan and of the run mode.
+inline constexpr std::size_t kStripe = 4;
+
+// Largest number of magnitude bit-planes a block may have (indices below 2^30).
+inline constexpr int kMaxBitPlanes = 30;
+
+// Number of coding passes of a block with `planes` bit-planes: one cleanup pass for the top
+// plane, then significance, refinement and cleanup for each lower plane.
+constexpr int passes_for_planes(int planes) { return planes > 0 ? 3 * planes - 2 : 0; }
+
+class BlockState {
+ public:
+  BlockState(const Extent& size, unsigned orientation);
+
+  const Extent& size() const { return size_; }
+  // Position in the padded flag array of block coordinate (x, y, z).
+  std::size_t at(std::size_t x, std::size_t y, std::size_t z) const {
+    return (x + 1) + (y + 1) * stride_y_ + (z + 1) * stride_z_;
+  }
+  std::uint8_t& flags(std::size_t p) { return flags_[p]; }
+  std::uint8_t flags(std::size_t p) const { return flags_[p]; }
+
+  int significance_context(std::size_t p) const;
+  // Sign context number and the bit the sign is XORed with before coding.
+  std::pair<int, int> sign_context(std::size_t p) const;
+  int refinement_context(std::size_t p) const;
+  // True when no neighbour is significant (the run mode and the first refinement ask this).
+  bool isolated(std::size_t p) const;
+
+  // Clears kVisited on every coefficient (end of each cleanup pass).
+  void clear_visited();
+
+  std::array<BitModel, kBlockContexts> models;
+
+ private:
+  bool sig(std::size_t p) const { return flags_[p] & kSignificant; }
+  // +1 / -1 for a significant positive / negative neighbour, 0 otherwise.
+  int sign_of(std::size_t p) const { return sig(p) ? ((flags_[p] & kNegative) ? -1 : 1) : 0; }
+
+  Extent size_;
+  int table_ = 0;  // 0: LL and high-in-y bands, 1: high-in-x bands, 2: high in both
+  bool volume_ = false;
+  std::size_t stride_y_ = 0;
+  std::size_t stride_z_ = 0;
+  std::vector<std::uint8_t> flags_;
+};
+
+// Calls visit(x, y, z, rows) for every stripe column: `rows` (1..4) coefficients starting at
+// (x, y, z) downwards, in scan order (slice, stripe, column).
+template <class Visit>
+void for_each_stripe_column(const Extent& size, Visit&& visit) {
+  for (std::size_t z = 0; z < size[2]; ++z)
+    for (std::size_t y0 = 0; y0 < size[1]; y0 += kStripe) {
+      const std::size_t rows = size[1] - y0 < kStripe ? size[1] - y0 : kStripe;
+      for (std::size_t x = 0; x < size[0]; ++x) visit(x, y0, z, rows);
+    }
+}
+
+}  // namespace pupwave

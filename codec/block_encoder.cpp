@@ -1,0 +1,160 @@
+#include "codec/block_encoder.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "codec/block_contexts.h"
+
+namespace pupwave {
+namespace {
+
+// Runs the coding passes over one block and records the truncation points.
+class BitPlaneEncoder {
+ public:
+  BitPlaneEncoder(std::span<const float> magnitude, std::span<const std::uint8_t> negative, const Extent& size,
+                  unsigned orientation, double delta)
+      : m_(magnitude), negative_(negative), state_(size, orientation), delta_(delta), q_(magnitude.size()) {
+    for (std::size_t i = 0; i < q_.size(); ++i) {
+      if (!(m_[i] < float(1u << kMaxBitPlanes)))
+        throw std::invalid_argument("quantization index too large for the block coder");
+      q_[i] = std::uint32_t(m_[i]);
+    }
+  }
+
+  EncodedBlock run() {
+    EncodedBlock out;
+    std::uint32_t all = 0;
+    for (auto q : q_) all |= q;
+    while (all >> out.planes) ++out.planes;
+    for (std::size_t i = 0; i < q_.size(); ++i) out.initial_distortion += double(m_[i]) * double(m_[i]);
+    for (int p = out.planes - 1; p >= 0; --p) {
+      if (p != out.planes - 1) {
+        significance_pass(p);
+        finish_pass(out);
+        refinement_pass(p);
+        finish_pass(out);
+      }
+      cleanup_pass(p);
+      finish_pass(out);
+    }
+    auto committed = rc_.committed();
+    out.committed.assign(committed.begin(), committed.end());
+    return out;
+  }
+
+ private:
+  std::size_t index(std::size_t x, std::size_t y, std::size_t z) const {
+    const Extent& s = state_.size();
+    return x + s[0] * (y + s[1] * z);
+  }
+  // Reconstruction (index units) of magnitude q known down to bit-plane p.
+  double reconstruction(std::uint32_t q, int p) const {
+    const std::uint32_t known = (q >> p) << p;
+    return double(known) + delta_ * double(1u << p);
+  }
+  void add_gain(double m, double before, double after) {
+    gain_ += (m - before) * (m - before) - (m - after) * (m - after);
+  }
+
+  void finish_pass(EncodedBlock& out) {
+    out.passes.push_back(rc_.truncation_point());
+    out.distortion_drop.push_back(gain_);
+    gain_ = 0.0;
+  }
+
+  // Codes bit-plane p of a coefficient not yet significant; returns the coded bit.
+  int code_significance(std::size_t p_flag, std::size_t i, int p, int ctx) {
+    const int bit = int((q_[i] >> p) & 1u);
+    rc_.encode(bit, state_.models[std::size_t(ctx)]);
+    if (bit) become_significant(p_flag, i, p);
+    return bit;
+  }
+  void become_significant(std::size_t p_flag, std::size_t i, int p) {
+    const auto [ctx, flip] = state_.sign_context(p_flag);
+    rc_.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
+    state_.flags(p_flag) = std::uint8_t(state_.flags(p_flag) | kSignificant | (negative_[i] ? kNegative : 0));
+    add_gain(m_[i], 0.0, reconstruction(q_[i], p));
+  }
+
+  void significance_pass(int p) {
+    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+      for (std::size_t y = y0; y < y0 + rows; ++y) {
+        const std::size_t f = state_.at(x, y, z);
+        if (state_.flags(f) & kSignificant) continue;
+        const int ctx = state_.significance_context(f);
+        if (ctx == 0) continue;
+        code_significance(f, index(x, y, z), p, ctx);
+        state_.flags(f) |= kVisited;
+      }
+    });
+  }
+
+  void refinement_pass(int p) {
+    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+      for (std::size_t y = y0; y < y0 + rows; ++y) {
+        const std::size_t f = state_.at(x, y, z);
+        if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
+        const std::size_t i = index(x, y, z);
+        rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
+        state_.flags(f) |= kRefined;
+        add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
+      }
+    });
+  }
+
+  void cleanup_pass(int p) {
+    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+      std::size_t y = y0;
+      if (rows == kStripe && run_eligible(x, y0, z)) {
+        std::size_t first = kStripe;  // first coefficient of the column with bit p set
+        for (std::size_t r = 0; r < kStripe && first == kStripe; ++r)
+          if ((q_[index(x, y0 + r, z)] >> p) & 1u) first = r;
+        rc_.encode(first != kStripe, state_.models[kRunContext]);
+        if (first == kStripe) return;
+        rc_.encode_equiprobable(int(first >> 1));
+        rc_.encode_equiprobable(int(first & 1));
+        become_significant(state_.at(x, y0 + first, z), index(x, y0 + first, z), p);
+        y = y0 + first + 1;
+      }
+      for (; y < y0 + rows; ++y) {
+        const std::size_t f = state_.at(x, y, z);
+        if (state_.flags(f) & (kSignificant | kVisited)) continue;
+        code_significance(f, index(x, y, z), p, state_.significance_context(f));
+      }
+    });
+    state_.clear_visited();
+  }
+
+  // The run mode codes a whole column with one bit when it is quiet and uncoded.
+  bool run_eligible(std::size_t x, std::size_t y0, std::size_t z) const {
+    for (std::size_t r = 0; r < kStripe; ++r) {
+      const std::size_t f = state_.at(x, y0 + r, z);
+      if ((state_.flags(f) & (kSignificant | kVisited)) || !state_.isolated(f)) return false;
+    }
+    return true;
+  }
+
+  std::span<const float> m_;
+  std::span<const std::uint8_t> negative_;
+  BlockState state_;
+  double delta_;
+  std::vector<std::uint32_t> q_;
+  RangeEncoder rc_;
+  double gain_ = 0.0;
+};
+
+}  // namespace
+
+std::vector<std::uint8_t> EncodedBlock::codeword(int n) const {
+  if (n <= 0) return {};
+  return RangeEncoder::codeword(committed, passes[std::size_t(n - 1)]);
+}
+
+EncodedBlock encode_block(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
+                          const Extent& size, unsigned orientation, double delta) {
+  if (magnitude.size() != size[0] * size[1] * size[2] || negative.size() != magnitude.size())
+    throw std::invalid_argument("encode_block: coefficient count does not match the block size");
+  return BitPlaneEncoder(magnitude, negative, size, orientation, delta).run();
+}
+
+}  // namespace pupwave

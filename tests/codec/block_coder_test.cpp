@@ -1,0 +1,121 @@
+// Round trips of the bit-plane block coder on random and structured coefficients, at every
+// truncation point, in 2-D and 3-D blocks of odd sizes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "codec/block_contexts.h"
+#include "codec/block_decoder.h"
+#include "codec/block_encoder.h"
+
+namespace pupwave {
+namespace {
+
+struct Coefficients {
+  std::vector<float> magnitude;
+  std::vector<std::uint8_t> negative;
+};
+
+// Laplacian-like coefficients with a spatially varying scale, as in a detail band.
+Coefficients make_coefficients(const Extent& size, double scale, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::exponential_distribution<double> mag(1.0);
+  Coefficients c;
+  const std::size_t n = size[0] * size[1] * size[2];
+  for (std::size_t i = 0; i < n; ++i) {
+    const double local = scale * (1.0 + std::sin(double(i % size[0]) * 0.3));
+    const double v = (rng() % 3 == 0) ? 0.0 : mag(rng) * local;
+    c.magnitude.push_back(float(v));
+    c.negative.push_back(std::uint8_t(rng() & 1u));
+  }
+  return c;
+}
+
+// Checks that decoding n passes agrees with the encoder's model of what n passes convey:
+// the decoded magnitude bits are a prefix of the true index bits, and the exact squared
+// error of the reconstruction matches the encoder's distortion bookkeeping.
+void check_all_truncations(const Coefficients& c, const Extent& size, unsigned orientation) {
+  const double delta = 0.375;
+  const EncodedBlock enc = encode_block(c.magnitude, c.negative, size, orientation, delta);
+  ASSERT_EQ(enc.pass_count(), passes_for_planes(enc.planes));
+  double remaining = enc.initial_distortion;
+  for (int n = 0; n <= enc.pass_count(); ++n) {
+    if (n > 0) remaining -= enc.distortion_drop[std::size_t(n - 1)];
+    const auto word = enc.codeword(n);
+    ASSERT_EQ(word.size(), enc.size(n));
+    const DecodedBlock dec = decode_block(word, enc.planes, n, size, orientation);
+    double err = 0.0;
+    for (std::size_t i = 0; i < c.magnitude.size(); ++i) {
+      const auto q = std::uint32_t(c.magnitude[i]);
+      const std::uint32_t known = std::uint32_t(std::abs(dec.known[i]));
+      if (dec.low_plane[i] != 255) {
+        ASSERT_EQ(known, (q >> dec.low_plane[i]) << dec.low_plane[i]) << "pass " << n << " coef " << i;
+        ASSERT_EQ(dec.known[i] < 0, c.negative[i] != 0);
+      }
+      if (n == enc.pass_count()) ASSERT_EQ(known, q);
+      const double r = std::abs(reconstruct(dec, i, delta, false));
+      err += (c.magnitude[i] - r) * (c.magnitude[i] - r);
+    }
+    ASSERT_NEAR(err, remaining, 1e-6 * enc.initial_distortion + 1e-6) << "pass " << n;
+  }
+}
+
+TEST(BlockCoder, RoundTripsEveryTruncationPoint2D) {
+  const Extent size{64, 64, 1};
+  for (unsigned orientation : {0u, 1u, 2u, 3u})
+    check_all_truncations(make_coefficients(size, 20.0, 5 + orientation), size, orientation);
+}
+
+TEST(BlockCoder, RoundTripsOddAndTinyShapes) {
+  for (Extent size : {Extent{1, 1, 1}, Extent{1, 37, 1}, Extent{37, 1, 1}, Extent{13, 6, 1}, Extent{33, 17, 1}})
+    check_all_truncations(make_coefficients(size, 50.0, 3), size, 3);
+}
+
+TEST(BlockCoder, RoundTrips3DBlocks) {
+  for (Extent size : {Extent{16, 16, 16}, Extent{7, 5, 3}})
+    check_all_truncations(make_coefficients(size, 8.0, 9), size, 5);
+}
+
+TEST(BlockCoder, AllZeroBlockCostsNothing) {
+  const Extent size{32, 32, 1};
+  const std::vector<float> zero(32 * 32, 0.4f);  // below one quantization step
+  const std::vector<std::uint8_t> sign(32 * 32, 0);
+  const EncodedBlock enc = encode_block(zero, sign, size, 0, 0.5);
+  EXPECT_EQ(enc.planes, 0);
+  EXPECT_EQ(enc.pass_count(), 0);
+}
+
+TEST(BlockCoder, LargeIndicesUpToTheLimitRoundTrip) {
+  const Extent size{8, 8, 1};
+  Coefficients c = make_coefficients(size, 1.0, 1);
+  c.magnitude[5] = float((1u << kMaxBitPlanes) - 64);
+  check_all_truncations(c, size, 0);
+  c.magnitude[6] = float(1u << kMaxBitPlanes);
+  EXPECT_THROW(encode_block(c.magnitude, c.negative, size, 0, 0.5), std::invalid_argument);
+}
+
+TEST(BlockCoder, StructuredDataCompressesBelowRawSize) {
+  const Extent size{64, 64, 1};
+  Coefficients c = make_coefficients(size, 4.0, 2);
+  for (std::size_t i = 0; i < c.magnitude.size(); i += 2) c.magnitude[i] = 0.0f;  // sparse
+  const EncodedBlock enc = encode_block(c.magnitude, c.negative, size, 1, 0.5);
+  // Raw: planes bits per coefficient plus a sign bit.
+  EXPECT_LT(double(enc.size(enc.pass_count())), 64.0 * 64.0 * (enc.planes + 1) / 8.0 * 0.7);
+}
+
+TEST(BlockCoder, GarbageCodewordsDecodeWithoutFault) {
+  std::mt19937 rng(17);
+  const Extent size{64, 64, 1};
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<std::uint8_t> junk(std::size_t(rng() % 3000));
+    for (auto& b : junk) b = std::uint8_t(rng());
+    const int planes = int(rng() % (kMaxBitPlanes + 1));
+    const DecodedBlock dec = decode_block(junk, planes, passes_for_planes(planes), size, rng() % 4);
+    EXPECT_EQ(dec.known.size(), size[0] * size[1]);
+  }
+}
+
+}  // namespace
+}  // namespace pupwave
