@@ -1,0 +1,37 @@
+#include "transforms/spec.h"
+
+#include <stdexcept>
+
+#include "transforms/cdf.h"
+
+namespace pupwave {
+namespace {
+
+constexpr std::string_view kPupsPrefix = "pups:";
+constexpr std::string_view kKobbeltPrefix = "kobbelt:";
+
+std::string joined_specs() {
+  std::string s;
+  for (const auto& name : transform_specs()) s += (s.empty() ? "" : ", ") + name;
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> transform_specs() {
+  std::vector<std::string> specs{"cdf97", "cdf53"};
+  return specs;
+}
+
+Transform1DPtr make_transform(std::string_view spec) {
+  if (spec == "cdf97") return make_cdf97();
+  if (spec == "cdf53") return make_cdf53();
+  if (spec.starts_with(kPupsPrefix) || spec.starts_with(kKobbeltPrefix)) {
+    throw std::invalid_argument("transform family of '" + std::string(spec) +
+                                "' is not available yet; valid specs: " + joined_specs());
+  }
+  throw std::invalid_argument("unknown transform spec '" + std::string(spec) +
+                              "'; valid specs: " + joined_specs());
+}
+
+}  // namespace pupwave
