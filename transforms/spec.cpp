@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "transforms/cdf.h"
+#include "transforms/kobbelt/kobbelt_transform.h"
 
 namespace pupwave {
 namespace {
@@ -20,13 +21,16 @@ std::string joined_specs() {
 
 std::vector<std::string> transform_specs() {
   std::vector<std::string> specs{"cdf97", "cdf53"};
+  for (auto& s : kobbelt_transform_specs()) specs.push_back(std::move(s));
   return specs;
 }
 
 Transform1DPtr make_transform(std::string_view spec) {
   if (spec == "cdf97") return make_cdf97();
   if (spec == "cdf53") return make_cdf53();
-  if (spec.starts_with(kPupsPrefix) || spec.starts_with(kKobbeltPrefix)) {
+  if (spec.starts_with(kKobbeltPrefix))
+    return make_kobbelt_transform_from_spec(spec.substr(kKobbeltPrefix.size()));
+  if (spec.starts_with(kPupsPrefix)) {
     throw std::invalid_argument("transform family of '" + std::string(spec) +
                                 "' is not available yet; valid specs: " + joined_specs());
   }
