@@ -103,10 +103,12 @@ Row four_point_row(std::size_t n, std::size_t c) {
 // spline through the even samples, evaluated at the odd ones. Interior rows are
 // 2 Delta^4 - Delta^6; the first segment's row is s''(t_0) = 0 eliminated against the C^2
 // conditions at t_1 (Eq. 21 with unit spacing, times 2), the last segment's its mirror, and
-// for even n the sample beyond the last knot lies on the spline's linear extension.
+// for even n the sample beyond the last knot lies on the spline's linear extension: with
+// the last segment's knots a, b, midpoint m and s''(b) = 0, that tangent line gives
+// e = (13 b + a - 8 m) / 6.
 Row spline_row(std::size_t n, std::size_t c) {
   const std::size_t last_knot = n % 2 == 1 ? n - 1 : n - 2;
-  if (c == n - 1) return {0, 1, -2, 1, 0, 0, 0};         // beyond the last knot (n even)
+  if (c == n - 1) return {-1, 8, -13, 6, 0, 0, 0};       // beyond the last knot (n even)
   if (c == 1) return {0, 0, 9, -24, 22, -8, 1};           // first segment, s''(t_0) = 0
   if (c + 1 == last_knot) return {1, -8, 22, -24, 9, 0, 0};  // last segment, mirrored
   return {-1, 8, -23, 32, -23, 8, -1};
