@@ -162,6 +162,42 @@ TEST(Separable, StopLevelGivesCoarseBandOfFewerLevels) {
   }
 }
 
+// The same for the irreversible 9/7 in double, to rounding.
+TEST(Separable, StopLevelMatchesForCdf97) {
+  const auto tr = make_cdf97();
+  const Extent d{50, 37, 3};
+  const auto x = random_array<double>(volume(d), 13, -1000, 1000);
+  for (int k = 1; k <= 4; ++k) {
+    auto full = x, fewer = x;
+    forward(*tr, full.data(), d, 5);
+    inverse(*tr, full.data(), d, 5, k);
+    forward(*tr, fewer.data(), d, k);
+    const Extent c = level_extent(d, k);
+    for (std::size_t z = 0; z < c[2]; ++z)
+      for (std::size_t y = 0; y < c[1]; ++y)
+        for (std::size_t xx = 0; xx < c[0]; ++xx) {
+          const std::size_t i = (z * d[1] + y) * d[0] + xx;
+          ASSERT_NEAR(full[i], fewer[i], 1e-9 * 2000) << "stop " << k;
+        }
+  }
+}
+
+TEST(Separable, ThreadCountDoesNotChangeResults3d) {
+  const Extent d{90, 60, 40};
+  const auto x = random_array<double>(volume(d), 22, -100, 100);
+  auto one = x, many = x;
+  const auto tr = make_cdf53();
+  set_transform_threads(1);
+  forward(*tr, one.data(), d, 3);
+  set_transform_threads(3);
+  forward(*tr, many.data(), d, 3);
+  inverse(*tr, many.data(), d, 3);
+  set_transform_threads(0);
+  inverse(*tr, one.data(), d, 3);
+  EXPECT_EQ(one, many);
+  for (std::size_t i = 0; i < x.size(); ++i) ASSERT_NEAR(one[i], x[i], 1e-9);
+}
+
 TEST(Separable, ThreadCountDoesNotChangeResults) {
   const Extent d{700, 400, 1};
   const auto x = random_array<float>(volume(d), 21, -100, 100);
