@@ -1,0 +1,390 @@
+#include "tools/volume_io.h"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Prune.h>
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+#include "tools/atomic_file.h"
+
+namespace pupwave::cli {
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------------------------
+// Raw volumes
+
+Extent parse_dims(std::string_view text) {
+  Extent dims{1, 1, 1};
+  std::size_t axis = 0;
+  std::string_view rest = text;
+  while (true) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view field = rest.substr(0, comma);
+    std::size_t value = 0;
+    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
+    if (axis >= 3 || field.empty() || ec != std::errc() || end != field.data() + field.size() || value == 0)
+      throw std::invalid_argument("invalid --dims '" + std::string(text) +
+                                  "' (expected X,Y,Z with positive integers)");
+    dims[axis++] = value;
+    if (comma == std::string_view::npos) break;
+    rest = rest.substr(comma + 1);
+  }
+  return dims;
+}
+
+// Byte order of raw files is little endian; swap on big-endian hosts.
+template <class U>
+U to_little_endian(U v) {
+  if constexpr (std::endian::native == std::endian::big) {
+    U r = 0;
+    for (std::size_t i = 0; i < sizeof(U); ++i) r = static_cast<U>((r << 8) | ((v >> (8 * i)) & 0xFF));
+    return r;
+  }
+  return v;
+}
+
+template <class T, class U>
+void decode_samples(const std::uint8_t* bytes, std::vector<double>& out) {
+  static_assert(sizeof(T) == sizeof(U));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    U raw;
+    std::memcpy(&raw, bytes + i * sizeof(U), sizeof(U));
+    raw = to_little_endian(raw);
+    T value;
+    std::memcpy(&value, &raw, sizeof(T));
+    out[i] = static_cast<double>(value);
+  }
+}
+
+template <class T, class U>
+void encode_samples(const std::vector<double>& in, std::uint8_t* bytes) {
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    T value;
+    if constexpr (std::is_integral_v<T>) {
+      const double v = std::isnan(in[i]) ? 0.0 : in[i];
+      value = static_cast<T>(std::clamp(std::round(v), 0.0, double(std::numeric_limits<T>::max())));
+    } else {
+      value = static_cast<T>(in[i]);
+    }
+    U raw;
+    std::memcpy(&raw, &value, sizeof(U));
+    raw = to_little_endian(raw);
+    std::memcpy(bytes + i * sizeof(U), &raw, sizeof(U));
+  }
+}
+
+// Voxel count of dims, or 0 when the product does not fit (treated as absurd by callers).
+static std::size_t checked_count(const Extent& dims) {
+  std::size_t n = 1;
+  for (std::size_t d : dims) {
+    if (d == 0 || n > std::numeric_limits<std::size_t>::max() / d) return 0;
+    n *= d;
+  }
+  return n;
+}
+
+static std::string dims_text(const Extent& d) {
+  return std::to_string(d[0]) + "," + std::to_string(d[1]) + "," + std::to_string(d[2]);
+}
+
+Volume read_raw_volume(const fs::path& path, const Extent& dims, VoxelType type, std::size_t max_voxels) {
+  const std::string what = "cannot read " + path.string() + ": ";
+  const std::size_t count = checked_count(dims);
+  if (count == 0 || count > max_voxels)
+    throw std::runtime_error(what + "--dims " + dims_text(dims) + " is too large (at most " +
+                             std::to_string(max_voxels) + " voxels)");
+  const std::uintmax_t expected = std::uintmax_t(count) * bytes_per_voxel(type);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw std::runtime_error(what + "no such file");
+  const std::uintmax_t actual = fs::file_size(path, ec);
+  if (ec) throw std::runtime_error(what + ec.message());
+  if (actual != expected)
+    throw std::runtime_error(what + "file has " + std::to_string(actual) + " bytes but --dims " +
+                             dims_text(dims) + " --dtype " + to_string(type) + " needs " +
+                             std::to_string(expected));
+  const std::vector<std::uint8_t> bytes = read_file_bytes(path, expected);
+  Volume volume(dims, type);
+  switch (type) {
+    case VoxelType::u8: decode_samples<std::uint8_t, std::uint8_t>(bytes.data(), volume.samples); break;
+    case VoxelType::u16: decode_samples<std::uint16_t, std::uint16_t>(bytes.data(), volume.samples); break;
+    case VoxelType::f32: decode_samples<float, std::uint32_t>(bytes.data(), volume.samples); break;
+    case VoxelType::f64: decode_samples<double, std::uint64_t>(bytes.data(), volume.samples); break;
+  }
+  return volume;
+}
+
+void write_raw_volume(const Volume& volume, const fs::path& path) {
+  if (volume.samples.size() != volume.count())
+    throw std::invalid_argument("write_raw_volume: sample count does not match dims");
+  std::vector<std::uint8_t> bytes(volume.samples.size() * bytes_per_voxel(volume.type));
+  switch (volume.type) {
+    case VoxelType::u8: encode_samples<std::uint8_t, std::uint8_t>(volume.samples, bytes.data()); break;
+    case VoxelType::u16: encode_samples<std::uint16_t, std::uint16_t>(volume.samples, bytes.data()); break;
+    case VoxelType::f32: encode_samples<float, std::uint32_t>(volume.samples, bytes.data()); break;
+    case VoxelType::f64: encode_samples<double, std::uint64_t>(volume.samples, bytes.data()); break;
+  }
+  write_bytes_atomically(path, bytes);
+}
+
+// ---------------------------------------------------------------------------------------------
+// OpenVDB
+
+bool is_vdb_path(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".vdb";
+}
+
+// OpenVDB needs its type registry filled once per process before any file is read or written.
+static void ensure_openvdb() {
+  static std::once_flag once;
+  std::call_once(once, [] { openvdb::initialize(); });
+}
+
+// Grid metadata that describes the file rather than the grid, or is held in VolumeGrid fields.
+static bool is_structural_meta(const std::string& key) {
+  return key == openvdb::GridBase::META_GRID_NAME || key == openvdb::GridBase::META_GRID_CLASS ||
+         key.rfind("file_", 0) == 0;
+}
+
+template <class T>
+static const T* typed_meta(const openvdb::Metadata& m) {
+  const auto* t = dynamic_cast<const openvdb::TypedMetadata<T>*>(&m);
+  return t ? &t->value() : nullptr;
+}
+
+// The typed value of one metadata entry, or false for types VolumeGrid does not hold.
+static bool meta_from_vdb(const openvdb::Metadata& m, MetaValue& out) {
+  using K = MetaValue::Kind;
+  if (const auto* s = typed_meta<std::string>(m)) { out.kind = K::string; out.text = *s; }
+  else if (const auto* b = typed_meta<bool>(m)) { out.kind = K::boolean; out.integer = *b ? 1 : 0; }
+  else if (const auto* i = typed_meta<openvdb::Int32>(m)) { out.kind = K::int32; out.integer = *i; }
+  else if (const auto* l = typed_meta<openvdb::Int64>(m)) { out.kind = K::int64; out.integer = *l; }
+  else if (const auto* f = typed_meta<float>(m)) { out.kind = K::float32; out.numbers[0] = *f; }
+  else if (const auto* d = typed_meta<double>(m)) { out.kind = K::float64; out.numbers[0] = *d; }
+  else if (const auto* vi = typed_meta<openvdb::Vec3i>(m)) {
+    out.kind = K::vec3i;
+    for (int a = 0; a < 3; ++a) out.numbers[std::size_t(a)] = (*vi)[a];
+  } else if (const auto* vs = typed_meta<openvdb::Vec3s>(m)) {
+    out.kind = K::vec3f;
+    for (int a = 0; a < 3; ++a) out.numbers[std::size_t(a)] = (*vs)[a];
+  } else if (const auto* vd = typed_meta<openvdb::Vec3d>(m)) {
+    out.kind = K::vec3d;
+    for (int a = 0; a < 3; ++a) out.numbers[std::size_t(a)] = (*vd)[a];
+  } else {
+    return false;
+  }
+  return true;
+}
+
+static void meta_to_vdb(openvdb::GridBase& grid, const std::string& key, const MetaValue& v) {
+  using K = MetaValue::Kind;
+  const auto& n = v.numbers;
+  switch (v.kind) {
+    case K::string: grid.insertMeta(key, openvdb::StringMetadata(v.text)); break;
+    case K::boolean: grid.insertMeta(key, openvdb::BoolMetadata(v.integer != 0)); break;
+    case K::int32: grid.insertMeta(key, openvdb::Int32Metadata(static_cast<openvdb::Int32>(v.integer))); break;
+    case K::int64: grid.insertMeta(key, openvdb::Int64Metadata(v.integer)); break;
+    case K::float32: grid.insertMeta(key, openvdb::FloatMetadata(static_cast<float>(n[0]))); break;
+    case K::float64: grid.insertMeta(key, openvdb::DoubleMetadata(n[0])); break;
+    case K::vec3i:
+      grid.insertMeta(key, openvdb::Vec3IMetadata(openvdb::Vec3i(int(n[0]), int(n[1]), int(n[2]))));
+      break;
+    case K::vec3f:
+      grid.insertMeta(key, openvdb::Vec3SMetadata(openvdb::Vec3s(float(n[0]), float(n[1]), float(n[2]))));
+      break;
+    case K::vec3d: grid.insertMeta(key, openvdb::Vec3DMetadata(openvdb::Vec3d(n[0], n[1], n[2]))); break;
+  }
+}
+
+static GridClass class_from_vdb(openvdb::GridClass c) {
+  if (c == openvdb::GRID_LEVEL_SET) return GridClass::level_set;
+  if (c == openvdb::GRID_FOG_VOLUME) return GridClass::fog_volume;
+  return GridClass::unknown;
+}
+
+static openvdb::GridClass class_to_vdb(GridClass c) {
+  if (c == GridClass::level_set) return openvdb::GRID_LEVEL_SET;
+  if (c == GridClass::fog_volume) return openvdb::GRID_FOG_VOLUME;
+  return openvdb::GRID_UNKNOWN;
+}
+
+// Name, class, transform and metadata of a grid (everything but the values).
+static void describe_from_vdb(const openvdb::GridBase& grid, VolumeGrid& out, const fs::path& path) {
+  out.name = grid.getName();
+  out.grid_class = class_from_vdb(grid.getGridClass());
+  const openvdb::math::Transform& xform = grid.transform();
+  if (!xform.isLinear())
+    throw std::runtime_error("cannot read " + path.string() + ": grid '" + out.name +
+                             "' has a non-linear (frustum) transform, which is not supported");
+  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out.index_to_world[std::size_t(4 * r + c)] = m(r, c);
+  for (auto it = grid.beginMeta(); it != grid.endMeta(); ++it) {
+    MetaValue v;
+    if (!is_structural_meta(it->first) && it->second && meta_from_vdb(*it->second, v))
+      out.metadata.emplace(it->first, v);
+  }
+}
+
+// Dense extraction over the active bounding box: values (active or not) and the active mask.
+template <class GridT>
+static Volume extract_dense(const GridT& grid, VolumeGrid& out, std::size_t max_box_voxels,
+                            const fs::path& path) {
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  const VoxelType type = std::is_same_v<typename GridT::ValueType, double> ? VoxelType::f64 : VoxelType::f32;
+  if (box.empty()) {
+    Volume empty({0, 0, 0}, type);
+    empty.background = double(grid.background());
+    return empty;
+  }
+  Extent dims{};
+  for (int a = 0; a < 3; ++a) {
+    dims[std::size_t(a)] = std::size_t(std::int64_t(box.max()[a]) - box.min()[a] + 1);
+    out.origin[std::size_t(a)] = box.min()[a];
+  }
+  const std::size_t count = checked_count(dims);
+  if (count == 0 || count > max_box_voxels)
+    throw std::runtime_error("cannot read " + path.string() + ": grid '" + grid.getName() +
+                             "' spans " + dims_text(dims) + " voxels, more than the limit of " +
+                             std::to_string(max_box_voxels));
+  Volume v(dims, type);
+  v.background = double(grid.background());
+  v.active.assign(count, 0);
+  auto acc = grid.getConstAccessor();
+  std::size_t i = 0;
+  for (std::size_t z = 0; z < dims[2]; ++z)
+    for (std::size_t y = 0; y < dims[1]; ++y)
+      for (std::size_t x = 0; x < dims[0]; ++x, ++i) {
+        const openvdb::Coord ijk = box.min() + openvdb::Coord(int(x), int(y), int(z));
+        typename GridT::ValueType value;
+        v.active[i] = acc.probeValue(ijk, value) ? 1 : 0;
+        v.samples[i] = double(value);
+      }
+  return v;
+}
+
+static std::string available_names(const openvdb::GridPtrVec& grids) {
+  std::string names;
+  for (const auto& g : grids) names += (names.empty() ? "'" : ", '") + g->getName() + "'";
+  return names.empty() ? "none" : names;
+}
+
+// Every grid of a file (trees included); OpenVDB errors become a clear runtime_error.
+static openvdb::GridPtrVecPtr read_all_grids(const fs::path& path) {
+  ensure_openvdb();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw std::runtime_error("cannot read " + path.string() + ": no such file");
+  try {
+    openvdb::io::File file(path.string());
+    file.open(false);  // no delayed loading: the file is read now, errors surface here
+    openvdb::GridPtrVecPtr grids = file.getGrids();
+    file.close();
+    if (!grids) throw std::runtime_error("no grids");
+    return grids;
+  } catch (const openvdb::Exception& e) {
+    throw std::runtime_error("cannot read " + path.string() + ": not a valid OpenVDB file (" + e.what() + ")");
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("cannot read " + path.string() + ": corrupt OpenVDB file (allocation failed)");
+  }
+}
+
+std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_name,
+                                 std::vector<std::string>* skipped, std::size_t max_box_voxels) {
+  const openvdb::GridPtrVecPtr grids = read_all_grids(path);
+  std::vector<VolumeGrid> result;
+  for (const openvdb::GridBase::Ptr& base : *grids) {
+    if (!grid_name.empty() && base->getName() != grid_name) continue;
+    VolumeGrid g;
+    if (auto fg = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) {
+      describe_from_vdb(*fg, g, path);
+      g.volume = extract_dense(*fg, g, max_box_voxels, path);
+    } else if (auto dg = openvdb::gridPtrCast<openvdb::DoubleGrid>(base)) {
+      describe_from_vdb(*dg, g, path);
+      g.volume = extract_dense(*dg, g, max_box_voxels, path);
+    } else if (!grid_name.empty()) {
+      throw std::runtime_error("cannot read " + path.string() + ": grid '" + base->getName() + "' holds " +
+                               base->valueType() + " values (only float and double grids are supported)");
+    } else {
+      if (skipped) skipped->push_back(base->getName());
+      continue;
+    }
+    result.push_back(std::move(g));
+  }
+  if (!grid_name.empty() && result.empty())
+    throw std::runtime_error("cannot read " + path.string() + ": no grid named '" + std::string(grid_name) +
+                             "' (grids: " + available_names(*grids) + ")");
+  if (result.empty())
+    throw std::runtime_error("cannot read " + path.string() + ": no float or double grid in the file");
+  return result;
+}
+
+// A sparse OpenVDB grid from a VolumeGrid: only voxels that differ from the implicit background
+// (or are active) are touched, then uniform leaves are pruned back into tiles.
+template <class GridT>
+static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
+  using V = typename GridT::ValueType;
+  const Volume& vol = g.volume;
+  if (vol.samples.size() != vol.count() || (vol.is_sparse() && vol.active.size() != vol.count()))
+    throw std::invalid_argument("write_vdb: grid '" + g.name + "' has inconsistent sizes");
+  const V background = static_cast<V>(vol.background);
+  typename GridT::Ptr grid = GridT::create(background);
+  auto acc = grid->getAccessor();
+  const openvdb::Coord origin(int(g.origin[0]), int(g.origin[1]), int(g.origin[2]));
+  std::size_t i = 0;
+  for (std::size_t z = 0; z < vol.dims[2]; ++z)
+    for (std::size_t y = 0; y < vol.dims[1]; ++y)
+      for (std::size_t x = 0; x < vol.dims[0]; ++x, ++i) {
+        const openvdb::Coord ijk = origin + openvdb::Coord(int(x), int(y), int(z));
+        const V value = static_cast<V>(vol.samples[i]);
+        if (vol.is_active(i)) acc.setValueOn(ijk, value);
+        else if (value != background) acc.setValueOff(ijk, value);
+      }
+  openvdb::tools::prune(grid->tree());
+  return grid;
+}
+
+static void describe_to_vdb(const VolumeGrid& g, openvdb::GridBase& grid) {
+  for (const auto& [key, value] : g.metadata)
+    if (!is_structural_meta(key)) meta_to_vdb(grid, key, value);
+  grid.setName(g.name);
+  grid.setGridClass(class_to_vdb(g.grid_class));
+  openvdb::Mat4d m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m(r, c) = g.index_to_world[std::size_t(4 * r + c)];
+  try {
+    auto map = openvdb::math::simplify(std::make_shared<openvdb::math::AffineMap>(m));
+    grid.setTransform(std::make_shared<openvdb::math::Transform>(map));
+  } catch (const openvdb::Exception& e) {
+    throw std::invalid_argument("write_vdb: grid '" + g.name + "' has an invalid transform (" + e.what() + ")");
+  }
+}
+
+void write_vdb(const std::vector<VolumeGrid>& grids, const fs::path& path) {
+  ensure_openvdb();
+  openvdb::GridPtrVec out;
+  for (const VolumeGrid& g : grids) {
+    const bool dbl = g.volume.type == VoxelType::f64;
+    openvdb::GridBase::Ptr grid = dbl ? build_grid<openvdb::DoubleGrid>(g) : build_grid<openvdb::FloatGrid>(g);
+    describe_to_vdb(g, *grid);
+    out.push_back(grid);
+  }
+  write_atomically(path, [&](const fs::path& tmp) {
+    try {
+      openvdb::io::File file(tmp.string());
+      file.write(out);
+      file.close();
+    } catch (const openvdb::Exception& e) {
+      throw std::runtime_error("cannot write " + path.string() + ": " + e.what());
+    }
+  });
+}
+
+}  // namespace pupwave::cli

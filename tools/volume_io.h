@@ -1,0 +1,57 @@
+#pragma once
+// Volume files <-> the library's Volume / VolumeGrid: raw dense volumes (little endian) and
+// OpenVDB files (FloatGrid, DoubleGrid). The only place that knows about volume file formats.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "codec/volume.h"
+
+namespace pupwave::cli {
+
+// Largest raw volume accepted (voxels). A raw file must hold exactly dims * bytes per voxel, so
+// memory use is bounded by the real file size; this only bounds absurd --dims early.
+inline constexpr std::size_t kMaxRawVoxels = std::size_t(1) << 30;
+// Largest dense box extracted from one OpenVDB grid (voxels, 2 GiB as double). A tiny hostile
+// .vdb can declare active tiles spanning any box, so the box is checked before allocating.
+inline constexpr std::size_t kMaxVdbBoxVoxels = std::size_t(1) << 28;
+
+// Parses --dims "X,Y,Z" (or "X,Y" / "X", missing axes = 1); every extent >= 1.
+// Throws std::invalid_argument with the offending text.
+Extent parse_dims(std::string_view text);
+
+// Reads a raw dense volume of `dims` samples of `type`, little endian, x fastest. The file size
+// must equal dims[0]*dims[1]*dims[2]*bytes_per_voxel(type) exactly; otherwise, for absurd dims or
+// above max_voxels, throws std::runtime_error naming the file, the sizes and the options.
+Volume read_raw_volume(const std::filesystem::path& path, const Extent& dims, VoxelType type,
+                       std::size_t max_voxels = kMaxRawVoxels);
+
+// Writes volume.samples as `volume.type`, little endian, atomically. Integer types are rounded
+// and clamped to their range (NaN becomes 0). The active mask, if any, is not stored.
+void write_raw_volume(const Volume& volume, const std::filesystem::path& path);
+
+// True when the path names an OpenVDB file (extension .vdb, any case).
+bool is_vdb_path(const std::filesystem::path& path);
+
+// Reads the FloatGrid and DoubleGrid grids of an OpenVDB file; with a non-empty grid_name only
+// the grids of that name (an error listing the available names when there is none). Grids of
+// other value types are skipped when reading all grids (their names go to *skipped if given) and
+// are an error when named. Each grid becomes a sparse Volume over the bounding box of its active
+// voxels (active tiles included), keeping inactive values inside the box, the background,
+// class, linear transform and metadata (string, bool, int32/64, float/double, vec3i/s/d entries;
+// the per-file statistics "file_*" that OpenVDB rewrites on every write are dropped).
+// Throws std::runtime_error for unreadable, corrupt or oversized (> max_box_voxels) input, and
+// for non-linear (frustum) transforms.
+std::vector<VolumeGrid> read_vdb(const std::filesystem::path& path, std::string_view grid_name = {},
+                                 std::vector<std::string>* skipped = nullptr,
+                                 std::size_t max_box_voxels = kMaxVdbBoxVoxels);
+
+// Writes grids to an OpenVDB file atomically: f64 volumes as DoubleGrid, all others as FloatGrid,
+// with the same background, active topology, values inside the box, class, transform and
+// metadata (uniform leaves are pruned back into tiles). Grid names need not be unique.
+void write_vdb(const std::vector<VolumeGrid>& grids, const std::filesystem::path& path);
+
+}  // namespace pupwave::cli
