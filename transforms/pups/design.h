@@ -1,0 +1,57 @@
+#pragma once
+// PUPs filter banks from weight functions: the full design (refinement + Algorithm 5.1),
+// the named presets used by the seeds, and the text form of a design used in transform
+// specs ("pups:<body>").
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "transforms/pups/filter_bank.h"
+#include "transforms/pups/multiresolution.h"
+
+namespace pupwave::pups {
+
+// Refines the weight function of `params` (Eq. 17-22) and designs A, B, Q from the
+// refinement (Algorithm 5.1). params.extension is ignored; the l used is stored in the
+// result. Throws std::invalid_argument for bad parameters.
+FilterBank design(const DesignParams& params, const ExtensionRule& rule);
+
+// A named design.
+struct Preset {
+  std::string name;
+  std::string description;
+  DesignParams params;  // params.extension = the fixed l of the preset
+};
+
+// All presets, in a stable order.
+const std::vector<Preset>& presets();
+
+// Designs the named preset (bank.name = name); throws std::invalid_argument if unknown.
+FilterBank design_preset(std::string_view name);
+
+// A parsed spec body: either a preset name or a weight with explicit parameters.
+struct DesignSpec {
+  std::string preset;  // non-empty for a preset
+  DesignParams params;
+  ExtensionRule rule;
+};
+
+// Parses the text after "pups:": a preset name, or `<weight>(key=value,...)` with keys
+//   bspline:         degree
+//   polynomial:      coeffs=a0:a1:...:ak, domain=lo:hi
+//   cinpact, cinpact-interp: c, sigma
+// and for all: l=<even extension> or t=<orthogonality-error threshold> (default l=0),
+// samples=<n> (default 100000). Example: "cinpact-interp(c=5,sigma=4.79,l=32)".
+// Throws std::invalid_argument with a clear message for anything else.
+DesignSpec parse_design_spec(std::string_view body);
+
+// Designs from a parsed spec (preset or explicit).
+FilterBank design(const DesignSpec& spec);
+
+// Canonical spec body of a designed bank: the preset name if bank.name is a preset, else
+// `<weight>(...,l=<l used>)` with numbers in shortest round-trip form, so that
+// parse_design_spec + design rebuild the same bank. Throws for WeightKind::given.
+std::string canonical_spec_body(const FilterBank& bank);
+
+}  // namespace pupwave::pups
