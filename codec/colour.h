@@ -1,0 +1,28 @@
+#pragma once
+// Colour transforms of JPEG 2000 Part 1 Annex G: the irreversible YCbCr transform (ICT) for
+// lossy RGB and the reversible integer transform (RCT) for lossless RGB. They act on the
+// first three planes in place; extra planes (alpha) are left alone and coded as they are.
+
+#include <array>
+#include <cstdint>
+#include <cstddef>
+
+namespace pupwave {
+
+enum class ColourTransform : std::uint8_t { none = 0, ict = 1, rct = 2 };
+
+const char* to_string(ColourTransform colour);
+
+// R, G, B -> Y, Cb, Cr (real-valued, orthogonal-ish) and back, n samples per plane.
+void forward_ict(float* r, float* g, float* b, std::size_t n);
+void inverse_ict(float* y, float* cb, float* cr, std::size_t n);
+
+// R, G, B -> Yr, Ur, Vr (integer, bit-exactly invertible) and back.
+void forward_rct(std::int32_t* r, std::int32_t* g, std::int32_t* b, std::size_t n);
+void inverse_rct(std::int32_t* y, std::int32_t* u, std::int32_t* v, std::size_t n);
+
+// Squared error in R+G+B caused by a unit error in each ICT component (squared column norms
+// of the inverse ICT), so rate allocation minimizes the error of the colours, not of YCbCr.
+std::array<double, 3> ict_error_weights();
+
+}  // namespace pupwave

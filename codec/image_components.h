@@ -1,0 +1,40 @@
+#pragma once
+// Between an Image and the planes the wavelet transform codes: level shift of integer
+// samples to signed, colour transform, per-component error weights, and the way back
+// (including the reduced-resolution rescaling and the rounding and clamping of samples).
+
+#include <cstdint>
+#include <vector>
+
+#include "codec/colour.h"
+#include "codec/image.h"
+#include "transforms/subband.h"
+#include "transforms/transform1d.h"
+
+namespace pupwave {
+
+// Colour transform used for an image of `channels` channels.
+ColourTransform colour_for(std::size_t channels, bool reversible);
+
+// Level shift that centres integer samples on zero (2^(bits-1)); 0 for float samples.
+double level_shift(SampleType type);
+
+// Shifted, colour-transformed planes, one per channel.
+std::vector<std::vector<float>> float_components(const Image& image, ColourTransform colour);
+std::vector<std::vector<std::int32_t>> integer_components(const Image& image, ColourTransform colour);
+
+// Squared output error per unit error of each component (ICT components weigh more).
+std::vector<double> component_weights(std::size_t channels, ColourTransform colour);
+
+// DC gain of the level-`level` coarse band of transform t over dims (1 for level 0), so a
+// reduced-resolution band can be brought back to sample units.
+double coarse_gain(const Transform1D& t, const Extent& dims, int level);
+
+// Builds the output image from the low-corner `size` region of component planes laid out
+// over `dims`: divide by `gain`, undo colour and level shift, round and clamp to the type.
+Image image_from_components(std::vector<std::vector<float>>& planes, const Extent& dims, const Extent& size,
+                            SampleType type, ColourTransform colour, double gain);
+Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims, const Extent& size,
+                            SampleType type, ColourTransform colour);
+
+}  // namespace pupwave

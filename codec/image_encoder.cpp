@@ -1,0 +1,157 @@
+// encode_image with the bit-plane coder: every block is coded once at a fine quantizer step,
+// then rate control picks each block's truncation point by rate-distortion slope (PCRD).
+#include <cmath>
+#include <stdexcept>
+
+#include "codec/block_contexts.h"
+#include "codec/block_encoder.h"
+#include "codec/image_codec.h"
+#include "codec/image_plan.h"
+#include "codec/parallel.h"
+#include "codec/pcrd.h"
+
+namespace pupwave {
+namespace {
+
+// Finest base step tried when a target needs more precision than the first guess.
+constexpr int kMaxStepRefinements = 4;
+// PSNR targets are met from above within this margin (dB) when possible.
+constexpr double kPsnrTolerance = 0.05;
+constexpr int kMaxPsnrRounds = 6;
+
+// All blocks coded with every pass; the PCRD inputs.
+struct CodedImage {
+  std::vector<EncodedBlock> blocks;
+  std::vector<std::vector<HullPoint>> hulls;
+  double initial_distortion = 0.0;  // index units^2, nothing coded
+};
+
+CodedImage code_blocks(const ImagePlan& plan) {
+  CodedImage out;
+  out.blocks.resize(plan.blocks.size());
+  out.hulls.resize(plan.blocks.size());
+  parallel_for(plan.blocks.size(), plan.threads, [&](std::size_t i) {
+    std::vector<float> magnitude;
+    std::vector<std::uint8_t> negative;
+    quantize_block(plan, i, magnitude, negative);
+    const CodeBlock& b = plan.blocks[i];
+    out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+    out.hulls[i] = rd_hull(out.blocks[i]);
+  });
+  for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
+  return out;
+}
+
+std::vector<BlockEntry> entries_for(const CodedImage& coded, const std::vector<int>& passes) {
+  std::vector<BlockEntry> entries(passes.size());
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    entries[i].passes = passes[i];
+    entries[i].planes = passes[i] > 0 ? coded.blocks[i].planes : 0;
+    entries[i].length = std::uint32_t(coded.blocks[i].size(passes[i]));
+  }
+  return entries;
+}
+
+std::size_t stream_size(const ImagePlan& plan, const CodedImage& coded, const std::vector<int>& passes) {
+  const auto entries = entries_for(coded, passes);
+  std::size_t data = 0;
+  for (const auto& e : entries) data += e.length;
+  return container_size(plan.header, encode_index(entries).size(), data);
+}
+
+double remaining_distortion(const CodedImage& coded, const std::vector<int>& passes) {
+  double removed = 0.0;
+  for (std::size_t i = 0; i < passes.size(); ++i)
+    for (int n = 0; n < passes[i]; ++n) removed += coded.blocks[i].distortion_drop[std::size_t(n)];
+  return coded.initial_distortion - removed;
+}
+
+std::vector<std::uint8_t> build(const ImagePlan& plan, const CodedImage& coded, const std::vector<int>& passes) {
+  std::vector<std::vector<std::uint8_t>> words(passes.size());
+  for (std::size_t i = 0; i < passes.size(); ++i) words[i] = coded.blocks[i].codeword(passes[i]);
+  return assemble(plan, entries_for(coded, passes), words);
+}
+
+std::vector<int> all_passes(const CodedImage& coded) {
+  std::vector<int> passes;
+  for (const auto& b : coded.blocks) passes.push_back(b.pass_count());
+  return passes;
+}
+
+EncodeResult finish(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes, double base) {
+  EncodeResult r;
+  r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
+  r.psnr = measure_psnr(image, bytes, plan.threads);
+  r.base_step = base;
+  r.bytes = std::move(bytes);
+  return r;
+}
+
+// Best quality within a byte budget; the base step is refined while every pass still fits.
+EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
+  const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
+  double base = plan.peak / 512.0;
+  for (int round = 0;; ++round, base /= 4.0) {
+    set_base_step(plan, base);
+    const CodedImage coded = code_blocks(plan);
+    const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
+    if (fits_all && round < kMaxStepRefinements) continue;
+    const auto passes = allocate_by_slope(coded.hulls, true, [&](const std::vector<int>& p) {
+      return double(stream_size(plan, coded, p)) <= budget;
+    });
+    return finish(image, plan, build(plan, coded, passes), base);
+  }
+}
+
+// Smallest stream whose decoded PSNR reaches the target: PCRD on the estimated distortion,
+// corrected by measuring the decoded image.
+EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
+  const double target_mse = plan.peak * plan.peak / std::pow(10.0, psnr / 10.0);
+  double base = 0.3 * std::sqrt(target_mse);
+  for (int round = 0;; ++round, base /= 4.0) {
+    set_base_step(plan, base);
+    const CodedImage coded = code_blocks(plan);
+    double allowed = target_mse * double(plan.samples) / (base * base);
+    std::vector<std::uint8_t> best;
+    for (int k = 0; k < kMaxPsnrRounds; ++k) {
+      const auto passes = allocate_by_slope(coded.hulls, false, [&](const std::vector<int>& p) {
+        return remaining_distortion(coded, p) <= allowed;
+      });
+      auto bytes = build(plan, coded, passes);
+      const double got = measure_psnr(image, bytes, plan.threads);
+      if (got >= psnr && (best.empty() || bytes.size() < best.size())) {
+        best = bytes;
+      }
+      if (got >= psnr && got <= psnr + kPsnrTolerance) break;
+      const double got_mse = target_mse * std::pow(10.0, (psnr - got) / 10.0);
+      allowed *= std::isfinite(got) ? target_mse / got_mse : 2.0;
+    }
+    if (!best.empty() || round >= kMaxStepRefinements) {
+      if (best.empty()) best = build(plan, coded, all_passes(coded));
+      return finish(image, plan, std::move(best), base);
+    }
+  }
+}
+
+}  // namespace
+
+EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
+  ImagePlan plan = plan_image(image, options);
+  if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
+  switch (options.mode) {
+    case RateMode::lossless: {
+      const CodedImage coded = code_blocks(plan);
+      return finish(image, plan, build(plan, coded, all_passes(coded)), 1.0);
+    }
+    case RateMode::step: {
+      set_base_step(plan, options.target);
+      const CodedImage coded = code_blocks(plan);
+      return finish(image, plan, build(plan, coded, all_passes(coded)), options.target);
+    }
+    case RateMode::bpp: return encode_for_size(image, plan, options.target);
+    case RateMode::psnr: return encode_for_psnr(image, plan, options.target);
+  }
+  throw std::invalid_argument("unknown rate mode");
+}
+
+}  // namespace pupwave

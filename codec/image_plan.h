@@ -1,0 +1,50 @@
+#pragma once
+// Internal to the image encoder: an image after colour and wavelet transform, partitioned
+// into code-blocks, with the container header being built. Shared by the bit-plane and
+// zstd encoding paths (image_encoder.cpp, image_encoder_zstd.cpp).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/codeblocks.h"
+#include "codec/container.h"
+#include "codec/image_codec.h"
+
+namespace pupwave {
+
+struct ImagePlan {
+  StreamHeader header;
+  std::vector<Subband> bands;
+  std::vector<CodeBlock> blocks;
+  std::vector<double> norms;                  // synthesis norm per band
+  std::vector<double> weights;                // output error per unit component error
+  std::vector<std::vector<float>> coef;       // irreversible: transformed components
+  std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components
+  std::size_t pixels = 0;                     // width * height
+  std::size_t samples = 0;                    // pixels * channels
+  double peak = 1.0;                          // PSNR peak of the input
+  unsigned threads = 0;
+};
+
+// Validates the image and options, applies colour and wavelet transforms.
+ImagePlan plan_image(const Image& image, const EncodeOptions& options);
+
+// Sets the quantizer steps of every (component, band) from a base step.
+void set_base_step(ImagePlan& plan, double base_step);
+
+// Index-unit magnitudes and signs of block i under the plan's steps.
+void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
+                    std::vector<std::uint8_t>& negative);
+
+// The .pw file of the plan with the given per-block index entries and codewords.
+std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<BlockEntry>& entries,
+                                   const std::vector<std::vector<std::uint8_t>>& codewords);
+
+// Decodes `bytes` and returns its PSNR (all channels) against `image`.
+double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads);
+
+// Encodes with the zstd back end (rate control by the base step only).
+EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOptions& options);
+
+}  // namespace pupwave
