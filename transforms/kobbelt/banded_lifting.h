@@ -37,10 +37,10 @@ T banded_sum(const BandedStep& s, std::span<const T> source, std::size_t i) {
   const auto avail = static_cast<std::ptrdiff_t>(source.size()) - first;
   const auto k1 = static_cast<std::size_t>(
       std::clamp<std::ptrdiff_t>(avail, 0, static_cast<std::ptrdiff_t>(s.width)));
-  T sum = T(0);
-  for (std::size_t k = k0; k < k1; ++k) {
-    sum += T(s.at(i, k)) * source[static_cast<std::size_t>(first) + k];
-  }
+  if (k0 >= k1) return T(0);
+  const T* src = source.data() + first;  // first + k >= 0 for k >= k0
+  T sum = T(s.at(i, k0)) * src[k0];      // w taps cost w multiplications, w - 1 additions
+  for (std::size_t k = k0 + 1; k < k1; ++k) sum += T(s.at(i, k)) * src[k];
   return sum;
 }
 
