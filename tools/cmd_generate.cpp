@@ -27,8 +27,10 @@ namespace {
 // Uniform in [0, 1) from the top 24 bits of one mt19937 draw.
 double uniform(std::mt19937& rng) { return double(rng() >> 8) * (1.0 / 16777216.0); }
 
+// Diffusion rates in voxels^2 per unit time (Pearson's 2:1 ratio); dt keeps explicit Euler
+// stable for the 7-point Laplacian (dt * 6 * du < 1).
 struct GrayScottParams {
-  double du = 0.16, dv = 0.08, feed = 0.035, kill = 0.060, dt = 1.0;
+  double du = 0.2, dv = 0.1, feed = 0.030, kill = 0.055, dt = 0.5;
 };
 
 // One explicit Euler step of Gray-Scott on the periodic n^3 grid.
@@ -53,10 +55,10 @@ void gray_scott_step(std::vector<double>& u, std::vector<double>& v, std::vector
 }
 
 // Gray-Scott from u = 1, v = 0 with v seeded in random small cubes; returns v after `steps`.
-Volume gray_scott(std::size_t n, int steps, unsigned seed) {
+Volume gray_scott(std::size_t n, int steps, unsigned seed, const GrayScottParams& params) {
   std::vector<double> u(n * n * n, 1.0), v(n * n * n, 0.0), u2(u.size()), v2(v.size());
   std::mt19937 rng(seed);
-  const std::size_t side = std::max<std::size_t>(2, n / 12);
+  const std::size_t side = std::max<std::size_t>(3, n / 8);
   const int seeds = 12;
   for (int s = 0; s < seeds; ++s) {
     std::size_t c[3];
@@ -69,7 +71,6 @@ Volume gray_scott(std::size_t n, int steps, unsigned seed) {
           v[i] = 0.25;
         }
   }
-  const GrayScottParams params;
   for (int t = 0; t < steps; ++t) gray_scott_step(u, v, u2, v2, n, params);
   Volume out({n, n, n}, VoxelType::f32);
   for (std::size_t i = 0; i < v.size(); ++i) out.samples[i] = double(float(v[i]));
@@ -169,6 +170,7 @@ void add_generate_volume_command(CLI::App& app) {
     std::size_t size = 64;
     int steps = 3000;
     unsigned seed = 1;
+    GrayScottParams gs;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("generate-volume",
@@ -180,11 +182,13 @@ void add_generate_volume_command(CLI::App& app) {
       ->check(CLI::Range(std::size_t(4), std::size_t(1024)));
   cmd->add_option("--steps", opt->steps, "gray-scott time steps")->check(CLI::Range(0, 1000000));
   cmd->add_option("--seed", opt->seed, "random seed");
+  cmd->add_option("--feed", opt->gs.feed, "gray-scott feed rate F")->check(CLI::Range(0.0, 0.2));
+  cmd->add_option("--kill", opt->gs.kill, "gray-scott kill rate k")->check(CLI::Range(0.0, 0.2));
   cmd->add_option("OUT", opt->output, "output file, .raw or .vdb (written atomically)")->required();
   cmd->callback([opt] {
     check_output_path(opt->output);
     Volume v = opt->kind == "turbulence" ? turbulence(opt->size, opt->seed)
-                                         : gray_scott(opt->size, opt->steps, opt->seed);
+                                         : gray_scott(opt->size, opt->steps, opt->seed, opt->gs);
     if (is_vdb_path(opt->output))
       write_vdb({as_grid(std::move(v), opt->kind == "turbulence" ? "velocity_x" : "v")}, opt->output);
     else
