@@ -74,10 +74,12 @@ void bm_transform(benchmark::State& state, const std::string& spec, bool inverse
 // threads) by wall-clock time, the only meaningful measure of a parallel run.
 template <class F>
 void register_both(const std::string& name, F body) {
-  benchmark::RegisterBenchmark(name.c_str(), body)->Arg(1)->ArgName("threads")->Unit(
-      benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(name.c_str(), body)->Arg(0)->ArgName("threads")->Unit(
-      benchmark::kMillisecond)->UseRealTime();
+  benchmark::RegisterBenchmark(name.c_str(), body)->Arg(1)->ArgName("threads")->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(name.c_str(), body)
+      ->Arg(0)
+      ->ArgName("threads")
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
 }
 
 void register_all() {

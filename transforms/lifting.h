@@ -154,8 +154,7 @@ void predict(std::span<const T> even, Boundary even_boundary, std::span<T> odd, 
 
 // Exact mirror of predict (same arguments): odd[i] -= the same sum.
 template <class T>
-void undo_predict(std::span<const T> even, Boundary even_boundary, std::span<T> odd,
-                  const Taps& f) {
+void undo_predict(std::span<const T> even, Boundary even_boundary, std::span<T> odd, const Taps& f) {
   detail::apply<T>(even, even_boundary, odd, f, T(-1));
 }
 
@@ -169,8 +168,7 @@ void update(std::span<const T> odd, Boundary odd_boundary, std::span<T> even, co
 
 // Exact mirror of update (same arguments): even[i] -= the same sum.
 template <class T>
-void undo_update(std::span<const T> odd, Boundary odd_boundary, std::span<T> even,
-                 const Taps& f) {
+void undo_update(std::span<const T> odd, Boundary odd_boundary, std::span<T> even, const Taps& f) {
   detail::apply<T>(odd, odd_boundary, even, f, T(-1));
 }
 
@@ -215,8 +213,7 @@ inline int32_t integer_term(std::span<const int32_t> source, Boundary b, const I
   int64_t s = f.bias;
   for (std::size_t k = 0; k < f.weights.size(); ++k) {
     const std::ptrdiff_t j = i + f.offset + static_cast<std::ptrdiff_t>(k);
-    const std::size_t jj = interior ? static_cast<std::size_t>(j)
-                                    : reflect_index(j, source.size(), b);
+    const std::size_t jj = interior ? static_cast<std::size_t>(j) : reflect_index(j, source.size(), b);
     s += int64_t{f.weights[k]} * source[jj];
   }
   return static_cast<int32_t>(s >> f.shift);  // arithmetic shift = floor division (C++20)
@@ -227,8 +224,8 @@ inline int32_t integer_term(std::span<const int32_t> source, Boundary b, const I
 // Integer lifting step: target[i] (+= or -=) floor((sum w * source + bias) / 2^shift).
 // source: the unchanged wire, read beyond its ends through source_boundary; empty source or
 // target does nothing. The mirror step is the same call with the other Direction.
-inline void lift_integer(std::span<const int32_t> source, Boundary source_boundary,
-                         std::span<int32_t> target, const IntegerTaps& f, Direction dir) {
+inline void lift_integer(std::span<const int32_t> source, Boundary source_boundary, std::span<int32_t> target,
+                         const IntegerTaps& f, Direction dir) {
   if (f.shift < 0 || f.shift > 30) throw std::invalid_argument("lifting: shift out of 0..30");
   if (source.empty() || target.empty() || f.weights.empty()) return;
   const auto ms = static_cast<std::ptrdiff_t>(source.size());
@@ -238,8 +235,7 @@ inline void lift_integer(std::span<const int32_t> source, Boundary source_bounda
   const std::ptrdiff_t lo = std::min(mt, std::max<std::ptrdiff_t>(0, -f.offset));
   const std::ptrdiff_t hi = std::max(lo, std::min(mt, ms - nk - f.offset + 1));
   auto edge = [&](std::ptrdiff_t i) {
-    target[static_cast<std::size_t>(i)] +=
-        sign * detail::integer_term(source, source_boundary, f, i, false);
+    target[static_cast<std::size_t>(i)] += sign * detail::integer_term(source, source_boundary, f, i, false);
   };
   for (std::ptrdiff_t i = 0; i < lo; ++i) edge(i);
   if (nk == 2) {  // the 5/3 steps: a branch-free loop the compiler can vectorize
@@ -250,8 +246,7 @@ inline void lift_integer(std::span<const int32_t> source, Boundary source_bounda
           sign * static_cast<int32_t>((w0 * src[i] + w1 * src[i + 1] + f.bias) >> f.shift);
   } else {
     for (std::ptrdiff_t i = lo; i < hi; ++i)
-      target[static_cast<std::size_t>(i)] +=
-          sign * detail::integer_term(source, source_boundary, f, i, true);
+      target[static_cast<std::size_t>(i)] += sign * detail::integer_term(source, source_boundary, f, i, true);
   }
   for (std::ptrdiff_t i = hi; i < mt; ++i) edge(i);
 }

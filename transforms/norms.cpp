@@ -49,8 +49,7 @@ std::vector<double> compute_norms(const Transform1D& t, const Extent& dims, int 
   for (const Subband& b : subbands(dims, levels)) {
     double norm = 1;
     const auto l = static_cast<std::size_t>(b.level);
-    for (std::size_t a = 0; a < 3; ++a)
-      norm *= (b.orientation >> a) & 1u ? axes[a].high[l] : axes[a].low[l];
+    for (std::size_t a = 0; a < 3; ++a) norm *= (b.orientation >> a) & 1u ? axes[a].high[l] : axes[a].low[l];
     norms.push_back(norm);
   }
   return norms;
@@ -65,8 +64,7 @@ constexpr std::size_t kMaxCacheEntries = 4096;
 std::vector<double> synthesis_norms(const Transform1D& t, const Extent& dims, int levels) {
   for (std::size_t d : dims)
     if (d == 0) throw std::invalid_argument("synthesis_norms: array extent must be >= 1");
-  if (levels < 0 || levels > kMaxLevels)
-    throw std::invalid_argument("synthesis_norms: levels out of range");
+  if (levels < 0 || levels > kMaxLevels) throw std::invalid_argument("synthesis_norms: levels out of range");
   static std::mutex mutex;
   static std::map<Key, std::vector<double>> cache;
   Key key{t.spec(), dims, levels};

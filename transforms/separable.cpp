@@ -70,8 +70,7 @@ void run_line(const Transform1D& t, std::span<T> line, bool analysis) {
 
 // Transforms the rows (axis 0 lines) of the region r in place: they are contiguous already.
 template <class T>
-void pass_axis0(const Transform1D& t, T* data, const Extent& dims, const Extent& r,
-                bool analysis) {
+void pass_axis0(const Transform1D& t, T* data, const Extent& dims, const Extent& r, bool analysis) {
   const std::size_t lines = r[1] * r[2];
   parallel_for(lines, effective_threads(lines * r[0]), [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
@@ -96,8 +95,7 @@ void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Exten
   // turn during the gather fall in different cache sets (a power-of-two pitch such as 4096
   // floats maps them all to one set and thrashes the L1 cache).
   const std::size_t ld = ((len + 15) / 16 * 16) | 16;
-  parallel_for(blocks * others, effective_threads(r[0] * r[1] * r[2]),
-               [&](std::size_t b, std::size_t e) {
+  parallel_for(blocks * others, effective_threads(r[0] * r[1] * r[2]), [&](std::size_t b, std::size_t e) {
     std::vector<T> buf(kColumnBlock * ld);
     for (std::size_t k = b; k < e; ++k) {
       const std::size_t x0 = (k % blocks) * kColumnBlock;
@@ -105,8 +103,7 @@ void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Exten
       T* base = data + (k / blocks) * other_stride + x0;
       for (std::size_t i = 0; i < len; ++i)
         for (std::size_t c = 0; c < nb; ++c) buf[c * ld + i] = base[i * stride + c];
-      for (std::size_t c = 0; c < nb; ++c)
-        run_line(t, std::span<T>(buf.data() + c * ld, len), analysis);
+      for (std::size_t c = 0; c < nb; ++c) run_line(t, std::span<T>(buf.data() + c * ld, len), analysis);
       for (std::size_t i = 0; i < len; ++i)
         for (std::size_t c = 0; c < nb; ++c) base[i * stride + c] = buf[c * ld + i];
     }
@@ -114,8 +111,7 @@ void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Exten
 }
 
 template <class T>
-void pass(const Transform1D& t, T* data, const Extent& dims, const Extent& r, int axis,
-          bool analysis) {
+void pass(const Transform1D& t, T* data, const Extent& dims, const Extent& r, int axis, bool analysis) {
   if (axis == 0) {
     pass_axis0(t, data, dims, r, analysis);
   } else {
@@ -125,8 +121,8 @@ void pass(const Transform1D& t, T* data, const Extent& dims, const Extent& r, in
 
 void check_levels(int levels) {
   if (levels < 0 || levels > kMaxLevels)
-    throw std::invalid_argument("wavelet levels must be in 0.." + std::to_string(kMaxLevels) +
-                                ", got " + std::to_string(levels));
+    throw std::invalid_argument("wavelet levels must be in 0.." + std::to_string(kMaxLevels) + ", got " +
+                                std::to_string(levels));
 }
 
 template <class T>
@@ -163,8 +159,7 @@ int default_levels(const Extent& dims) {
     if (d > 1) shortest = std::min(shortest, d);
   if (shortest == std::numeric_limits<std::size_t>::max()) return 0;
   int levels = 1;  // the shortest axis stays the shortest, as ceil-halving is monotone
-  for (std::size_t m = coarse_size(shortest); m >= 16 && levels < 8; m = coarse_size(m))
-    ++levels;
+  for (std::size_t m = coarse_size(shortest); m >= 16 && levels < 8; m = coarse_size(m)) ++levels;
   return levels;
 }
 
@@ -204,9 +199,8 @@ template <class T>
 void inverse(const Transform1D& t, T* data, const Extent& dims, int levels, int stop_level) {
   check_call(t, data, dims, levels);
   if (stop_level < 0 || stop_level > levels)
-    throw std::invalid_argument("inverse wavelet transform: stop level " +
-                                std::to_string(stop_level) + " outside 0.." +
-                                std::to_string(levels));
+    throw std::invalid_argument("inverse wavelet transform: stop level " + std::to_string(stop_level) +
+                                " outside 0.." + std::to_string(levels));
   for (int l = levels; l > stop_level; --l) {
     const Extent r = level_extent(dims, l - 1);
     for (int a = 2; a >= 0; --a)

@@ -15,8 +15,7 @@ TEST(Lifting, SplitMergeRoundTrip) {
     for (std::size_t i = 0; i < n; ++i) line[i] = static_cast<int>(i);
     split<int>(line, scratch);
     for (std::size_t j = 0; j < (n + 1) / 2; ++j) EXPECT_EQ(line[j], static_cast<int>(2 * j));
-    for (std::size_t j = 0; j < n / 2; ++j)
-      EXPECT_EQ(line[(n + 1) / 2 + j], static_cast<int>(2 * j + 1));
+    for (std::size_t j = 0; j < n / 2; ++j) EXPECT_EQ(line[(n + 1) / 2 + j], static_cast<int>(2 * j + 1));
     merge<int>(line, scratch);
     for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(line[i], static_cast<int>(i));
   }
@@ -36,8 +35,7 @@ TEST(Lifting, WireRulesMatchWholeSampleSymmetricLine) {
     for (std::ptrdiff_t j = -12; j < 12; ++j) {
       EXPECT_EQ(2 * static_cast<std::ptrdiff_t>(reflect_index(j, ne, wires.even)), ws(2 * j))
           << "n=" << n << " even j=" << j;
-      EXPECT_EQ(2 * static_cast<std::ptrdiff_t>(reflect_index(j, no, wires.odd)) + 1,
-                ws(2 * j + 1))
+      EXPECT_EQ(2 * static_cast<std::ptrdiff_t>(reflect_index(j, no, wires.odd)) + 1, ws(2 * j + 1))
           << "n=" << n << " odd j=" << j;
     }
   }

@@ -77,16 +77,15 @@ double energy(const std::vector<double>& v) {
 }
 
 TEST(Norms, Cdf97MatchesFilterCascade) {
-  const std::vector<double> h{0.026748757410810, -0.016864118442875, -0.078223266528988,
-                              0.266864118442872, 0.602949018236358, 0.266864118442872,
+  const std::vector<double> h{0.026748757410810,  -0.016864118442875, -0.078223266528988,
+                              0.266864118442872,  0.602949018236358,  0.266864118442872,
                               -0.078223266528988, -0.016864118442875, 0.026748757410810};
-  const std::vector<double> g{-0.091271763114250, -0.057543526228500, 0.591271763114247,
-                              1.115087052456994,  0.591271763114247,  -0.057543526228500,
-                              -0.091271763114250};
+  const std::vector<double> g{-0.091271763114250, -0.057543526228500, 0.591271763114247, 1.115087052456994,
+                              0.591271763114247,  -0.057543526228500, -0.091271763114250};
   std::vector<double> g1(h.size());
   for (std::size_t n = 0; n < h.size(); ++n) g1[n] = (n % 2 ? -1.0 : 1.0) * h[n];
   std::vector<double> low{1.0};  // level-(l-1) synthesis low-pass basis function
-  std::size_t step = 1;           // 2^(l-1)
+  std::size_t step = 1;          // 2^(l-1)
   for (int level = 1; level <= 5; ++level, step *= 2) {
     const auto high = convolve_upsampled(low, g1, step);
     low = convolve_upsampled(low, g, step);

@@ -17,9 +17,9 @@ namespace {
 std::size_t volume(const Extent& d) { return d[0] * d[1] * d[2]; }
 
 std::vector<Extent> test_dims() {
-  return {{1, 1, 1},  {2, 1, 1},   {300, 1, 1}, {1, 37, 1},  {1, 1, 13}, {17, 1, 1},
-          {1, 8, 5},  {64, 64, 1}, {31, 7, 1},  {97, 101, 1}, {3, 2, 1},  {128, 1, 9},
-          {13, 11, 7}, {16, 9, 4}, {2, 2, 2},   {23, 1, 19}, {5, 33, 17}};
+  return {{1, 1, 1},   {2, 1, 1},   {300, 1, 1}, {1, 37, 1},   {1, 1, 13}, {17, 1, 1},
+          {1, 8, 5},   {64, 64, 1}, {31, 7, 1},  {97, 101, 1}, {3, 2, 1},  {128, 1, 9},
+          {13, 11, 7}, {16, 9, 4},  {2, 2, 2},   {23, 1, 19},  {5, 33, 17}};
 }
 
 template <class T>
@@ -37,7 +37,7 @@ TEST(Separable, LevelExtentAndDefaultLevels) {
   EXPECT_EQ(level_extent({513, 1, 10}, 3), (Extent{65, 1, 2}));
   EXPECT_EQ(default_levels({1, 1, 1}), 0);
   EXPECT_EQ(default_levels({2, 1, 1}), 1);
-  EXPECT_EQ(default_levels({512, 512, 1}), 6);  // 512 -> 256 -> ... -> 16 -> 8 (< 16)
+  EXPECT_EQ(default_levels({512, 512, 1}), 6);   // 512 -> 256 -> ... -> 16 -> 8 (< 16)
   EXPECT_EQ(default_levels({4096, 300, 1}), 5);  // shortest axis 300 -> 150 -> ... -> 10
   EXPECT_EQ(default_levels({1 << 20, 1 << 20, 1}), 8);
   EXPECT_THROW(level_extent({4, 4, 4}, -1), std::invalid_argument);
@@ -74,9 +74,7 @@ TEST(Separable, SubbandsTileTheArrayExactly) {
 
 class SeparableRoundTrip : public ::testing::TestWithParam<const char*> {
  protected:
-  Transform1DPtr t() const {
-    return GetParam() == std::string("cdf97") ? make_cdf97() : make_cdf53();
-  }
+  Transform1DPtr t() const { return GetParam() == std::string("cdf97") ? make_cdf97() : make_cdf53(); }
 };
 
 TEST_P(SeparableRoundTrip, DoubleAndFloat) {

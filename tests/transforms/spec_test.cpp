@@ -65,19 +65,17 @@ TEST_P(EverySpec, ArraysReconstructPerfectly) {
       auto y = x;
       forward(*t, y.data(), d, levels);
       inverse(*t, y.data(), d, levels);
-      EXPECT_LT(max_abs_diff(x, y), 1e-9 * 255)
-          << d[0] << "x" << d[1] << "x" << d[2] << " L" << levels;
+      EXPECT_LT(max_abs_diff(x, y), 1e-9 * 255) << d[0] << "x" << d[1] << "x" << d[2] << " L" << levels;
     }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Spec, EverySpec, ::testing::ValuesIn(transform_specs()),
-                         [](const auto& spec_info) {
-                           std::string name = spec_info.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Spec, EverySpec, ::testing::ValuesIn(transform_specs()), [](const auto& spec_info) {
+  std::string name = spec_info.param;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+});
 
 TEST(Spec, UnknownSpecListsValidOnes) {
   try {
