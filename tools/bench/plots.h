@@ -1,0 +1,22 @@
+#pragma once
+// PSNR-against-bpp plots drawn by gnuplot (SVG), one per image, from the measured records.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tools/bench/rd_run.h"
+
+namespace pupwave::bench {
+
+// For each image (in `images` order) writes <dir>/<image>.dat (the points, one gnuplot data
+// block per codec), <dir>/<image>.gp (the script) and runs gnuplot to draw <dir>/<image>.svg.
+// Returns the SVG paths ("" for an image whose plot could not be drawn). When gnuplot is not
+// in `search_path`, draws nothing and sets `note`; a failing gnuplot run also sets `note`.
+std::vector<std::filesystem::path> draw_rd_plots(const std::vector<RdRecord>& records,
+                                                 const std::vector<std::string>& images,
+                                                 const std::vector<std::string>& codecs,
+                                                 const std::filesystem::path& dir,
+                                                 const std::string& search_path, std::string& note);
+
+}  // namespace pupwave::bench

@@ -1,0 +1,209 @@
+// `pupwave bench rd|coarse|all`: the PSNR comparison harness (rate-distortion against JPEG 2000
+// and JPEG XL, and the coarse-band experiment of the PUPs multiresolution paper).
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tools/bench/coarse.h"
+#include "tools/bench/plots.h"
+#include "tools/bench/process.h"
+#include "tools/bench/progress.h"
+#include "tools/bench/rd_report.h"
+#include "tools/bench/rd_run.h"
+#include "tools/commands.h"
+#include "transforms/spec.h"
+
+namespace pupwave::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace pupwave::bench;
+
+struct BenchOptions {
+  std::vector<std::string> images;
+  std::string transforms = "all";
+  std::string bpps = "0.125,0.25,0.5,1,2";
+  std::string anchors = "openjpeg,jxl";
+  std::string levels = "1..5";
+  unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  std::string out;
+  std::string cli;  // pupwave binary driving our codec; default: this very program
+};
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& sep) {
+  std::string s;
+  for (const auto& i : items) s += (s.empty() ? "" : sep) + i;
+  return s;
+}
+
+// "all", "none" (anchors only) or a comma list; every spec is built once so a typo fails before
+// any work is done.
+std::vector<std::string> resolve_transforms(const std::string& text) {
+  if (text == "none") return {};
+  std::vector<std::string> specs = text == "all" ? transform_specs() : split_list(text);
+  if (specs.empty()) throw std::invalid_argument("--transforms: no transform given");
+  for (std::string& s : specs) s = make_transform(s)->spec();
+  return specs;
+}
+
+std::vector<double> parse_bpps(const std::string& text) {
+  std::vector<double> bpps;
+  for (const std::string& item : split_list(text)) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::logic_error&) {
+      used = 0;
+    }
+    if (used != item.size() || !(v > 0.0) || v > 64.0)
+      throw std::invalid_argument("--bpp: '" + item + "' is not a rate in (0, 64] bits per pixel");
+    bpps.push_back(v);
+  }
+  if (bpps.empty()) throw std::invalid_argument("--bpp: no rate given");
+  std::sort(bpps.begin(), bpps.end());
+  bpps.erase(std::unique(bpps.begin(), bpps.end()), bpps.end());
+  return bpps;
+}
+
+std::vector<BenchImage> load_images(const std::vector<std::string>& args) {
+  std::vector<BenchImage> images;
+  for (const fs::path& p : expand_image_args(args)) images.push_back(load_bench_image(p));
+  return images;
+}
+
+std::string command_line(const std::string& sub, const BenchOptions& o, bool rd, bool coarse) {
+  std::string c = "pupwave bench " + sub + " --images " + join(o.images, " ") + " --transforms " + o.transforms;
+  if (rd) c += " --bpp " + o.bpps + " --anchors " + o.anchors;
+  if (coarse) c += " --levels " + o.levels;
+  return c + " --jobs " + std::to_string(o.jobs) + " --out " + o.out;
+}
+
+std::string machine_paragraph(unsigned jobs) {
+  const std::string tools = anchor_versions(environment_path());
+  return describe_machine() + " Jobs run in parallel: " + std::to_string(jobs) +
+         (tools.empty() ? "." : ". Anchor tools: " + tools + ".");
+}
+
+}  // namespace
+
+namespace {
+
+// Pupwave codecs for the transforms, then the anchors whose tools are installed.
+std::vector<RdCodecPtr> build_codecs(const BenchOptions& o, const std::vector<std::string>& specs,
+                                     std::vector<std::string>& notes) {
+  const fs::path cli = o.cli.empty() ? fs::read_symlink("/proc/self/exe") : fs::path(o.cli);
+  std::vector<RdCodecPtr> codecs;
+  for (const std::string& spec : specs) codecs.push_back(make_pupwave_codec(cli, spec));
+  const auto anchors = o.anchors == "none" ? std::vector<std::string>{} : split_list(o.anchors);
+  for (const std::string& name : anchors) {
+    std::string missing;
+    if (RdCodecPtr a = make_anchor(name, environment_path(), missing)) codecs.push_back(a);
+    else notes.push_back(missing);
+  }
+  return codecs;
+}
+
+void run_rd_into(const BenchOptions& o, const fs::path& dir, const std::string& command) {
+  RdRun run;
+  std::vector<std::string> notes;
+  const auto specs = resolve_transforms(o.transforms);
+  run.bpps = parse_bpps(o.bpps);
+  run.codecs = build_codecs(o, specs, notes);
+  for (const std::string& n : notes) std::cerr << "pupwave bench: " << n << '\n';
+  run.images = load_images(o.images);
+  run.jobs = o.jobs;
+  run.terminal = Progress::is_terminal(2);
+  fs::create_directories(dir);
+  const auto records = run_rd(run, fs::temp_directory_path(), std::cerr);
+
+  ReportContext ctx;
+  ctx.command = command, ctx.machine = machine_paragraph(o.jobs), ctx.notes = notes, ctx.bpps = run.bpps;
+  for (const RdCodecPtr& c : run.codecs) ctx.codecs.push_back(c->name());
+  std::vector<std::string> names;
+  for (const BenchImage& img : run.images) names.push_back(img.name);
+  std::string plot_note;
+  for (const fs::path& svg : draw_rd_plots(records, names, ctx.codecs, dir / "plots", environment_path(), plot_note))
+    ctx.plots.push_back(svg.empty() ? "" : fs::relative(svg, dir).string());
+  if (!plot_note.empty()) ctx.notes.push_back(plot_note), std::cerr << "pupwave bench: " << plot_note << '\n';
+  write_results_csv(records, dir / "results.csv");
+  write_rd_summary(records, ctx, dir / "summary.md");
+  const auto failed = std::count_if(records.begin(), records.end(), [](const RdRecord& r) { return !r.ok; });
+  std::cout << "rd: " << records.size() << " measurements in " << (dir / "results.csv").string() << ", "
+            << (dir / "summary.md").string() << '\n';
+  if (failed)
+    throw std::runtime_error(std::to_string(failed) + " of " + std::to_string(records.size()) +
+                             " rd jobs failed (listed in " + (dir / "summary.md").string() + ")");
+}
+
+void run_coarse_into(const BenchOptions& o, const fs::path& dir, const std::string& command) {
+  const auto specs = resolve_transforms(o.transforms);
+  if (specs.empty()) throw std::invalid_argument("--transforms: the coarse experiment needs transforms");
+  const auto levels = parse_levels(o.levels);
+  const auto images = load_images(o.images);
+  fs::create_directories(dir);
+  const auto records = run_coarse(images, specs, levels, o.jobs, Progress::is_terminal(2), std::cerr);
+  write_coarse_report(records, levels, command, machine_paragraph(o.jobs), dir);
+  std::cout << "coarse: " << records.size() << " reconstructions in " << (dir / "summary.md").string() << '\n';
+  const auto failed = std::count_if(records.begin(), records.end(), [](const CoarseRecord& r) { return !r.ok; });
+  if (failed) throw std::runtime_error(std::to_string(failed) + " coarse reconstructions failed");
+}
+
+void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
+  cmd->add_option("--images", o.images, "image files, or directories of them (8-bit grey or RGB)")
+      ->required()->expected(1, -1);
+  cmd->add_option("--transforms", o.transforms, "'all', 'none' (rd: anchors only) or a comma list of transform specs")->capture_default_str();
+  if (rd) {
+    cmd->add_option("--bpp", o.bpps, "comma list of target bits per pixel")->capture_default_str();
+    cmd->add_option("--anchors", o.anchors, "comma list of openjpeg, jxl, or 'none'")->capture_default_str();
+    cmd->add_option("--cli", o.cli, "pupwave binary to drive (default: this program)");
+  }
+  if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();
+  cmd->add_option("--jobs", o.jobs, "parallel jobs")->capture_default_str()->check(CLI::Range(1u, 256u));
+  cmd->add_option("--out", o.out, "output directory")->required();
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  auto* bench = app.add_subcommand("bench", "PSNR comparison harness: rate-distortion against JPEG 2000 and JPEG XL, "
+                                            "and the coarse-band experiment");
+  bench->require_subcommand(1);
+  auto opt = std::make_shared<BenchOptions>();
+  auto* rd = bench->add_subcommand(
+      "rd", "Compress/decompress every image x transform x rate (and the anchors); writes results.csv, "
+            "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG) and plots/ (gnuplot SVG) into --out");
+  add_common(rd, *opt, true, false);
+  rd->callback([opt] { run_rd_into(*opt, opt->out, command_line("rd", *opt, true, false)); });
+  auto* coarse = bench->add_subcommand(
+      "coarse", "Reconstruct from the coarse band alone after L levels (details zeroed), luma PSNR per transform "
+                "(Fig. 16 of the PUPs multiresolution paper); writes coarse.csv and summary.md into --out");
+  add_common(coarse, *opt, false, true);
+  coarse->callback([opt] { run_coarse_into(*opt, opt->out, command_line("coarse", *opt, false, true)); });
+  auto* all = bench->add_subcommand("all", "Both: rd into --out/rd and coarse into --out/coarse "
+                                           "(regenerates bench/results/ with --images testimages --out bench/results)");
+  add_common(all, *opt, true, true);
+  all->callback([opt] {
+    const std::string command = command_line("all", *opt, true, true);
+    run_coarse_into(*opt, fs::path(opt->out) / "coarse", command);
+    run_rd_into(*opt, fs::path(opt->out) / "rd", command);
+  });
+}
+
+}  // namespace pupwave::cli
