@@ -21,8 +21,10 @@ void expect_printed(double value, double printed, int digits = 6) {
 void expect_taps(const std::vector<double>& got, const std::vector<double>& printed) {
   ASSERT_EQ(got.size(), printed.size());
   for (std::size_t i = 0; i < got.size(); ++i) {
-    if (printed[i] == 0) EXPECT_NEAR(got[i], 0.0, 1e-12) << "tap " << i;
-    else expect_printed(got[i], printed[i]);
+    if (printed[i] == 0)
+      EXPECT_NEAR(got[i], 0.0, 1e-12) << "tap " << i;
+    else
+      expect_printed(got[i], printed[i]);
   }
 }
 
@@ -65,19 +67,19 @@ TEST(Refinement, PolynomialTable1) {
   expect_taps(r.coeffs, {0.353395, 0.397012, 0.436764, 0.418329, 0.226328, 0.170216});
   r = refine(polynomial({65536, 0, -16384, 0, 1536, 0, -64, 0, 1}, -4, 4));
   expect_printed(r.error, 0.000986008);
-  expect_taps(r.coeffs, {0.0989794, 0.163489, 0.251154, 0.314675, 0.343853, 0.314675, 0.251154,
-                         0.163489, 0.0989794});
+  expect_taps(r.coeffs,
+              {0.0989794, 0.163489, 0.251154, 0.314675, 0.343853, 0.314675, 0.251154, 0.163489, 0.0989794});
 }
 
 TEST(Refinement, InterpolatingCinpactTable2) {
   Refinement r = refine(cinpact(WeightKind::cinpact_interp, 5, 4.79));
   expect_printed(r.error, 0.00353701);
-  expect_taps(r.coeffs, {0.0240126, 0, -0.129882, 0, 0.606154, 0.99909, 0.606154, 0, -0.129882,
-                         0, 0.0240126});
+  expect_taps(r.coeffs,
+              {0.0240126, 0, -0.129882, 0, 0.606154, 0.99909, 0.606154, 0, -0.129882, 0, 0.0240126});
   r = refine(cinpact(WeightKind::cinpact_interp, 7, 7.77));
   expect_printed(r.error, 0.00119872);
-  expect_taps(r.coeffs, {-0.00654163, 0, 0.0402722, 0, -0.145579, 0, 0.611639, 0.999841,
-                         0.611639, 0, -0.145579, 0, 0.0402722, 0, -0.00654163});
+  expect_taps(r.coeffs, {-0.00654163, 0, 0.0402722, 0, -0.145579, 0, 0.611639, 0.999841, 0.611639, 0,
+                         -0.145579, 0, 0.0402722, 0, -0.00654163});
 }
 
 TEST(Refinement, CinpactTable3) {
@@ -93,8 +95,8 @@ TEST(Refinement, CinpactTable3) {
   EXPECT_EQ(r.coeffs.size(), 10u);
   r = refine(cinpact(WeightKind::cinpact, 3.684, 17.27));
   expect_printed(r.error, 0.00234953);
-  expect_taps(r.coeffs, {0.000624709, 0.0012315, 0.12346, 0.501413, 0.746809, 0.501413, 0.12346,
-                         0.0012315, 0.000624709});
+  expect_taps(r.coeffs, {0.000624709, 0.0012315, 0.12346, 0.501413, 0.746809, 0.501413, 0.12346, 0.0012315,
+                         0.000624709});
 }
 
 TEST(Refinement, SigmaSearchFindsTheTableOptimum) {
@@ -144,8 +146,8 @@ TEST(Multiresolution, InterpolatingCinpactMinimalQ) {
   // the 12th tap (P was padded to even length) is zero to rounding.
   ASSERT_EQ(bank.Q.taps.size(), 12u);
   EXPECT_NEAR(bank.Q.taps[11], 0.0, 1e-12);
-  expect_taps({bank.Q.taps.begin(), bank.Q.taps.end() - 1}, {0.00876249, 0, -0.0473956, 0, -0.779718, 0.36458, 0.221193, 0,
-                            -0.0473956, 0, 0.00876249});
+  expect_taps({bank.Q.taps.begin(), bank.Q.taps.end() - 1},
+              {0.00876249, 0, -0.0473956, 0, -0.779718, 0.36458, 0.221193, 0, -0.0473956, 0, 0.00876249});
   expect_printed(bank.refinement_error, 0.00353701);
 }
 
@@ -209,15 +211,14 @@ TEST(Specs, ParseAndCanonicalFormRoundTrip) {
   EXPECT_LE(b.orthogonality_error, 0.5);
   EXPECT_EQ(design(parse_design_spec(canonical_spec_body(b))), b);
   EXPECT_EQ(canonical_spec_body(design(parse_design_spec("chaikin"))), "chaikin");
-  EXPECT_EQ(design(parse_design_spec("bspline(degree=2)")).Q.taps,
-            design_preset("chaikin").Q.taps);
+  EXPECT_EQ(design(parse_design_spec("bspline(degree=2)")).Q.taps, design_preset("chaikin").Q.taps);
 }
 
 TEST(Specs, BadSpecsThrowInvalidArgument) {
-  for (const char* bad : {"", "nonsense", "bspline", "bspline(", "bspline(degree=x)",
-                          "bspline(degree=3,l=3)", "bspline(degree=3,l=2,t=1)",
-                          "cinpact(c=3)", "cinpact(c=3,sigma=7,foo=1)", "bspline(degree=3,degree=2)",
-                          "polynomial(coeffs=1:2,domain=1)", "given(p=1)", "cinpact(c=-1,sigma=2)"})
+  for (const char* bad : {"", "nonsense", "bspline", "bspline(", "bspline(degree=x)", "bspline(degree=3,l=3)",
+                          "bspline(degree=3,l=2,t=1)", "cinpact(c=3)", "cinpact(c=3,sigma=7,foo=1)",
+                          "bspline(degree=3,degree=2)", "polynomial(coeffs=1:2,domain=1)", "given(p=1)",
+                          "cinpact(c=-1,sigma=2)"})
     EXPECT_THROW(design(parse_design_spec(bad)), std::invalid_argument) << bad;
 }
 

@@ -42,18 +42,15 @@ std::vector<Preset> make_presets() {
   return {
       {"chaikin", "quadratic B-spline (Chaikin 1/4 3/4), minimal masks", bspline_params(2)},
       {"cubic-bspline", "cubic B-spline (1 4 6 4 1)/8, minimal masks", bspline_params(3)},
-      {"cinpact-c3", "CINPACT c=3 sigma=7.27 (Table 3), minimal masks",
-       cinpact_params(cin, 3, 7.27, 0)},
+      {"cinpact-c3", "CINPACT c=3 sigma=7.27 (Table 3), minimal masks", cinpact_params(cin, 3, 7.27, 0)},
       // l = 14 is the shortest extension whose error is below the 0.285485 the paper
       // reports for its extended c=3 masks (Fig. 12).
-      {"cinpact-c3-ext", "CINPACT c=3 sigma=7.27, extended masks l=14",
-       cinpact_params(cin, 3, 7.27, 14)},
+      {"cinpact-c3-ext", "CINPACT c=3 sigma=7.27, extended masks l=14", cinpact_params(cin, 3, 7.27, 14)},
       {"cinpact-interp-c5", "interpolating CINPACT c=5 sigma=4.79 (Table 2), minimal masks",
        cinpact_params(cinI, 5, 4.79, 0)},
       {"cinpact-interp-c5-ext", "interpolating CINPACT c=5 sigma=4.79, extended l=32 (Fig. 16)",
        cinpact_params(cinI, 5, 4.79, 32)},
-      {"poly10", "degree-10 polynomial (u^2-4)^5 on [-2,2] (Table 1), minimal masks",
-       poly10_params()},
+      {"poly10", "degree-10 polynomial (u^2-4)^5 on [-2,2] (Table 1), minimal masks", poly10_params()},
   };
 }
 
@@ -110,8 +107,8 @@ std::map<std::string, std::string, std::less<>> parse_pairs(std::string_view arg
 }
 
 // Removes and returns kv[key]; throws if it is required and missing.
-std::optional<std::string> take(std::map<std::string, std::string, std::less<>>& kv,
-                                std::string_view key, bool required, std::string_view weight) {
+std::optional<std::string> take(std::map<std::string, std::string, std::less<>>& kv, std::string_view key,
+                                bool required, std::string_view weight) {
   auto it = kv.find(key);
   if (it == kv.end()) {
     if (required)
@@ -126,9 +123,7 @@ std::optional<std::string> take(std::map<std::string, std::string, std::less<>>&
 void parse_weight_keys(std::map<std::string, std::string, std::less<>>& kv, DesignParams& p,
                        std::string_view w) {
   switch (p.weight) {
-    case WeightKind::bspline:
-      p.degree = parse_int("degree", *take(kv, "degree", true, w));
-      break;
+    case WeightKind::bspline: p.degree = parse_int("degree", *take(kv, "degree", true, w)); break;
     case WeightKind::polynomial: {
       p.coeffs = parse_list("coeffs", *take(kv, "coeffs", true, w));
       const auto dom = parse_list("domain", *take(kv, "domain", true, w));
@@ -197,8 +192,10 @@ DesignSpec parse_design_spec(std::string_view body) {
   if (auto s = take(kv, "samples", false, weight)) spec.params.samples = parse_int("samples", *s);
   const auto l = take(kv, "l", false, weight), t = take(kv, "t", false, weight);
   if (l && t) throw std::invalid_argument("pups spec: give l= or t=, not both");
-  if (t) spec.rule.threshold = parse_number("t", *t);
-  else spec.rule.extension = l ? parse_int("l", *l) : 0;
+  if (t)
+    spec.rule.threshold = parse_number("t", *t);
+  else
+    spec.rule.extension = l ? parse_int("l", *l) : 0;
   if (!kv.empty())
     throw std::invalid_argument("pups spec: unknown key '" + kv.begin()->first + "' for " + weight);
   return spec;
@@ -215,20 +212,15 @@ std::string canonical_spec_body(const FilterBank& bank) {
   const DesignParams& d = bank.design;
   std::string args;
   switch (d.weight) {
-    case WeightKind::bspline:
-      args = "degree=" + std::to_string(d.degree);
-      break;
+    case WeightKind::bspline: args = "degree=" + std::to_string(d.degree); break;
     case WeightKind::polynomial:
       args = "coeffs=";
       for (std::size_t i = 0; i < d.coeffs.size(); ++i) args += (i ? ":" : "") + number(d.coeffs[i]);
       args += ",domain=" + number(d.domain_lo) + ":" + number(d.domain_hi);
       break;
     case WeightKind::cinpact:
-    case WeightKind::cinpact_interp:
-      args = "c=" + number(d.c) + ",sigma=" + number(d.sigma);
-      break;
-    case WeightKind::given:
-      throw std::invalid_argument("a bank designed from given taps has no spec form");
+    case WeightKind::cinpact_interp: args = "c=" + number(d.c) + ",sigma=" + number(d.sigma); break;
+    case WeightKind::given: throw std::invalid_argument("a bank designed from given taps has no spec form");
   }
   if (d.samples != DesignParams{}.samples) args += ",samples=" + std::to_string(d.samples);
   args += ",l=" + std::to_string(d.extension);

@@ -217,8 +217,7 @@ FilterBank filter_bank_from_bytes(const std::vector<std::uint8_t>& bytes) {
   Reader r(bytes);
   for (auto m : kMagic)
     if (r.u8("magic") != m) throw std::invalid_argument("filter bank bytes: bad magic");
-  if (r.u8("version") != kVersion)
-    throw std::invalid_argument("filter bank bytes: unsupported version");
+  if (r.u8("version") != kVersion) throw std::invalid_argument("filter bank bytes: unsupported version");
   FilterBank b;
   b.name = r.str("name");
   const std::uint8_t kind = r.u8("weight kind");

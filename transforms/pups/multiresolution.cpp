@@ -56,7 +56,8 @@ ConstraintSystem build_system(const std::vector<double>& pp, int l) {
   sys.M = MatrixXd::Zero(soft_hi - soft_lo + 1, K);
   for (int s = sys.hard_lo; s <= hard_hi; ++s)
     for (int t = l; t < K; ++t)
-      if (t + 2 * s >= 0 && t + 2 * s < K) sys.C(s - sys.hard_lo, t + 2 * s) += b[static_cast<std::size_t>(t)];
+      if (t + 2 * s >= 0 && t + 2 * s < K)
+        sys.C(s - sys.hard_lo, t + 2 * s) += b[static_cast<std::size_t>(t)];
   for (int s = soft_lo; s <= soft_hi; ++s)
     for (int t = 0; t < K0; ++t)
       if (t + 2 * s >= 0 && t + 2 * s < K) sys.M(s - soft_lo, t + 2 * s) += pp[static_cast<std::size_t>(t)];
@@ -129,8 +130,8 @@ FilterBank design_bank(const std::vector<double>& p, int p_offset, const Extensi
     const QDesign* best = &designs.front();
     for (const auto& d : designs)
       if (d.error < best->error - 1e-12 * std::max(1.0, best->error)) best = &d;
-    const bool last = rule.extension.has_value() || best->error <= rule.threshold ||
-                      l + 2 > rule.max_extension;
+    const bool last =
+        rule.extension.has_value() || best->error <= rule.threshold || l + 2 > rule.max_extension;
     if (!last) continue;
     FilterBank bank;
     bank.design.weight = WeightKind::given;

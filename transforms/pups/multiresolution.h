@@ -12,9 +12,9 @@ namespace pupwave::pups {
 
 // How far to extend the bandwidth of Q and A.
 struct ExtensionRule {
-  std::optional<int> extension;     // fixed l (even, >= 0); wins over threshold if set
-  double threshold = 0;             // else: smallest l = 0, 2, ... with error <= threshold
-  int max_extension = 64;           // upper bound on l when searching by threshold
+  std::optional<int> extension;  // fixed l (even, >= 0); wins over threshold if set
+  double threshold = 0;          // else: smallest l = 0, 2, ... with error <= threshold
+  int max_extension = 64;        // upper bound on l when searching by threshold
 };
 
 // One constrained least-squares design for a fixed l and shift (exposed for tests/CLI).

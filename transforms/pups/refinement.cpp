@@ -53,8 +53,7 @@ PlacedWeight make_weight(const DesignParams& p) {
   PlacedWeight pw;
   switch (p.weight) {
     case WeightKind::bspline: {
-      if (p.degree < 0 || p.degree > 20)
-        throw std::invalid_argument("B-spline degree must be in 0..20");
+      if (p.degree < 0 || p.degree > 20) throw std::invalid_argument("B-spline degree must be in 0..20");
       pw.width = p.degree + 1;
       pw.first = -(pw.width / 2);
       const int n = p.degree, first = pw.first;
@@ -96,8 +95,7 @@ PlacedWeight make_weight(const DesignParams& p) {
       pw.w = [c = p.c, s = p.sigma](double u) { return sinc(u) * bump(c, s, u); };
       break;
     }
-    case WeightKind::given:
-      throw std::invalid_argument("a design from given taps has no weight function");
+    case WeightKind::given: throw std::invalid_argument("a design from given taps has no weight function");
   }
   return pw;
 }

@@ -28,8 +28,8 @@ PlacedWeight make_weight(const DesignParams& params);
 // Result of a refinement: P taps alpha_first..alpha_{first+W} and the error E.
 struct Refinement {
   std::vector<double> coeffs;
-  int first = 0;         // refinement index of coeffs[0]
-  double error = 0;      // E = ||w - M c|| / ||w|| (Eq. 22)
+  int first = 0;     // refinement index of coeffs[0]
+  double error = 0;  // E = ||w - M c|| / ||w|| (Eq. 22)
 };
 
 // Solves Eq. 18 by least squares on `samples` points spread uniformly over the extended

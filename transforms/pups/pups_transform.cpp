@@ -1,0 +1,124 @@
+#include "transforms/pups/pups_transform.h"
+
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "transforms/lifting.h"
+#include "transforms/pups/design.h"
+#include "transforms/scratch.h"
+
+namespace pupwave {
+
+namespace pups {
+
+namespace {
+
+// Half-sample symmetric extension of each wire at both ends: w[-1-k] = w[k] and
+// w[m+k] = w[m-1-k]. Interleaved-line HSS would mix the wires (x[-1] = x[0] puts an even
+// sample where an odd one belongs), which no lifting step can read; see docs/pups.md.
+constexpr lifting::Boundary kWireHss{lifting::Extension::half_sample, lifting::Extension::half_sample};
+
+}  // namespace
+
+PupsTransform::PupsTransform(const FilterBank& bank, std::string spec)
+    : bank_(bank), lifting_(factor_bank(bank, true)), spec_(std::move(spec)) {
+  for (const auto& s : lifting_.steps)
+    steps_.push_back({s.kind == LiftingStep::Kind::predict, s.filter.c, s.filter.lo});
+}
+
+template <class T>
+void PupsTransform::analyze_impl(std::span<T> line) const {
+  const std::size_t n = line.size();
+  if (n <= 1) return;  // one coarse sample, no detail: the identity (interface contract)
+  lifting::split(line, thread_scratch<T>(n / 2));
+  const std::span<T> even = line.first((n + 1) / 2), odd = line.subspan((n + 1) / 2);
+  for (const Step& s : steps_) {
+    const lifting::Taps taps{s.taps, s.offset};
+    if (s.predict)
+      lifting::predict<T>(even, kWireHss, odd, taps);
+    else
+      lifting::update<T>(odd, kWireHss, even, taps);
+  }
+  lifting::scale(even, lifting_.even_scale);
+  lifting::scale(odd, lifting_.odd_scale);
+}
+
+template <class T>
+void PupsTransform::synthesize_impl(std::span<T> line) const {
+  const std::size_t n = line.size();
+  if (n <= 1) return;
+  const std::span<T> even = line.first((n + 1) / 2), odd = line.subspan((n + 1) / 2);
+  lifting::undo_scale(even, lifting_.even_scale);
+  lifting::undo_scale(odd, lifting_.odd_scale);
+  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
+    const lifting::Taps taps{it->taps, it->offset};
+    if (it->predict)
+      lifting::undo_predict<T>(even, kWireHss, odd, taps);
+    else
+      lifting::undo_update<T>(odd, kWireHss, even, taps);
+  }
+  lifting::merge(line, thread_scratch<T>(n / 2));
+}
+
+void PupsTransform::analyze(std::span<double> line) const { analyze_impl(line); }
+void PupsTransform::synthesize(std::span<double> line) const { synthesize_impl(line); }
+void PupsTransform::analyze(std::span<float> line) const { analyze_impl(line); }
+void PupsTransform::synthesize(std::span<float> line) const { synthesize_impl(line); }
+
+}  // namespace pups
+
+Transform1DPtr make_pups_transform(const pups::FilterBank& bank, std::string spec) {
+  return std::make_shared<const pups::PupsTransform>(bank, std::move(spec));
+}
+
+Transform1DPtr make_pups_transform_from_spec(std::string_view body) {
+  const pups::DesignSpec parsed = pups::parse_design_spec(body);
+  // Designing takes milliseconds (100000-sample least squares); cache by canonical body.
+  static std::mutex mutex;
+  static std::map<std::string, Transform1DPtr, std::less<>> cache;
+  {
+    const std::lock_guard lock(mutex);
+    if (auto it = cache.find(body); it != cache.end()) return it->second;
+  }
+  const pups::FilterBank bank = pups::design(parsed);
+  const std::string canonical = pups::canonical_spec_body(bank);
+  Transform1DPtr t = make_pups_transform(bank, "pups:" + canonical);
+  const std::lock_guard lock(mutex);
+  cache.emplace(std::string(body), t);
+  cache.emplace(canonical, t);
+  return t;
+}
+
+double analysis_condition_number(const Transform1D& t, std::size_t n, bool two_norm) {
+  if (n == 0 || n > 8192) throw std::invalid_argument("condition number needs 1 <= n <= 8192");
+  const auto m = static_cast<Eigen::Index>(n);
+  Eigen::MatrixXd T(m, m), Tinv(m, m);
+  std::vector<double> col(n);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    for (const bool forward : {true, false}) {
+      std::fill(col.begin(), col.end(), 0.0);
+      col[static_cast<std::size_t>(j)] = 1.0;
+      if (forward)
+        t.analyze(std::span<double>(col));
+      else
+        t.synthesize(std::span<double>(col));
+      (forward ? T : Tinv).col(j) = Eigen::Map<const Eigen::VectorXd>(col.data(), m);
+    }
+  }
+  if (two_norm) {
+    const Eigen::VectorXd sv = Eigen::BDCSVD<Eigen::MatrixXd>(T).singularValues();
+    return sv(0) / sv(m - 1);
+  }
+  return T.cwiseAbs().colwise().sum().maxCoeff() * Tinv.cwiseAbs().colwise().sum().maxCoeff();
+}
+
+std::vector<std::string> pups_transform_specs() {
+  std::vector<std::string> out;
+  for (const auto& p : pups::presets()) out.push_back("pups:" + p.name);
+  return out;
+}
+
+}  // namespace pupwave
