@@ -28,8 +28,9 @@ double run_checked(const std::vector<std::string>& argv, const fs::path& log, co
   const ProcessResult r = run_process(argv, log);
   std::error_code ec;
   if (r.exit_code != 0 || !fs::is_regular_file(product, ec)) {
-    throw std::runtime_error(fs::path(argv[0]).filename().string() + " failed (exit " +
-                             std::to_string(r.exit_code) + "): " + log_tail(log));
+    const std::string tail = log_tail(log);
+    throw std::runtime_error(fs::path(argv[0]).filename().string() + " failed (exit " + std::to_string(r.exit_code) +
+                             (tail.empty() ? ")" : "): " + tail));
   }
   return r.seconds;
 }

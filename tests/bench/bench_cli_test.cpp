@@ -1,0 +1,177 @@
+// End-to-end runs of `pupwave bench` on a tiny crop of a test photograph: the outputs exist and
+// have the promised columns and tables, missing anchor tools are skipped with a note, failures
+// are reported without losing the other results.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tools/bench/process.h"
+#include "tools/bench/rd_report.h"
+#include "tools/image_io.h"
+
+namespace pupwave::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs the CLI with `env_path` as its PATH (through env(1), so the test's own PATH is untouched).
+CliRun run_cli(const std::vector<std::string>& args, const fs::path& log, const std::string& env_path) {
+  std::vector<std::string> argv = {"/usr/bin/env", "PATH=" + env_path, PUPWAVE_CLI};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const ProcessResult r = run_process(argv, log);
+  return {r.exit_code, read_text(log)};
+}
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(p);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+class BenchCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pupwave-bench-test-" + std::to_string(getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // A 96x64 crop of a real photograph keeps every codec run to a few milliseconds.
+    const Image full = cli::read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png");
+    Image crop(96, 64, 3, full.type);
+    for (std::size_t c = 0; c < 3; ++c)
+      for (std::size_t y = 0; y < crop.height; ++y)
+        for (std::size_t x = 0; x < crop.width; ++x) crop.at(c, x, y) = full.at(c, x + 200, y + 150);
+    image_ = dir_ / "crop.png";
+    cli::write_image(crop, image_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path dir_, image_;
+};
+
+TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
+  const fs::path out = dir_ / "rd";
+  const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97,cdf53", "--bpp",
+                         "0.5,2", "--jobs", "2", "--out", out.string()},
+                        dir_ / "log.txt", environment_path());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = read_csv(out / "results.csv");
+  ASSERT_EQ(rows.size(), 1u + 4 * 2) << "header + (2 transforms + 2 anchors) x 2 rates";
+  EXPECT_EQ(rows[0], results_csv_columns());
+  std::map<std::string, std::vector<double>> psnr_by_codec;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), rows[0].size());
+    EXPECT_EQ(rows[i][0], "crop");
+    EXPECT_EQ(rows[i][15], "ok");
+    const double target = std::stod(rows[i][6]), bpp = std::stod(rows[i][8]), psnr = std::stod(rows[i][9]);
+    EXPECT_NEAR(bpp, 8.0 * std::stod(rows[i][7]) / (96 * 64), 1e-8);  // 10 significant digits
+    EXPECT_GT(psnr, 15.0);
+    EXPECT_TRUE(std::isfinite(std::stod(rows[i][10])));  // luma PSNR of a colour image
+    if (rows[i][5] == "pupwave") {
+      EXPECT_NEAR(bpp, target, 0.1 * target) << rows[i][4];
+    }
+    psnr_by_codec[rows[i][4]].push_back(psnr);
+  }
+  ASSERT_EQ(psnr_by_codec.size(), 4u);
+  for (const auto& [codec, p] : psnr_by_codec) EXPECT_LT(p[0], p[1]) << codec << ": more bits, higher PSNR";
+
+  const std::string summary = read_text(out / "summary.md");
+  EXPECT_NE(summary.find("## Mean over 1 image(s)"), std::string::npos);
+  EXPECT_NE(summary.find("| codec | 0.5 bpp | 2 bpp | BD-PSNR (dB) | BD-rate (%) |"), std::string::npos);
+  for (const char* codec : {"| cdf97 |", "| cdf53 |", "| openjpeg | ", "| jxl |"})
+    EXPECT_NE(summary.find(codec), std::string::npos) << codec;
+  EXPECT_NE(summary.find("| openjpeg | " + fixed(psnr_by_codec["openjpeg"][0], 2)), std::string::npos);
+  EXPECT_NE(summary.find("![PSNR against bpp, crop](plots/crop.svg)"), std::string::npos);
+  EXPECT_NE(read_text(out / "plots" / "crop.svg").find("<svg"), std::string::npos);
+}
+
+TEST_F(BenchCli, MissingAnchorToolsAreSkippedWithANote) {
+  const fs::path out = dir_ / "rd", empty = dir_ / "empty-path";
+  fs::create_directories(empty);
+  const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97", "--bpp", "1",
+                         "--jobs", "1", "--out", out.string()},
+                        dir_ / "log.txt", empty.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("anchor openjpeg skipped: opj_compress not found"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("anchor jxl skipped: cjxl not found"), std::string::npos) << r.output;
+  const std::string summary = read_text(out / "summary.md");
+  EXPECT_NE(summary.find("> Note: anchor openjpeg skipped"), std::string::npos);
+  EXPECT_NE(summary.find("> Note: anchor jxl skipped"), std::string::npos);
+  EXPECT_NE(summary.find("> Note: plots not drawn: gnuplot not found"), std::string::npos);
+  EXPECT_EQ(read_csv(out / "results.csv").size(), 2u);  // header + cdf97 at 1 bpp
+  EXPECT_NE(summary.find("| cdf97 |"), std::string::npos);
+  EXPECT_EQ(summary.find("| openjpeg |"), std::string::npos);
+}
+
+TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
+  // /bin/false as "pupwave" makes every codec job fail; the anchors' results must survive.
+  const fs::path out = dir_ / "rd";
+  const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97", "--bpp", "1",
+                         "--anchors", "openjpeg", "--cli", "/bin/false", "--out", out.string()},
+                        dir_ / "log.txt", environment_path());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("pupwave: error: 1 of 2 rd jobs failed"), std::string::npos) << r.output;
+  const auto rows = read_csv(out / "results.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1][15].rfind("failed: false failed (exit 1)", 0), 0u) << rows[1][15];
+  EXPECT_EQ(rows[2][15], "ok");
+  EXPECT_NE(read_text(out / "summary.md").find("## Failed jobs"), std::string::npos);
+}
+
+TEST_F(BenchCli, BadArgumentsAreRejectedBeforeAnyWork) {
+  const fs::path out = dir_ / "rd";
+  for (const auto& bad : std::vector<std::vector<std::string>>{
+           {"--transforms", "no-such-transform"}, {"--bpp", "0"}, {"--bpp", "x"}, {"--anchors", "webp"}}) {
+    std::vector<std::string> args = {"bench", "rd", "--images", image_.string(), "--out", out.string()};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const CliRun r = run_cli(args, dir_ / "log.txt", environment_path());
+    EXPECT_EQ(r.exit_code, 1) << bad[1];
+    EXPECT_NE(r.output.find("pupwave: error:"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out / "results.csv"));
+    fs::remove(dir_ / "log.txt");
+  }
+}
+
+TEST_F(BenchCli, CoarseRunWritesItsTable) {
+  const fs::path out = dir_ / "coarse";
+  const CliRun r = run_cli({"bench", "coarse", "--images", image_.string(), "--transforms", "cdf97,cdf53", "--levels",
+                         "1..2", "--out", out.string()},
+                        dir_ / "log.txt", environment_path());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = read_csv(out / "coarse.csv");
+  ASSERT_EQ(rows.size(), 1u + 2 * 2);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"image", "transform", "levels", "psnr_luma_db", "status"}));
+  const std::string summary = read_text(out / "summary.md");
+  EXPECT_NE(summary.find("| transform | L=1 | L=2 |"), std::string::npos);
+  EXPECT_NE(summary.find("| cdf97 | " + fixed(std::stod(rows[1][3]), 2) + " | " + fixed(std::stod(rows[2][3]), 2)),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace pupwave::bench
