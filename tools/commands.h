@@ -11,6 +11,7 @@ void add_psnr_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 void add_compress_command(CLI::App& app);
 void add_decompress_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 void add_subdivide_command(CLI::App& app);
 
 }  // namespace pupwave::cli

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   pupwave::cli::add_convert_command(app);
   pupwave::cli::add_compress_command(app);
   pupwave::cli::add_decompress_command(app);
+  pupwave::cli::add_bench_command(app);
   pupwave::cli::add_subdivide_command(app);
   try {
     app.parse(argc, argv);
