@@ -17,7 +17,7 @@ struct BitModel {
   std::uint16_t p0 = std::uint16_t(kProbabilityOne / 2);
   std::uint8_t count = 0;
 
-  static constexpr int kMaxShift = 5;
+  static constexpr int kMaxShift = 6;
   static constexpr std::uint32_t kMinP = 31;  // keeps both sub-ranges non-empty
 
   constexpr BitModel() = default;

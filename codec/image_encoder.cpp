@@ -1,5 +1,6 @@
 // encode_image with the bit-plane coder: every block is coded once at a fine quantizer step,
 // then rate control picks each block's truncation point by rate-distortion slope (PCRD).
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,6 +19,8 @@ constexpr int kMaxStepRefinements = 4;
 // PSNR targets are met from above within this margin (dB) when possible.
 constexpr double kPsnrTolerance = 0.05;
 constexpr int kMaxPsnrRounds = 6;
+// Blocks offered leftover budget after the slope bisection.
+constexpr std::size_t kMaxFillCandidates = 64;
 
 // All blocks coded with every pass; the PCRD inputs.
 struct CodedImage {
@@ -87,6 +90,30 @@ EncodeResult finish(const Image& image, const ImagePlan& plan, std::vector<std::
   return r;
 }
 
+// Bisection leaves a little of the budget unused where the next hull points of blocks are
+// large; try the best few of them one by one and keep each that still fits.
+void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int>& passes, double budget) {
+  struct Candidate {
+    double slope;
+    std::size_t block;
+    int passes;
+  };
+  std::vector<Candidate> next;
+  for (std::size_t i = 0; i < passes.size(); ++i)
+    for (const HullPoint& p : coded.hulls[i])
+      if (p.passes > passes[i]) {
+        next.push_back({p.slope, i, p.passes});
+        break;
+      }
+  std::sort(next.begin(), next.end(), [](const Candidate& a, const Candidate& b) { return a.slope > b.slope; });
+  if (next.size() > kMaxFillCandidates) next.resize(kMaxFillCandidates);
+  for (const Candidate& c : next) {
+    const int old = passes[c.block];
+    passes[c.block] = c.passes;
+    if (double(stream_size(plan, coded, passes)) > budget) passes[c.block] = old;
+  }
+}
+
 // Best quality within a byte budget; the base step is refined while every pass still fits.
 EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
   const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
@@ -96,9 +123,10 @@ EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
     const CodedImage coded = code_blocks(plan);
     const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
     if (fits_all && round < kMaxStepRefinements) continue;
-    const auto passes = allocate_by_slope(coded.hulls, true, [&](const std::vector<int>& p) {
+    auto passes = allocate_by_slope(coded.hulls, true, [&](const std::vector<int>& p) {
       return double(stream_size(plan, coded, p)) <= budget;
     });
+    fill_budget(plan, coded, passes, budget);
     return finish(image, plan, build(plan, coded, passes), base);
   }
 }

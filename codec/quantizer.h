@@ -14,7 +14,7 @@ namespace pupwave {
 
 // Default reconstruction offset inside a quantization bin [q, q+1) (index units): below the
 // middle because detail coefficients are peaked (Laplacian) around zero.
-inline constexpr double kDefaultReconstructionDelta = 0.375;
+inline constexpr double kDefaultReconstructionDelta = 0.4375;
 
 // Steps for every (component, band): result[c * norms.size() + b].
 std::vector<float> subband_steps(double base_step, std::span<const double> norms, std::span<const double> weights);
