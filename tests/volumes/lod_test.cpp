@@ -1,0 +1,226 @@
+// `pupwave lod`: geometry and topology against OpenVDB's own tools::MultiResGrid (what vdb_lod
+// runs), values against an independent downsampling made here from 1-D analyses only.
+#include <openvdb/tools/MultiResGrid.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "transforms/spec.h"
+#include "volumes/volume_test_util.h"
+
+namespace pupwave::test {
+namespace {
+
+openvdb::FloatGrid::Ptr find_grid(const openvdb::GridPtrVec& grids, const std::string& name) {
+  for (const auto& g : grids)
+    if (g->getName() == name) return openvdb::gridPtrCast<openvdb::FloatGrid>(g);
+  return nullptr;
+}
+
+// Same active voxels, transform and vdb_lod metadata as MultiResGrid's level k.
+void expect_like_vdb_lod(const openvdb::FloatGrid& ours, openvdb::tools::MultiResGrid<openvdb::FloatTree>& mrg,
+                         std::size_t k, const openvdb::FloatGrid& input) {
+  const openvdb::FloatGrid::Ptr theirs = mrg.grid(k);
+  const openvdb::Mat4d mo = ours.transform().baseMap()->getAffineMap()->getMat4();
+  const openvdb::Mat4d mt = theirs->transform().baseMap()->getAffineMap()->getMat4();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(mo(r, c), mt(r, c), 1e-14) << "transform (" << r << "," << c << ") level " << k;
+  EXPECT_NEAR(ours.voxelSize()[0], input.voxelSize()[0] * double(1 << k), 1e-12);
+  EXPECT_EQ(ours.evalActiveVoxelBoundingBox(), theirs->evalActiveVoxelBoundingBox()) << "level " << k;
+  EXPECT_EQ(ours.activeVoxelCount(), theirs->activeVoxelCount()) << "level " << k;
+  auto a = theirs->getConstAccessor();
+  for (auto it = ours.cbeginValueOn(); it; ++it) {
+    EXPECT_TRUE(a.isValueOn(it.getCoord())) << it.getCoord();
+    if (!a.isValueOn(it.getCoord())) break;
+  }
+  EXPECT_EQ(ours.background(), input.background());
+  EXPECT_EQ(ours.getGridClass(), input.getGridClass());
+  ASSERT_TRUE(ours.getMetadata<openvdb::FloatMetadata>("MultiResGrid_Level"));
+  EXPECT_EQ(ours.metaValue<float>("MultiResGrid_Level"), float(k));
+  EXPECT_EQ(ours.metaValue<openvdb::Int64>("MultiResGrid_Levels"), openvdb::Int64(mrg.numLevels()));
+}
+
+// The expected level-k field over the box documented in tools/cmd_lod.cpp (active bounding box
+// padded to multiples of 2^top plus one such block per side): k levels of 1-D analysis along x,
+// then y, then z keeping the coarse part, divided by the coarse response to a constant line,
+// clamped to the input's value range.
+struct Expected {
+  openvdb::Coord origin;  // index of sample 0 at level k
+  std::array<std::size_t, 3> n{};
+  std::vector<double> values;
+  double at(const openvdb::Coord& ijk) const {
+    const openvdb::Coord j = ijk - origin;
+    for (int a = 0; a < 3; ++a)
+      if (j[a] < 0 || std::size_t(j[a]) >= n[std::size_t(a)]) return std::nan("");
+    return values[std::size_t(j[0]) + n[0] * (std::size_t(j[1]) + n[1] * std::size_t(j[2]))];
+  }
+};
+
+void analyze_levels(const Transform1D& t, std::vector<double>& line, int k) {
+  std::size_t m = line.size();
+  for (int l = 0; l < k; ++l, m = (m + 1) / 2) t.analyze(std::span<double>(line.data(), m));
+  line.resize(m);
+}
+
+Expected expected_level(const openvdb::FloatGrid& grid, const Transform1D& t, int k, int top) {
+  const int block = 1 << top;
+  const auto floor_div = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+  const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+  openvdb::Coord lo, size;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = (floor_div(active.min()[a], block) - 1) * block;
+    size[a] = (floor_div(active.max()[a] + block, block) + 1) * block - lo[a];
+  }
+  double vmin = grid.background(), vmax = grid.background();
+  auto acc = grid.getConstAccessor();
+  for (auto it = active.begin(); it; ++it) {
+    vmin = std::min(vmin, double(acc.getValue(*it)));
+    vmax = std::max(vmax, double(acc.getValue(*it)));
+  }
+  std::array<std::size_t, 3> n{std::size_t(size[0]), std::size_t(size[1]), std::size_t(size[2])};
+  std::vector<double> v(n[0] * n[1] * n[2]);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = acc.getValue(lo + openvdb::Coord(int(i % n[0]), int(i / n[0] % n[1]), int(i / n[0] / n[1])));
+  std::array<std::vector<double>, 3> gain;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    gain[axis].assign(n[axis], 1.0);
+    analyze_levels(t, gain[axis], k);
+    std::array<std::size_t, 3> m = n;
+    m[axis] = gain[axis].size();
+    std::vector<double> out(m[0] * m[1] * m[2]);
+    const std::size_t stride = axis == 0 ? 1 : axis == 1 ? n[0] : n[0] * n[1];
+    const std::size_t out_stride = axis == 0 ? 1 : axis == 1 ? m[0] : m[0] * m[1];
+    for (std::size_t i = 0; i < out.size(); i += 1) {
+      if ((i / out_stride) % m[axis] != 0) continue;  // one pass per line, from its first sample
+      const std::size_t outer = i / out_stride / m[axis], inner = i % out_stride;
+      std::vector<double> line(n[axis]);
+      for (std::size_t s = 0; s < n[axis]; ++s) line[s] = v[outer * stride * n[axis] + inner + s * stride];
+      analyze_levels(t, line, k);
+      for (std::size_t s = 0; s < m[axis]; ++s) out[i + s * out_stride] = line[s];
+    }
+    v.swap(out);
+    n = m;
+  }
+  Expected e;
+  e.origin = openvdb::Coord(lo[0] >> k, lo[1] >> k, lo[2] >> k);
+  e.n = n;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = std::clamp(v[i] / (gain[0][i % n[0]] * gain[1][i / n[0] % n[1]] * gain[2][i / n[0] / n[1]]), vmin, vmax);
+  e.values = std::move(v);
+  return e;
+}
+
+// Runs `lod --levels top` and checks every level against MultiResGrid and the expected values.
+void check_lod(const fs::path& in, const fs::path& out, const std::string& spec, int top) {
+  const CliResult r = run_cli({"lod", in.string(), out.string(), "--levels", std::to_string(top), "--transform", spec});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const openvdb::GridPtrVec input = read_grids(in), output = read_grids(out);
+  ASSERT_EQ(output.size(), input.size() * std::size_t(top + 1));
+  const Transform1DPtr t = make_transform(spec);
+  for (const auto& base : input) {
+    const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    openvdb::tools::MultiResGrid<openvdb::FloatTree> mrg(std::size_t(top + 1), *grid);
+    for (int k = 0; k <= top; ++k) {
+      const auto ours = find_grid(output, grid->getName() + "_level_" + std::to_string(k));
+      ASSERT_TRUE(ours) << grid->getName() << " level " << k << " missing";
+      expect_like_vdb_lod(*ours, mrg, std::size_t(k), *grid);
+      if (k == 0) {
+        EXPECT_TRUE(same_voxels(*grid, *ours));
+        continue;
+      }
+      const Expected e = expected_level(*grid, *t, k, top);
+      const double bg = grid->background(), tol = 2e-6 * (1.0 + std::abs(bg));
+      std::size_t checked = 0;
+      auto acc = ours->getConstAccessor();
+      for (auto it = openvdb::CoordBBox(e.origin, e.origin + openvdb::Coord(int(e.n[0]) - 1, int(e.n[1]) - 1,
+                                                                          int(e.n[2]) - 1)).begin(); it; ++it) {
+        float value = 0;
+        const double want = e.at(*it);
+        if (acc.probeValue(*it, value)) {
+          ASSERT_NEAR(value, want, tol * 8) << spec << " level " << k << " voxel " << *it;
+          ++checked;
+        } else if (grid->getGridClass() == openvdb::GRID_LEVEL_SET && std::abs(want) > 1e-6) {
+          ASSERT_EQ(value, want < 0 ? -std::abs(float(bg)) : std::abs(float(bg))) << "inactive sign at " << *it;
+        }
+      }
+      EXPECT_EQ(checked, ours->activeVoxelCount());
+    }
+  }
+}
+
+TEST_F(VolumeTest, LodLevelSetMatchesVdbLodGeometryAndIndependentLowBand) {
+  check_lod(testimage("sphere_ls.vdb"), dir_ / "sphere_lod.vdb", "cdf97", 3);
+}
+
+TEST_F(VolumeTest, LodOddSparseGridsTwoTransforms) {
+  auto f = random_grid<openvdb::FloatGrid>({-13, 5, 7}, {37, 29, 23}, 0.4, 11);
+  f->setName("density");
+  openvdb::math::Transform::Ptr xf = openvdb::math::Transform::createLinearTransform(0.3);
+  xf->postTranslate(openvdb::Vec3d(1.0, 2.0, -0.5));
+  f->setTransform(xf);
+  auto g = random_grid<openvdb::FloatGrid>({4, -9, -3}, {5, 11, 2}, 0.8, 12);
+  g->setName("small");
+  write_grids({f, g}, dir_ / "in.vdb");
+  check_lod(dir_ / "in.vdb", dir_ / "out97.vdb", "cdf97", 2);
+  check_lod(dir_ / "in.vdb", dir_ / "out53.vdb", "cdf53", 3);
+}
+
+// The coarse band is normalised so a constant field stays that constant at every level and
+// position, box edges included. Two inactive outlier voxels (+-100) widen the clamping range so
+// clamping cannot hide a wrong gain; only coarse voxels beyond their footprint (half-width under
+// 4 * 2^k fine voxels for the 9-tap low pass) are checked.
+TEST_F(VolumeTest, LodConstantFieldStaysConstant) {
+  auto c = openvdb::FloatGrid::create(2.5f);
+  c->fill(openvdb::CoordBBox(openvdb::Coord(-5, 0, 3), openvdb::Coord(33, 26, 30)), 2.5f, true);
+  const openvdb::Coord outliers[2] = {{-5, 0, 3}, {33, 26, 30}};
+  c->tree().setValueOff(outliers[0], 100.0f);
+  c->tree().setValueOff(outliers[1], -100.0f);
+  c->setName("c");
+  write_grids({c}, dir_ / "c.vdb");
+  for (const std::string spec : {"cdf97", "cdf53"}) {
+    const CliResult r = run_cli({"lod", (dir_ / "c.vdb").string(), (dir_ / "o.vdb").string(), "--levels", "2",
+                                 "--transform", spec});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::size_t checked = 0;
+    for (const auto& base : read_grids(dir_ / "o.vdb")) {
+      const auto g = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+      const int scale = int(std::lround(g->voxelSize()[0]));  // 2^k: the input voxel size is 1
+      for (auto it = g->cbeginValueOn(); it; ++it) {
+        const auto near = [&](const openvdb::Coord& o) {
+          const openvdb::Coord d = openvdb::Coord(it.getCoord().asVec3i() * scale) - o;
+          return std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])}) <= 4 * scale + 2;
+        };
+        if (near(outliers[0]) || near(outliers[1])) continue;
+        ASSERT_NEAR(*it, 2.5f, 1e-5) << spec << ' ' << g->getName() << ' ' << it.getCoord();
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 10000u);
+  }
+}
+
+TEST_F(VolumeTest, LodRangeAndNames) {
+  auto a = random_grid<openvdb::FloatGrid>({0, 0, 0}, {9, 9, 9}, 0.5, 5);
+  a->setName("density");
+  auto b = random_grid<openvdb::FloatGrid>({0, 0, 0}, {9, 9, 9}, 0.5, 6);
+  b->setName("temperature");
+  write_grids({a, b}, dir_ / "in.vdb");
+  const CliResult r = run_cli({"lod", (dir_ / "in.vdb").string(), (dir_ / "o.vdb").string(), "--range", "1-3:2",
+                               "--name", "density"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<std::string> names;
+  for (const auto& g : read_grids(dir_ / "o.vdb")) names.push_back(g->getName());
+  EXPECT_EQ(names, (std::vector<std::string>{"density_level_1", "density_level_3"}));
+  for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
+           {"--range", "0-1:0.5"}, {"--range", "3-1"}, {"--levels", "2", "--range", "0-2"}, {}, {"--levels", "99"},
+           {"--levels", "2", "--transform", "nope"}, {"--levels", "2", "--name", "missing"}}) {
+    std::vector<std::string> args{"lod", (dir_ / "in.vdb").string(), (dir_ / "bad.vdb").string()};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const CliResult e = run_cli(args);
+    EXPECT_NE(e.exit_code, 0) << e.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.vdb"));
+  }
+}
+
+}  // namespace
+}  // namespace pupwave::test
