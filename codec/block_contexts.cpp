@@ -79,8 +79,8 @@ std::pair<int, int> BlockState::sign_context(std::size_t p) const {
 
 bool BlockState::isolated(std::size_t p) const {
   const std::size_t sy = stride_y_;
-  bool any = sig(p - 1) || sig(p + 1) || sig(p - sy) || sig(p + sy) || sig(p - sy - 1) ||
-             sig(p - sy + 1) || sig(p + sy - 1) || sig(p + sy + 1);
+  bool any = sig(p - 1) || sig(p + 1) || sig(p - sy) || sig(p + sy) || sig(p - sy - 1) || sig(p - sy + 1) ||
+             sig(p + sy - 1) || sig(p + sy + 1);
   if (volume_) any = any || sig(p - stride_z_) || sig(p + stride_z_);
   return !any;
 }

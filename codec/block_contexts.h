@@ -23,7 +23,7 @@ enum : std::uint8_t {
 };
 
 // Context numbering inside a block's model array.
-inline constexpr int kSignContext0 = 9;    // 9 significance contexts come first
+inline constexpr int kSignContext0 = 9;     // 9 significance contexts come first
 inline constexpr int kRefineContext0 = 14;  // then 5 sign contexts, then 3 refinement
 inline constexpr int kRunContext = 17;
 inline constexpr int kBlockContexts = 18;

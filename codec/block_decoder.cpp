@@ -53,49 +53,52 @@ class BitPlaneDecoder {
   }
 
   void significance_pass(int p) {
-    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-      for (std::size_t y = y0; y < y0 + rows; ++y) {
-        const std::size_t f = state_.at(x, y, z);
-        if (state_.flags(f) & kSignificant) continue;
-        const int ctx = state_.significance_context(f);
-        if (ctx == 0) continue;
-        decode_significance(f, index(x, y, z), p, ctx);
-        state_.flags(f) |= kVisited;
-      }
-    });
+    for_each_stripe_column(state_.size(),
+                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+                             for (std::size_t y = y0; y < y0 + rows; ++y) {
+                               const std::size_t f = state_.at(x, y, z);
+                               if (state_.flags(f) & kSignificant) continue;
+                               const int ctx = state_.significance_context(f);
+                               if (ctx == 0) continue;
+                               decode_significance(f, index(x, y, z), p, ctx);
+                               state_.flags(f) |= kVisited;
+                             }
+                           });
   }
 
   void refinement_pass(int p) {
-    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-      for (std::size_t y = y0; y < y0 + rows; ++y) {
-        const std::size_t f = state_.at(x, y, z);
-        if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
-        const std::size_t i = index(x, y, z);
-        const int bit = rc_.decode(state_.models[std::size_t(state_.refinement_context(f))]);
-        state_.flags(f) |= kRefined;
-        const std::int32_t add = bit ? std::int32_t(1u << p) : 0;
-        out_.known[i] += out_.known[i] < 0 ? -add : add;
-        out_.low_plane[i] = std::uint8_t(p);
-      }
-    });
+    for_each_stripe_column(
+        state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+          for (std::size_t y = y0; y < y0 + rows; ++y) {
+            const std::size_t f = state_.at(x, y, z);
+            if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
+            const std::size_t i = index(x, y, z);
+            const int bit = rc_.decode(state_.models[std::size_t(state_.refinement_context(f))]);
+            state_.flags(f) |= kRefined;
+            const std::int32_t add = bit ? std::int32_t(1u << p) : 0;
+            out_.known[i] += out_.known[i] < 0 ? -add : add;
+            out_.low_plane[i] = std::uint8_t(p);
+          }
+        });
   }
 
   void cleanup_pass(int p) {
-    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-      std::size_t y = y0;
-      if (rows == kStripe && run_eligible(x, y0, z)) {
-        if (!rc_.decode(state_.models[kRunContext])) return;
-        std::size_t first = std::size_t(rc_.decode_equiprobable()) << 1;
-        first |= std::size_t(rc_.decode_equiprobable());
-        become_significant(state_.at(x, y0 + first, z), index(x, y0 + first, z), p);
-        y = y0 + first + 1;
-      }
-      for (; y < y0 + rows; ++y) {
-        const std::size_t f = state_.at(x, y, z);
-        if (state_.flags(f) & (kSignificant | kVisited)) continue;
-        decode_significance(f, index(x, y, z), p, state_.significance_context(f));
-      }
-    });
+    for_each_stripe_column(state_.size(),
+                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+                             std::size_t y = y0;
+                             if (rows == kStripe && run_eligible(x, y0, z)) {
+                               if (!rc_.decode(state_.models[kRunContext])) return;
+                               std::size_t first = std::size_t(rc_.decode_equiprobable()) << 1;
+                               first |= std::size_t(rc_.decode_equiprobable());
+                               become_significant(state_.at(x, y0 + first, z), index(x, y0 + first, z), p);
+                               y = y0 + first + 1;
+                             }
+                             for (; y < y0 + rows; ++y) {
+                               const std::size_t f = state_.at(x, y, z);
+                               if (state_.flags(f) & (kSignificant | kVisited)) continue;
+                               decode_significance(f, index(x, y, z), p, state_.significance_context(f));
+                             }
+                           });
     state_.clear_visited();
   }
 
@@ -116,7 +119,8 @@ class BitPlaneDecoder {
 
 DecodedBlock decode_block(std::span<const std::uint8_t> codeword, int planes, int passes, const Extent& size,
                           unsigned orientation) {
-  require_stream(planes >= 0 && planes <= kMaxBitPlanes, "code-block bit-plane count " + std::to_string(planes));
+  require_stream(planes >= 0 && planes <= kMaxBitPlanes,
+                 "code-block bit-plane count " + std::to_string(planes));
   require_stream(passes >= 0 && passes <= passes_for_planes(planes),
                  "code-block pass count " + std::to_string(passes));
   return BitPlaneDecoder(codeword, size, orientation).run(planes, passes);

@@ -12,8 +12,8 @@ namespace pupwave {
 
 // What the decoder knows of each coefficient after the coded passes.
 struct DecodedBlock {
-  std::vector<std::int32_t> known;       // signed magnitude bits decoded so far (lower bits 0)
-  std::vector<std::uint8_t> low_plane;   // bit-plane of the last bit decoded; 255: insignificant
+  std::vector<std::int32_t> known;      // signed magnitude bits decoded so far (lower bits 0)
+  std::vector<std::uint8_t> low_plane;  // bit-plane of the last bit decoded; 255: insignificant
 };
 
 // Decodes the first `passes` coding passes of a block with `planes` bit-planes from

@@ -11,8 +11,8 @@ namespace {
 // Runs the coding passes over one block and records the truncation points.
 class BitPlaneEncoder {
  public:
-  BitPlaneEncoder(std::span<const float> magnitude, std::span<const std::uint8_t> negative, const Extent& size,
-                  unsigned orientation, double delta)
+  BitPlaneEncoder(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
+                  const Extent& size, unsigned orientation, double delta)
       : m_(magnitude), negative_(negative), state_(size, orientation), delta_(delta), q_(magnitude.size()) {
     for (std::size_t i = 0; i < q_.size(); ++i) {
       if (!(m_[i] < float(1u << kMaxBitPlanes)))
@@ -77,51 +77,54 @@ class BitPlaneEncoder {
   }
 
   void significance_pass(int p) {
-    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-      for (std::size_t y = y0; y < y0 + rows; ++y) {
-        const std::size_t f = state_.at(x, y, z);
-        if (state_.flags(f) & kSignificant) continue;
-        const int ctx = state_.significance_context(f);
-        if (ctx == 0) continue;
-        code_significance(f, index(x, y, z), p, ctx);
-        state_.flags(f) |= kVisited;
-      }
-    });
+    for_each_stripe_column(state_.size(),
+                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+                             for (std::size_t y = y0; y < y0 + rows; ++y) {
+                               const std::size_t f = state_.at(x, y, z);
+                               if (state_.flags(f) & kSignificant) continue;
+                               const int ctx = state_.significance_context(f);
+                               if (ctx == 0) continue;
+                               code_significance(f, index(x, y, z), p, ctx);
+                               state_.flags(f) |= kVisited;
+                             }
+                           });
   }
 
   void refinement_pass(int p) {
-    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-      for (std::size_t y = y0; y < y0 + rows; ++y) {
-        const std::size_t f = state_.at(x, y, z);
-        if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
-        const std::size_t i = index(x, y, z);
-        rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
-        state_.flags(f) |= kRefined;
-        add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
-      }
-    });
+    for_each_stripe_column(
+        state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+          for (std::size_t y = y0; y < y0 + rows; ++y) {
+            const std::size_t f = state_.at(x, y, z);
+            if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
+            const std::size_t i = index(x, y, z);
+            rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
+            state_.flags(f) |= kRefined;
+            add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
+          }
+        });
   }
 
   void cleanup_pass(int p) {
-    for_each_stripe_column(state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-      std::size_t y = y0;
-      if (rows == kStripe && run_eligible(x, y0, z)) {
-        std::size_t first = kStripe;  // first coefficient of the column with bit p set
-        for (std::size_t r = 0; r < kStripe && first == kStripe; ++r)
-          if ((q_[index(x, y0 + r, z)] >> p) & 1u) first = r;
-        rc_.encode(first != kStripe, state_.models[kRunContext]);
-        if (first == kStripe) return;
-        rc_.encode_equiprobable(int(first >> 1));
-        rc_.encode_equiprobable(int(first & 1));
-        become_significant(state_.at(x, y0 + first, z), index(x, y0 + first, z), p);
-        y = y0 + first + 1;
-      }
-      for (; y < y0 + rows; ++y) {
-        const std::size_t f = state_.at(x, y, z);
-        if (state_.flags(f) & (kSignificant | kVisited)) continue;
-        code_significance(f, index(x, y, z), p, state_.significance_context(f));
-      }
-    });
+    for_each_stripe_column(state_.size(),
+                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
+                             std::size_t y = y0;
+                             if (rows == kStripe && run_eligible(x, y0, z)) {
+                               std::size_t first = kStripe;  // first coefficient of the column with bit p set
+                               for (std::size_t r = 0; r < kStripe && first == kStripe; ++r)
+                                 if ((q_[index(x, y0 + r, z)] >> p) & 1u) first = r;
+                               rc_.encode(first != kStripe, state_.models[kRunContext]);
+                               if (first == kStripe) return;
+                               rc_.encode_equiprobable(int(first >> 1));
+                               rc_.encode_equiprobable(int(first & 1));
+                               become_significant(state_.at(x, y0 + first, z), index(x, y0 + first, z), p);
+                               y = y0 + first + 1;
+                             }
+                             for (; y < y0 + rows; ++y) {
+                               const std::size_t f = state_.at(x, y, z);
+                               if (state_.flags(f) & (kSignificant | kVisited)) continue;
+                               code_significance(f, index(x, y, z), p, state_.significance_context(f));
+                             }
+                           });
     state_.clear_visited();
   }
 

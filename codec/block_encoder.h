@@ -14,11 +14,11 @@ namespace pupwave {
 
 // The coded form of one block at every truncation point.
 struct EncodedBlock {
-  int planes = 0;                             // magnitude bit-planes (0: all coefficients zero)
-  std::vector<std::uint8_t> committed;        // the stream shared by all truncation points
-  std::vector<TruncationPoint> passes;        // codeword after each pass
-  std::vector<double> distortion_drop;        // squared error removed by each pass (index units)
-  double initial_distortion = 0.0;            // squared error with nothing coded (index units)
+  int planes = 0;                       // magnitude bit-planes (0: all coefficients zero)
+  std::vector<std::uint8_t> committed;  // the stream shared by all truncation points
+  std::vector<TruncationPoint> passes;  // codeword after each pass
+  std::vector<double> distortion_drop;  // squared error removed by each pass (index units)
+  double initial_distortion = 0.0;      // squared error with nothing coded (index units)
 
   int pass_count() const { return int(passes.size()); }
   // Size in bytes of the codeword that decodes the first n passes (0 for n == 0).

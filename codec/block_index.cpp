@@ -25,8 +25,10 @@ void encode_uint(RangeEncoder& rc, UintModels& m, std::uint32_t v) {
   rc.encode(0, m.length[std::size_t(bits)]);
   for (int k = bits - 2; k >= 0; --k) {
     const int bit = int((v >> k) & 1u);
-    if (k == bits - 2) rc.encode(bit, m.top[std::size_t(bits)]);
-    else rc.encode_equiprobable(bit);
+    if (k == bits - 2)
+      rc.encode(bit, m.top[std::size_t(bits)]);
+    else
+      rc.encode_equiprobable(bit);
   }
 }
 
@@ -45,7 +47,9 @@ bool decode_uint(RangeDecoder& rc, UintModels& m, std::uint32_t& v) {
 }
 
 std::uint32_t zigzag(int v) { return v >= 0 ? std::uint32_t(v) << 1 : (std::uint32_t(-v) << 1) - 1; }
-std::int64_t unzigzag(std::uint32_t v) { return (v & 1u) ? -(std::int64_t(v >> 1) + 1) : std::int64_t(v >> 1); }
+std::int64_t unzigzag(std::uint32_t v) {
+  return (v & 1u) ? -(std::int64_t(v >> 1) + 1) : std::int64_t(v >> 1);
+}
 
 // Models shared by the encoder and decoder, with contexts from the previous entry.
 struct IndexModels {
@@ -54,7 +58,9 @@ struct IndexModels {
   std::array<UintModels, 4> length;  // context: bucket of the pass count
   int previous_planes = 0;
   int previous_passes = 0;
-  static std::size_t length_context(int passes) { return passes < 4 ? 0 : passes < 10 ? 1 : passes < 20 ? 2 : 3; }
+  static std::size_t length_context(int passes) {
+    return passes < 4 ? 0 : passes < 10 ? 1 : passes < 20 ? 2 : 3;
+  }
 };
 
 }  // namespace
@@ -87,9 +93,9 @@ std::vector<BlockEntry> decode_index(std::span<const std::uint8_t> bytes, std::s
     if (e.passes == 0) continue;
     require_stream(decode_uint(rc, m.planes, planes), "block index: bad bit-plane count");
     const std::int64_t p = m.previous_planes + unzigzag(planes);
-    require_stream(p >= 1 && p <= kMaxBitPlanes && e.passes <= passes_for_planes(int(p)),
-                   "block index: bit-plane count " + std::to_string(p) + " for " + std::to_string(e.passes) +
-                       " passes");
+    require_stream(
+        p >= 1 && p <= kMaxBitPlanes && e.passes <= passes_for_planes(int(p)),
+        "block index: bit-plane count " + std::to_string(p) + " for " + std::to_string(e.passes) + " passes");
     e.planes = int(p);
     m.previous_planes = e.planes;
     require_stream(decode_uint(rc, m.length[IndexModels::length_context(e.passes)], length),

@@ -12,10 +12,10 @@ namespace pupwave {
 // One code-block: a box inside one subband of one component.
 struct CodeBlock {
   std::uint32_t component = 0;
-  std::uint32_t band = 0;     // index into subbands(dims, levels)
-  int resolution = 0;         // 0: coarse band; r: details of level (levels - r + 1)
+  std::uint32_t band = 0;  // index into subbands(dims, levels)
+  int resolution = 0;      // 0: coarse band; r: details of level (levels - r + 1)
   unsigned orientation = 0;
-  Extent offset{0, 0, 0};     // first sample in the component's in-place array
+  Extent offset{0, 0, 0};  // first sample in the component's in-place array
   Extent size{1, 1, 1};
   std::size_t count() const { return size[0] * size[1] * size[2]; }
 };
@@ -35,7 +35,8 @@ void copy_block_out(const T* plane, const Extent& dims, const CodeBlock& block, 
   std::size_t k = 0;
   for (std::size_t z = 0; z < block.size[2]; ++z)
     for (std::size_t y = 0; y < block.size[1]; ++y) {
-      const T* row = plane + block.offset[0] + dims[0] * ((block.offset[1] + y) + dims[1] * (block.offset[2] + z));
+      const T* row =
+          plane + block.offset[0] + dims[0] * ((block.offset[1] + y) + dims[1] * (block.offset[2] + z));
       for (std::size_t x = 0; x < block.size[0]; ++x) out[k++] = row[x];
     }
 }

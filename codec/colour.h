@@ -4,8 +4,8 @@
 // first three planes in place; extra planes (alpha) are left alone and coded as they are.
 
 #include <array>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 
 namespace pupwave {
 

@@ -70,7 +70,8 @@ void validate_shape(const StreamHeader& h) {
   for (std::size_t d : h.dims)
     require_stream(d >= 1 && d <= kMaxAxisExtent, "dimension " + std::to_string(d) + " outside [1, 65536]");
   require_stream(h.channels >= 1 && h.channels <= 4, "channel count " + std::to_string(h.channels));
-  require_stream(h.dims[0] * h.dims[1] * h.dims[2] * h.channels <= kMaxTotalSamples, "image too large (over 2^31 samples)");
+  require_stream(h.dims[0] * h.dims[1] * h.dims[2] * h.channels <= kMaxTotalSamples,
+                 "image too large (over 2^31 samples)");
 }
 
 void validate_coding(const StreamHeader& h) {
@@ -85,10 +86,12 @@ void validate_coding(const StreamHeader& h) {
     block <<= h.block_log2[a];
   }
   // Blocks of at least 1024 samples bound the index size by the image size.
-  require_stream(block >= 1024 && block <= (std::size_t(1) << 20), "code-block size " + std::to_string(block));
+  require_stream(block >= 1024 && block <= (std::size_t(1) << 20),
+                 "code-block size " + std::to_string(block));
   require_stream(h.delta >= 0.0 && h.delta < 1.0, "reconstruction offset");
   for (float s : h.steps)
-    require_stream(std::isfinite(s) && s > 0.0f && s < 1e30f && (!h.reversible || s == 1.0f), "quantizer step");
+    require_stream(std::isfinite(s) && s > 0.0f && s < 1e30f && (!h.reversible || s == 1.0f),
+                   "quantizer step");
 }
 
 StreamHeader parse_header(std::span<const std::uint8_t> payload) {
@@ -98,7 +101,8 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
   h.channels = r.u8();
   validate_shape(h);
   const std::uint32_t type = r.u8(), colour = r.u8(), entropy = r.u8(), reversible = r.u8();
-  require_stream(type <= 3 && colour <= 2 && entropy <= 1 && reversible <= 1, "sample type, colour or coder field");
+  require_stream(type <= 3 && colour <= 2 && entropy <= 1 && reversible <= 1,
+                 "sample type, colour or coder field");
   h.type = SampleType(type);
   h.colour = ColourTransform(colour);
   h.entropy = EntropyCoder(entropy);
@@ -166,7 +170,8 @@ std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<
 
 std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, std::size_t data_bytes) {
   const std::size_t chunks = 2 + std::size_t(header.levels) + 1;
-  return kSignatureBytes + chunks * kChunkOverhead + header_payload(header).size() + 4 + index_bytes + data_bytes;
+  return kSignatureBytes + chunks * kChunkOverhead + header_payload(header).size() + 4 + index_bytes +
+         data_bytes;
 }
 
 ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels) {

@@ -33,7 +33,7 @@ struct StreamHeader {
   SampleType type = SampleType::u8;
   ColourTransform colour = ColourTransform::none;
   EntropyCoder entropy = EntropyCoder::ebcot;
-  bool reversible = false;     // integer transform, no quantization: lossless
+  bool reversible = false;  // integer transform, no quantization: lossless
   int levels = 0;
   Extent block_log2{6, 6, 0};  // code-block extent 2^k per axis
   double delta = 0.375;        // reconstruction offset in a bin (index units), [0, 1)
@@ -41,7 +41,8 @@ struct StreamHeader {
   std::vector<float> steps;    // quantizer step per (component, band): c * bands + b
 
   Extent block_size() const {
-    return {std::size_t(1) << block_log2[0], std::size_t(1) << block_log2[1], std::size_t(1) << block_log2[2]};
+    return {std::size_t(1) << block_log2[0], std::size_t(1) << block_log2[1],
+            std::size_t(1) << block_log2[2]};
   }
 };
 
@@ -54,10 +55,10 @@ std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, 
 
 struct ParsedStream {
   StreamHeader header;
-  std::vector<Subband> bands;                               // subbands(dims, levels)
-  std::vector<CodeBlock> blocks;                            // partition_blocks order
-  std::vector<BlockEntry> index;                            // one per block
-  std::vector<std::size_t> offsets;                         // codeword start in its DATA payload
+  std::vector<Subband> bands;                                  // subbands(dims, levels)
+  std::vector<CodeBlock> blocks;                               // partition_blocks order
+  std::vector<BlockEntry> index;                               // one per block
+  std::vector<std::size_t> offsets;                            // codeword start in its DATA payload
   std::vector<std::span<const std::uint8_t>> resolution_data;  // DATA payloads read (0..max)
 
   // Codeword of block i (whose resolution must have been read).

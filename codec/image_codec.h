@@ -21,20 +21,20 @@ enum class RateMode : std::uint8_t {
 };
 
 struct EncodeOptions {
-  std::string transform = "cdf97";     // spec for make_transform; lossless needs a reversible one
-  int levels = -1;                     // -1: default_levels(dims)
+  std::string transform = "cdf97";  // spec for make_transform; lossless needs a reversible one
+  int levels = -1;                  // -1: default_levels(dims)
   RateMode mode = RateMode::psnr;
-  double target = 40.0;                // dB, bits per pixel or base step, by mode
+  double target = 40.0;  // dB, bits per pixel or base step, by mode
   EntropyCoder entropy = EntropyCoder::ebcot;
-  unsigned threads = 0;                // 0: all hardware threads
-  Extent block_size{64, 64, 1};        // code-block extent (powers of two, >= 1024 samples)
+  unsigned threads = 0;          // 0: all hardware threads
+  Extent block_size{64, 64, 1};  // code-block extent (powers of two, >= 1024 samples)
 };
 
 struct EncodeResult {
-  std::vector<std::uint8_t> bytes;     // the complete .pw file
-  double bpp = 0.0;                    // bits per pixel of the whole file
-  double psnr = 0.0;                   // of the decoded image against the input, all channels (dB)
-  double base_step = 0.0;              // quantizer base step used (1 for lossless)
+  std::vector<std::uint8_t> bytes;  // the complete .pw file
+  double bpp = 0.0;                 // bits per pixel of the whole file
+  double psnr = 0.0;                // of the decoded image against the input, all channels (dB)
+  double base_step = 0.0;           // quantizer base step used (1 for lossless)
 };
 
 // Compresses an image. Throws std::invalid_argument for bad options (unknown transform, a

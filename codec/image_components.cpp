@@ -13,7 +13,8 @@ std::vector<T> crop(const std::vector<T>& plane, const Extent& dims, const Exten
   if (size == dims) return plane;
   std::vector<T> out(size[0] * size[1]);
   for (std::size_t y = 0; y < size[1]; ++y)
-    std::copy_n(plane.begin() + std::ptrdiff_t(y * dims[0]), size[0], out.begin() + std::ptrdiff_t(y * size[0]));
+    std::copy_n(plane.begin() + std::ptrdiff_t(y * dims[0]), size[0],
+                out.begin() + std::ptrdiff_t(y * size[0]));
   return out;
 }
 
@@ -95,8 +96,8 @@ Image image_from_components(std::vector<std::vector<float>>& planes, const Exten
   return out;
 }
 
-Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims, const Extent& size,
-                            SampleType type, ColourTransform colour) {
+Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims,
+                            const Extent& size, SampleType type, ColourTransform colour) {
   Image out(size[0], size[1], planes.size(), type);
   const std::size_t n = out.plane_size();
   std::vector<std::vector<std::int32_t>> cropped;

@@ -34,7 +34,7 @@ double coarse_gain(const Transform1D& t, const Extent& dims, int level);
 // over `dims`: divide by `gain`, undo colour and level shift, round and clamp to the type.
 Image image_from_components(std::vector<std::vector<float>>& planes, const Extent& dims, const Extent& size,
                             SampleType type, ColourTransform colour, double gain);
-Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims, const Extent& size,
-                            SampleType type, ColourTransform colour);
+Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims,
+                            const Extent& size, SampleType type, ColourTransform colour);
 
 }  // namespace pupwave

@@ -69,7 +69,8 @@ double remaining_distortion(const CodedImage& coded, const std::vector<int>& pas
   return coded.initial_distortion - removed;
 }
 
-std::vector<std::uint8_t> build(const ImagePlan& plan, const CodedImage& coded, const std::vector<int>& passes) {
+std::vector<std::uint8_t> build(const ImagePlan& plan, const CodedImage& coded,
+                                const std::vector<int>& passes) {
   std::vector<std::vector<std::uint8_t>> words(passes.size());
   for (std::size_t i = 0; i < passes.size(); ++i) words[i] = coded.blocks[i].codeword(passes[i]);
   return assemble(plan, entries_for(coded, passes), words);
@@ -105,7 +106,8 @@ void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int
         next.push_back({p.slope, i, p.passes});
         break;
       }
-  std::sort(next.begin(), next.end(), [](const Candidate& a, const Candidate& b) { return a.slope > b.slope; });
+  std::sort(next.begin(), next.end(),
+            [](const Candidate& a, const Candidate& b) { return a.slope > b.slope; });
   if (next.size() > kMaxFillCandidates) next.resize(kMaxFillCandidates);
   for (const Candidate& c : next) {
     const int old = passes[c.block];

@@ -31,7 +31,8 @@ std::vector<std::uint8_t> code_with_zstd(ImagePlan& plan, double base) {
 
 // Bisection on log(base step) for the finest (bpp) or coarsest (PSNR) step accepted.
 template <class Accept>
-std::pair<std::vector<std::uint8_t>, double> bisect_step(ImagePlan& plan, bool accept_coarse, Accept&& accept) {
+std::pair<std::vector<std::uint8_t>, double> bisect_step(ImagePlan& plan, bool accept_coarse,
+                                                         Accept&& accept) {
   double fine = plan.peak * 1e-5, coarse = plan.peak * 4.0;
   // Fallback when nothing is accepted: the smallest file (bpp) or the best quality (PSNR).
   double best_step = accept_coarse ? coarse : fine;
@@ -45,8 +46,10 @@ std::pair<std::vector<std::uint8_t>, double> bisect_step(ImagePlan& plan, bool a
       best_step = mid;
     }
     // For a size budget coarser steps are accepted; for a PSNR target finer ones.
-    if (ok == accept_coarse) coarse = mid;
-    else fine = mid;
+    if (ok == accept_coarse)
+      coarse = mid;
+    else
+      fine = mid;
   }
   return {best, best_step};
 }
@@ -63,9 +66,8 @@ EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOption
     bytes = code_with_zstd(plan, base);
   } else if (options.mode == RateMode::bpp) {
     const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
-    std::tie(bytes, base) = bisect_step(plan, true, [&](const std::vector<std::uint8_t>& b) {
-      return double(b.size()) <= budget;
-    });
+    std::tie(bytes, base) = bisect_step(
+        plan, true, [&](const std::vector<std::uint8_t>& b) { return double(b.size()) <= budget; });
   } else {
     std::tie(bytes, base) = bisect_step(plan, false, [&](const std::vector<std::uint8_t>& b) {
       return measure_psnr(image, b, plan.threads) >= options.target;

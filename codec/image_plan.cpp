@@ -29,7 +29,8 @@ void validate_image(const Image& image) {
 
 void validate_options(const Image& image, const EncodeOptions& o) {
   if (o.mode == RateMode::lossless && !is_integer(image.type))
-    throw std::invalid_argument("lossless coding needs integer samples (8 or 16 bit); float images are lossy");
+    throw std::invalid_argument(
+        "lossless coding needs integer samples (8 or 16 bit); float images are lossy");
   if (o.mode != RateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   if (o.levels < -1 || o.levels > 32) throw std::invalid_argument("levels must be in [0, 32]");

@@ -17,13 +17,13 @@ struct ImagePlan {
   StreamHeader header;
   std::vector<Subband> bands;
   std::vector<CodeBlock> blocks;
-  std::vector<double> norms;                  // synthesis norm per band
-  std::vector<double> weights;                // output error per unit component error
-  std::vector<std::vector<float>> coef;       // irreversible: transformed components
+  std::vector<double> norms;                     // synthesis norm per band
+  std::vector<double> weights;                   // output error per unit component error
+  std::vector<std::vector<float>> coef;          // irreversible: transformed components
   std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components
-  std::size_t pixels = 0;                     // width * height
-  std::size_t samples = 0;                    // pixels * channels
-  double peak = 1.0;                          // PSNR peak of the input
+  std::size_t pixels = 0;                        // width * height
+  std::size_t samples = 0;                       // pixels * channels
+  double peak = 1.0;                             // PSNR peak of the input
   unsigned threads = 0;
 };
 

@@ -53,8 +53,10 @@ std::vector<int> allocate_by_slope(const std::vector<std::vector<HullPoint>>& hu
     auto choice = passes_at_slope(hulls, mid);
     const bool ok = accept(choice);
     if (ok) best = choice;
-    if (ok == accept_high) hi = mid;
-    else lo = mid;
+    if (ok == accept_high)
+      hi = mid;
+    else
+      lo = mid;
   }
   return best;
 }

@@ -5,7 +5,8 @@
 
 namespace pupwave {
 
-std::vector<float> subband_steps(double base_step, std::span<const double> norms, std::span<const double> weights) {
+std::vector<float> subband_steps(double base_step, std::span<const double> norms,
+                                 std::span<const double> weights) {
   if (!(base_step > 0.0) || !std::isfinite(base_step))
     throw std::invalid_argument("quantizer base step must be positive and finite");
   std::vector<float> steps;

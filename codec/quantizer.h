@@ -17,7 +17,8 @@ namespace pupwave {
 inline constexpr double kDefaultReconstructionDelta = 0.4375;
 
 // Steps for every (component, band): result[c * norms.size() + b].
-std::vector<float> subband_steps(double base_step, std::span<const double> norms, std::span<const double> weights);
+std::vector<float> subband_steps(double base_step, std::span<const double> norms,
+                                 std::span<const double> weights);
 
 // Index-unit magnitudes |x| / step and signs of a run of coefficients: the integer part of
 // magnitude is the dead-zone quantization index (bin [q, q+1) * step, q = 0 twice as wide).

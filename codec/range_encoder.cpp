@@ -57,8 +57,6 @@ std::vector<std::uint8_t> RangeEncoder::codeword(std::span<const std::uint8_t> s
   return bytes;
 }
 
-std::vector<std::uint8_t> RangeEncoder::finish() const {
-  return codeword(committed(), truncation_point());
-}
+std::vector<std::uint8_t> RangeEncoder::finish() const { return codeword(committed(), truncation_point()); }
 
 }  // namespace pupwave

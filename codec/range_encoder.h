@@ -42,7 +42,8 @@ class RangeEncoder {
 
   // Bytes of `point`'s codeword, given the final stream `stream` (from finish()) or any
   // stream that shares the committed prefix.
-  static std::vector<std::uint8_t> codeword(std::span<const std::uint8_t> stream, const TruncationPoint& point);
+  static std::vector<std::uint8_t> codeword(std::span<const std::uint8_t> stream,
+                                            const TruncationPoint& point);
 
  private:
   void encode_with(int bit, std::uint32_t p0) {
@@ -60,7 +61,7 @@ class RangeEncoder {
   }
   void shift_low();
 
-  std::uint64_t low_ = 0;          // 32-bit window plus a carry bit
+  std::uint64_t low_ = 0;  // 32-bit window plus a carry bit
   std::uint32_t range_ = 0xFFFFFFFFu;
   std::uint8_t cache_ = 0;         // last byte not yet final (a carry may still reach it)
   std::uint64_t pending_ = 1;      // cache byte plus following 0xFF bytes awaiting a carry

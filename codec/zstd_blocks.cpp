@@ -17,7 +17,8 @@ std::int32_t unzigzag(std::uint32_t v) { return std::int32_t(v >> 1) ^ -std::int
 
 }  // namespace
 
-std::vector<std::uint8_t> zstd_encode_block(std::span<const float> magnitude, std::span<const std::uint8_t> negative) {
+std::vector<std::uint8_t> zstd_encode_block(std::span<const float> magnitude,
+                                            std::span<const std::uint8_t> negative) {
   std::vector<std::uint8_t> raw;
   raw.reserve(magnitude.size() * 2);
   bool any = false;

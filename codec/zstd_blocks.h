@@ -11,7 +11,8 @@ namespace pupwave {
 
 // Compresses the indices floor(magnitude) with their signs. Returns an empty vector when all
 // indices are zero.
-std::vector<std::uint8_t> zstd_encode_block(std::span<const float> magnitude, std::span<const std::uint8_t> negative);
+std::vector<std::uint8_t> zstd_encode_block(std::span<const float> magnitude,
+                                            std::span<const std::uint8_t> negative);
 
 // Decodes `count` signed indices; throws DecodeError unless the codeword holds exactly that.
 std::vector<std::int32_t> zstd_decode_block(std::span<const std::uint8_t> codeword, std::size_t count);

@@ -58,9 +58,9 @@ void run_compress(const CompressOptions& opt) {
   const EncodeResult r = encode_image(image, enc);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_bytes_atomically(opt.output, r.bytes);
-  std::printf("%s: %zu bytes, %.4f bpp, PSNR %.3f dB, %.3f s (%zux%zu, %zu channel(s), %s)\n", opt.output.c_str(),
-              r.bytes.size(), r.bpp, r.psnr, seconds, image.width, image.height, image.channels,
-              to_string(image.type).c_str());
+  std::printf("%s: %zu bytes, %.4f bpp, PSNR %.3f dB, %.3f s (%zux%zu, %zu channel(s), %s)\n",
+              opt.output.c_str(), r.bytes.size(), r.bpp, r.psnr, seconds, image.width, image.height,
+              image.channels, to_string(image.type).c_str());
 }
 
 }  // namespace
@@ -68,20 +68,25 @@ void run_compress(const CompressOptions& opt) {
 void add_compress_command(CLI::App& app) {
   auto opt = std::make_shared<CompressOptions>();
   auto* cmd = app.add_subcommand("compress", "Compress an image to a .pw stream (default: cdf97, --psnr 40)");
-  cmd->add_option("IN", opt->input, "input image (PNG, TIFF, EXR, PNM, ...)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("IN", opt->input, "input image (PNG, TIFF, EXR, PNM, ...)")
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("OUT", opt->output, "output .pw file")->required();
   cmd->add_option("--transform", opt->transform, "transform spec (cdf97, cdf53, pups:..., kobbelt:...)");
   cmd->add_option("--levels", opt->levels, "decomposition levels (default: from the image size)")
       ->check(CLI::Range(0, 32));
-  auto* bpp = cmd->add_option("--bpp", opt->bpp, "target bits per pixel (whole file)")->check(CLI::PositiveNumber);
-  auto* psnr = cmd->add_option("--psnr", opt->psnr, "target PSNR in dB (all channels)")->check(CLI::PositiveNumber);
+  auto* bpp =
+      cmd->add_option("--bpp", opt->bpp, "target bits per pixel (whole file)")->check(CLI::PositiveNumber);
+  auto* psnr =
+      cmd->add_option("--psnr", opt->psnr, "target PSNR in dB (all channels)")->check(CLI::PositiveNumber);
   auto* step = cmd->add_option("--step", opt->step, "fixed quantizer base step (sample units)")
                    ->check(CLI::PositiveNumber);
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
   bpp->excludes(psnr, step, lossless);
   psnr->excludes(step, lossless);
   step->excludes(lossless);
-  const std::map<std::string, EntropyCoder> coders{{"ebcot", EntropyCoder::ebcot}, {"zstd", EntropyCoder::zstd}};
+  const std::map<std::string, EntropyCoder> coders{{"ebcot", EntropyCoder::ebcot},
+                                                   {"zstd", EntropyCoder::zstd}};
   cmd->add_option("--entropy", opt->entropy, "entropy coder: ebcot (bit-plane, default) or zstd")
       ->transform(CLI::CheckedTransformer(coders, CLI::ignore_case));
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");

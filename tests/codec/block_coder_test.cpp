@@ -54,7 +54,9 @@ void check_all_truncations(const Coefficients& c, const Extent& size, unsigned o
         ASSERT_EQ(known, (q >> dec.low_plane[i]) << dec.low_plane[i]) << "pass " << n << " coef " << i;
         ASSERT_EQ(dec.known[i] < 0, c.negative[i] != 0);
       }
-      if (n == enc.pass_count()) ASSERT_EQ(known, q);
+      if (n == enc.pass_count()) {
+        ASSERT_EQ(known, q);
+      }
       const double r = std::abs(reconstruct(dec, i, delta, false));
       err += (c.magnitude[i] - r) * (c.magnitude[i] - r);
     }
@@ -69,7 +71,8 @@ TEST(BlockCoder, RoundTripsEveryTruncationPoint2D) {
 }
 
 TEST(BlockCoder, RoundTripsOddAndTinyShapes) {
-  for (Extent size : {Extent{1, 1, 1}, Extent{1, 37, 1}, Extent{37, 1, 1}, Extent{13, 6, 1}, Extent{33, 17, 1}})
+  for (Extent size :
+       {Extent{1, 1, 1}, Extent{1, 37, 1}, Extent{37, 1, 1}, Extent{13, 6, 1}, Extent{33, 17, 1}})
     check_all_truncations(make_coefficients(size, 50.0, 3), size, 3);
 }
 

@@ -51,8 +51,8 @@ TEST_P(LayoutsAndTypes, RoundTripsAtSeveralRates) {
 
 INSTANTIATE_TEST_SUITE_P(ImageCodec, LayoutsAndTypes,
                          ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u),
-                                            ::testing::Values(SampleType::u8, SampleType::u16, SampleType::f16,
-                                                              SampleType::f32)));
+                                            ::testing::Values(SampleType::u8, SampleType::u16,
+                                                              SampleType::f16, SampleType::f32)));
 
 TEST(ImageCodec, OddAndDegenerateSizesRoundTrip) {
   for (auto [w, h] : {std::pair<std::size_t, std::size_t>{333, 517}, {1, 1000}, {1000, 1}, {1, 1}, {2, 3}}) {

@@ -45,7 +45,8 @@ TEST(RangeCoder, RoundTripsSkewedAndUniformBits) {
     RangeDecoder dec(bytes);
     std::vector<BitModel> dmodels(4);
     for (std::size_t i = 0; i < s.bits.size(); ++i) {
-      const int bit = s.context[i] == 2 ? dec.decode_equiprobable() : dec.decode(dmodels[std::size_t(s.context[i])]);
+      const int bit =
+          s.context[i] == 2 ? dec.decode_equiprobable() : dec.decode(dmodels[std::size_t(s.context[i])]);
       ASSERT_EQ(bit, s.bits[i]) << "p1=" << p1 << " bit " << i;
     }
   }

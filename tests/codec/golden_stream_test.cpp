@@ -1,0 +1,43 @@
+// Golden checksums of encoded streams. They pin the bitstream: any change to the container,
+// the index, the block coder, the quantizer or the transforms it uses changes them. When a
+// format change is deliberate, bump kStreamVersion, update docs/bitstream.md and these values.
+#include <gtest/gtest.h>
+
+#include "codec/crc32.h"
+#include "codec/image_codec.h"
+#include "test_images.h"
+
+namespace pupwave {
+namespace {
+
+std::uint32_t stream_crc(const Image& img, RateMode mode, double target, const char* spec,
+                         EntropyCoder coder = EntropyCoder::ebcot) {
+  EncodeOptions o;
+  o.mode = mode;
+  o.target = target;
+  o.transform = spec;
+  o.entropy = coder;
+  return crc32(encode_image(img, o).bytes);
+}
+
+TEST(GoldenStream, LosslessStreamsAreUnchanged) {
+  EXPECT_EQ(
+      stream_crc(testing::synthetic_image(61, 47, 3, SampleType::u8, 21), RateMode::lossless, 0, "cdf53"),
+      2820971335u);
+  EXPECT_EQ(
+      stream_crc(testing::synthetic_image(40, 33, 1, SampleType::u16, 22), RateMode::lossless, 0, "cdf53"),
+      1645359441u);
+  EXPECT_EQ(stream_crc(testing::synthetic_image(61, 47, 4, SampleType::u8, 23), RateMode::lossless, 0,
+                       "cdf53", EntropyCoder::zstd),
+            1154943846u);
+}
+
+TEST(GoldenStream, LossyStreamsAreUnchanged) {
+  EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97"),
+            904237919u);
+  EXPECT_EQ(stream_crc(testing::synthetic_image(50, 30, 1, SampleType::u8, 25), RateMode::step, 4.0, "cdf53"),
+            1053958514u);
+}
+
+}  // namespace
+}  // namespace pupwave

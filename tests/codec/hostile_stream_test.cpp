@@ -1,0 +1,130 @@
+// The decoder treats every stream as hostile: empty, truncated, random, bit-flipped and
+// crafted inputs must give DecodeError (never a crash, a hang or a huge allocation).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "codec/byte_io.h"
+#include "codec/container.h"
+#include "codec/crc32.h"
+#include "codec/error.h"
+#include "codec/image_codec.h"
+#include "test_images.h"
+
+namespace pupwave {
+namespace {
+
+std::vector<std::uint8_t> sample_stream(EntropyCoder coder = EntropyCoder::ebcot) {
+  EncodeOptions o;
+  o.mode = RateMode::bpp;
+  o.target = 2.0;
+  o.entropy = coder;
+  return encode_image(testing::synthetic_image(70, 50, 3, SampleType::u8), o).bytes;
+}
+
+// Offsets where chunks start (signature is 5 bytes; each chunk is 12 bytes + payload).
+std::vector<std::size_t> chunk_starts(const std::vector<std::uint8_t>& bytes) {
+  std::vector<std::size_t> starts;
+  std::size_t pos = 5;
+  while (pos + 8 <= bytes.size()) {
+    starts.push_back(pos);
+    ByteReader r(std::span<const std::uint8_t>(bytes).subspan(pos + 4, 4), "length");
+    pos += 12 + r.u32();
+  }
+  return starts;
+}
+
+// Rewrites the HEAD chunk's payload through `edit` and fixes its CRC, so only the field
+// validation can reject the stream.
+std::vector<std::uint8_t> with_header_edit(std::vector<std::uint8_t> bytes,
+                                           const std::function<void(std::uint8_t*)>& edit) {
+  const std::size_t head = 5;
+  const std::size_t length = bytes[head + 4] | (bytes[head + 5] << 8);
+  edit(bytes.data() + head + 8);
+  const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bytes).subspan(head, 8 + length));
+  for (int i = 0; i < 4; ++i) bytes[head + 8 + length + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
+  return bytes;
+}
+
+void put_u32(std::uint8_t* p, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = std::uint8_t(v >> (8 * i));
+}
+
+TEST(HostileStream, EmptyAndTinyInputsAreRejected) {
+  EXPECT_THROW(decode_image({}), DecodeError);
+  const std::vector<std::uint8_t> sig{'P', 'U', 'P', 'W', 1};
+  EXPECT_THROW(decode_image(sig), DecodeError);
+  EXPECT_THROW(decode_image(std::vector<std::uint8_t>{'P', 'U', 'P', 'W', 9}), DecodeError);
+  EXPECT_THROW(describe_stream({}), DecodeError);
+}
+
+TEST(HostileStream, EveryTruncationIsRejected) {
+  for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::zstd}) {
+    const auto bytes = sample_stream(coder);
+    for (std::size_t cut : chunk_starts(bytes)) {
+      const std::vector<std::uint8_t> head(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
+      EXPECT_THROW(decode_image(head), DecodeError) << "cut at chunk boundary " << cut;
+    }
+    for (std::size_t cut = 0; cut < bytes.size(); cut += 1 + cut / 16) {
+      const std::vector<std::uint8_t> head(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
+      EXPECT_THROW(decode_image(head), DecodeError) << "cut at " << cut;
+    }
+  }
+}
+
+TEST(HostileStream, EveryFlippedBitIsDetected) {
+  const auto bytes = sample_stream();
+  std::mt19937 rng(5);
+  // Every bit of the signature and header region, then random bits of the payloads.
+  std::vector<std::size_t> bits;
+  for (std::size_t b = 0; b < std::min<std::size_t>(bytes.size(), 200) * 8; ++b) bits.push_back(b);
+  for (int k = 0; k < 400; ++k) bits.push_back(rng() % (bytes.size() * 8));
+  for (std::size_t b : bits) {
+    auto bad = bytes;
+    bad[b / 8] ^= std::uint8_t(1u << (b % 8));
+    EXPECT_THROW(decode_image(bad), DecodeError) << "bit " << b;
+  }
+}
+
+TEST(HostileStream, RandomBytesAreRejected) {
+  std::mt19937 rng(8);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<std::uint8_t> junk(rng() % 4000);
+    for (auto& b : junk) b = std::uint8_t(rng());
+    if (trial % 2 == 0 && junk.size() >= 5) {  // get past the signature check
+      junk[0] = 'P', junk[1] = 'U', junk[2] = 'P', junk[3] = 'W', junk[4] = 1;
+    }
+    EXPECT_THROW(decode_image(junk), DecodeError);
+  }
+}
+
+TEST(HostileStream, CraftedHeadersWithAbsurdFieldsAreRejected) {
+  const auto bytes = sample_stream();
+  EXPECT_NO_THROW(decode_image(with_header_edit(bytes, [](std::uint8_t*) {})));
+  const std::vector<std::function<void(std::uint8_t*)>> edits = {
+      [](std::uint8_t* p) { put_u32(p, 1u << 20); },                      // width over 2^16
+      [](std::uint8_t* p) { put_u32(p, 0); },                             // zero width
+      [](std::uint8_t* p) { put_u32(p, 65536), put_u32(p + 4, 65536); },  // 2^32 samples
+      [](std::uint8_t* p) { put_u32(p + 8, 7); },                         // depth for an image
+      [](std::uint8_t* p) { p[12] = 9; },                                 // channels
+      [](std::uint8_t* p) { p[13] = 7; },                                 // sample type
+      [](std::uint8_t* p) { p[14] = 2; },                                 // RCT in a lossy stream
+      [](std::uint8_t* p) { p[15] = 5; },                                 // entropy coder
+      [](std::uint8_t* p) { p[17] = 40; },                                // levels
+      [](std::uint8_t* p) { p[18] = 1, p[19] = 1; },                      // 2x2 code-blocks
+      [](std::uint8_t* p) { p[25] = 'x'; },                               // transform spec
+  };
+  for (std::size_t k = 0; k < edits.size(); ++k)
+    EXPECT_THROW(decode_image(with_header_edit(bytes, edits[k])), DecodeError) << "edit " << k;
+}
+
+TEST(HostileStream, DescribeStreamSummarizesAValidStream) {
+  const auto bytes = sample_stream();
+  const std::string text = describe_stream(bytes);
+  EXPECT_NE(text.find("70 x 50"), std::string::npos) << text;
+  EXPECT_NE(text.find("cdf97"), std::string::npos) << text;
+  EXPECT_NE(text.find("DATA 0"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace pupwave
