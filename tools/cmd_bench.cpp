@@ -139,8 +139,10 @@ void run_rd_into(const BenchOptions& o, const fs::path& dir, const std::string& 
   std::vector<std::string> names;
   for (const BenchImage& img : run.images) names.push_back(img.name);
   std::string plot_note;
-  for (const fs::path& svg : draw_rd_plots(records, names, ctx.codecs, dir / "plots", environment_path(), plot_note))
-    ctx.plots.push_back(svg.empty() ? "" : fs::relative(svg, dir).string());
+  for (const auto& svgs : draw_rd_plots(records, names, ctx.codecs, dir / "plots", environment_path(), plot_note)) {
+    ctx.plots.emplace_back();
+    for (const fs::path& svg : svgs) ctx.plots.back().push_back(fs::relative(svg, dir).string());
+  }
   if (!plot_note.empty()) ctx.notes.push_back(plot_note), std::cerr << "pupwave bench: " << plot_note << '\n';
   write_results_csv(records, dir / "results.csv");
   write_rd_summary(records, ctx, dir / "summary.md");

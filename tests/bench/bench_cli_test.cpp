@@ -107,8 +107,19 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
   for (const char* codec : {"| cdf97 |", "| cdf53 |", "| openjpeg | ", "| jxl |"})
     EXPECT_NE(summary.find(codec), std::string::npos) << codec;
   EXPECT_NE(summary.find("| openjpeg | " + fixed(psnr_by_codec["openjpeg"][0], 2)), std::string::npos);
-  EXPECT_NE(summary.find("![PSNR against bpp, crop](plots/crop.svg)"), std::string::npos);
-  EXPECT_NE(read_text(out / "plots" / "crop.svg").find("<svg"), std::string::npos);
+  for (const std::string plot : {"plots/crop.svg", "plots/crop-vs-openjpeg.svg"}) {
+    EXPECT_NE(summary.find("![crop: " + plot + "](" + plot + ")"), std::string::npos) << plot;
+    EXPECT_NE(read_text(out / plot).find("<svg"), std::string::npos) << plot;
+  }
+  // The relative plot's data: OpenJPEG against itself is 0 dB at its own points.
+  const std::string data = read_text(out / "plots" / "crop.dat");
+  const auto block = data.find("# openjpeg\n");
+  ASSERT_NE(block, std::string::npos);
+  std::istringstream first_point(data.substr(block + 11));
+  double bpp = 0, psnr = 0, delta = 1;
+  first_point >> bpp >> psnr >> delta;
+  EXPECT_NEAR(psnr, psnr_by_codec["openjpeg"][0], 1e-6);
+  EXPECT_EQ(delta, 0.0);
 }
 
 TEST_F(BenchCli, MissingAnchorToolsAreSkippedWithANote) {

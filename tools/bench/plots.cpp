@@ -1,5 +1,6 @@
 #include "tools/bench/plots.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,71 +12,112 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Points of every codec for one image; gnuplot reads block k with `index k`.
+// PSNR of the reference curve at `bpp`, linear in log(bpp) between its points; NaN outside.
+double interpolate(const std::vector<std::pair<double, double>>& ref, double bpp) {
+  for (std::size_t i = 0; i + 1 < ref.size(); ++i) {
+    const double a = std::log(ref[i].first), b = std::log(ref[i + 1].first), x = std::log(bpp);
+    if (x >= a && x <= b) return b > a ? ref[i].second + (ref[i + 1].second - ref[i].second) * (x - a) / (b - a)
+                                       : ref[i].second;
+  }
+  return NAN;
+}
+
+std::vector<std::pair<double, double>> points(const std::vector<RdRecord>& records, const std::string& image,
+                                              const std::string& codec) {
+  std::vector<std::pair<double, double>> p;
+  for (const RdRecord& r : records)
+    if (r.image == image && r.codec == codec && r.ok && std::isfinite(r.psnr)) p.emplace_back(r.bpp, r.psnr);
+  std::sort(p.begin(), p.end());
+  return p;
+}
+
+// Points of every codec for one image (bpp, PSNR, PSNR minus OpenJPEG's at that rate or "?");
+// gnuplot reads block k with `index k`.
 std::string data_blocks(const std::vector<RdRecord>& records, const std::string& image,
                         const std::vector<std::string>& codecs) {
+  const auto reference = points(records, image, "openjpeg");
   std::ostringstream d;
   d.precision(8);
+  d << "# bpp psnr_db psnr_minus_openjpeg_db\n";
   for (const std::string& codec : codecs) {
     d << "# " << codec << "\n";
-    for (const RdRecord& r : records)
-      if (r.image == image && r.codec == codec && r.ok && std::isfinite(r.psnr)) d << r.bpp << ' ' << r.psnr << '\n';
+    for (const auto& [bpp, psnr] : points(records, image, codec)) {
+      const double delta = psnr - interpolate(reference, bpp);
+      d << bpp << ' ' << psnr << ' ';
+      if (std::isnan(delta)) d << "?\n";
+      else d << delta << '\n';
+    }
     d << "\n\n";
   }
   return d.str();
 }
 
-// Anchors are drawn dashed and black/grey so our transforms stand out against them.
-std::string plot_script(const std::string& image, const std::vector<std::string>& codecs, const fs::path& data,
-                        const fs::path& svg) {
+// One plot of column `column` of the data file into `svg`. Anchors are drawn dashed in black
+// and grey so our transforms stand out against them.
+std::string plot_commands(const std::string& title, const std::string& ylabel, int column,
+                          const std::vector<std::string>& codecs, const fs::path& data, const fs::path& svg) {
   std::ostringstream g;
   // Many curves need the key beside the plot rather than over it.
   const bool many = codecs.size() > 6;
   g << "set terminal svg size " << (many ? "1000,560" : "760,520")
     << " dynamic noenhanced font 'sans,12' background rgb 'white'\n"
     << "set output '" << svg.filename().string() << "'\n"
-    << "set title 'PSNR against bits per pixel: " << image << "'\n"
-    << "set xlabel 'bits per pixel'\nset ylabel 'PSNR (dB, all channels)'\n"
-    << "set logscale x 2\nset grid\n" << (many ? "set key outside right top\n" : "set key bottom right\n")
-    << "set style line 100 lc rgb 'black' dt 2 lw 2 pt 6\nset style line 101 lc rgb '#777777' dt 4 lw 2 pt 8\n"
-    << "plot \\\n";
+    << "set title '" << title << "'\nset xlabel 'bits per pixel'\nset ylabel '" << ylabel << "'\n"
+    << (many ? "set key outside right top\n" : "set key bottom right\n") << "plot \\\n";
   for (std::size_t k = 0; k < codecs.size(); ++k) {
     std::string style = "with linespoints lw 1.5 pt " + std::to_string(1 + k % 13);
     if (codecs[k] == "openjpeg") style = "with linespoints ls 100";
     if (codecs[k] == "jxl") style = "with linespoints ls 101";
-    g << "  '" << data.filename().string() << "' index " << k << " using 1:2 " << style << " title '" << codecs[k]
-      << "'" << (k + 1 < codecs.size() ? ", \\\n" : "\n");
+    g << "  '" << data.filename().string() << "' index " << k << " using 1:" << column << " " << style << " title '"
+      << codecs[k] << "'" << (k + 1 < codecs.size() ? ", \\\n" : "\n");
   }
   return g.str();
 }
 
+// The script drawing the plots of one image: PSNR, and PSNR relative to OpenJPEG when it ran.
+std::string plot_script(const std::string& image, const std::vector<std::string>& codecs, const fs::path& data,
+                        const std::vector<fs::path>& svgs) {
+  std::string g =
+      "set datafile missing '?'\nset logscale x 2\nset grid\n"
+      "set style line 100 lc rgb 'black' dt 2 lw 2 pt 6\nset style line 101 lc rgb '#777777' dt 4 lw 2 pt 8\n";
+  g += plot_commands("PSNR against bits per pixel: " + image, "PSNR (dB, all channels)", 2, codecs, data, svgs[0]);
+  if (svgs.size() > 1)
+    g += plot_commands("PSNR minus the PSNR of OpenJPEG at the same rate: " + image, "PSNR difference (dB)", 3, codecs,
+                       data, svgs[1]);
+  return g;
+}
+
 }  // namespace
 
-std::vector<fs::path> draw_rd_plots(const std::vector<RdRecord>& records, const std::vector<std::string>& images,
-                                    const std::vector<std::string>& codecs, const fs::path& dir,
-                                    const std::string& search_path, std::string& note) {
-  std::vector<fs::path> svgs(images.size());
+std::vector<std::vector<fs::path>> draw_rd_plots(const std::vector<RdRecord>& records,
+                                                 const std::vector<std::string>& images,
+                                                 const std::vector<std::string>& codecs, const fs::path& dir,
+                                                 const std::string& search_path, std::string& note) {
+  std::vector<std::vector<fs::path>> drawn(images.size());
   const auto gnuplot = find_tool("gnuplot", search_path);
   if (!gnuplot) {
     note = "plots not drawn: gnuplot not found in PATH (Debian package gnuplot-nox)";
-    return svgs;
+    return drawn;
   }
+  const bool relative = std::find(codecs.begin(), codecs.end(), "openjpeg") != codecs.end();
   fs::create_directories(dir);
   for (std::size_t i = 0; i < images.size(); ++i) {
-    const fs::path base = dir / images[i];
-    const fs::path data = base.string() + ".dat", script = base.string() + ".gp", svg = base.string() + ".svg";
+    const std::string base = (dir / images[i]).string();
+    const fs::path data = base + ".dat", script = base + ".gp", log = base + ".log";
+    std::vector<fs::path> svgs = {base + ".svg"};
+    if (relative) svgs.emplace_back(base + "-vs-openjpeg.svg");
     write_text_file(data, data_blocks(records, images[i], codecs));
-    write_text_file(script, plot_script(images[i], codecs, data, svg));
-    const fs::path log = base.string() + ".log";
+    write_text_file(script, plot_script(images[i], codecs, data, svgs));
     // gnuplot resolves the data and output names relative to its working directory.
-    const ProcessResult r = run_process({"/bin/sh", "-c", "cd \"$1\" && exec \"$2\" \"$3\"", "sh",
-                                         dir.string(), gnuplot->string(), script.filename().string()}, log);
+    const ProcessResult r = run_process({"/bin/sh", "-c", "cd \"$1\" && exec \"$2\" \"$3\"", "sh", dir.string(),
+                                         gnuplot->string(), script.filename().string()}, log);
     const std::string tail = log_tail(log);
     fs::remove(log);
-    if (r.exit_code == 0 && fs::is_regular_file(svg)) svgs[i] = svg;
+    const bool ok = r.exit_code == 0 && std::all_of(svgs.begin(), svgs.end(), [](auto& p) { return fs::is_regular_file(p); });
+    if (ok) drawn[i] = svgs;
     else note = "plot of " + images[i] + " failed: gnuplot exit " + std::to_string(r.exit_code) + ": " + tail;
   }
-  return svgs;
+  return drawn;
 }
 
 }  // namespace pupwave::bench

@@ -28,8 +28,8 @@ std::optional<std::filesystem::path> find_tool(const std::string& name,
 // The process's PATH (empty when unset).
 std::string environment_path();
 
-// The last `max_chars` characters of a log file with trailing whitespace removed, for error
-// messages ("" when it cannot be read).
+// The last `max_chars` characters of a log file as one line (whitespace runs collapsed), for
+// error messages ("" when it cannot be read).
 std::string log_tail(const std::filesystem::path& log_file, std::size_t max_chars = 400);
 
 }  // namespace pupwave::bench

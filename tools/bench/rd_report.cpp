@@ -185,8 +185,8 @@ void write_rd_summary(const std::vector<RdRecord>& records, const ReportContext&
       per_codec[codec].push_back(stats_for(records, images[i], codec, ctx.bpps, have_reference));
       detail << table_row(codec, per_codec[codec].back());
     }
-    if (i < ctx.plots.size() && !ctx.plots[i].empty())
-      detail << "\n![PSNR against bpp, " << images[i] << "](" << ctx.plots[i] << ")\n";
+    if (i < ctx.plots.size())
+      for (const std::string& plot : ctx.plots[i]) detail << "\n![" << images[i] << ": " << plot << "](" << plot << ")\n";
     detail << '\n';
   }
   md << "## Mean over " << images.size() << " image(s)\n\n" << table_header(ctx.bpps);

@@ -23,7 +23,7 @@ struct ReportContext {
   std::vector<std::string> notes;   // e.g. anchors skipped because their tools are missing
   std::vector<double> bpps;         // target rates, ascending
   std::vector<std::string> codecs;  // codec names in report order
-  std::vector<std::string> plots;   // per image: plot file relative to summary.md, or ""
+  std::vector<std::vector<std::string>> plots;  // per image: plot files relative to summary.md
 };
 
 // Writes summary.md (atomically). The BD reference is the "openjpeg" codec when present.
