@@ -299,6 +299,7 @@ static openvdb::GridPtrVecPtr read_all_grids(const fs::path& path) {
 std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_name,
                                  std::vector<std::string>* skipped, std::size_t max_box_voxels) {
   const openvdb::GridPtrVecPtr grids = read_all_grids(path);
+  if (grids->empty()) throw std::runtime_error("cannot read " + path.string() + ": no grids (empty or truncated file)");
   std::vector<VolumeGrid> result;
   for (const openvdb::GridBase::Ptr& base : *grids) {
     if (!grid_name.empty() && base->getName() != grid_name) continue;
