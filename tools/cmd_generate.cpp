@@ -58,7 +58,7 @@ void gray_scott_step(std::vector<double>& u, std::vector<double>& v, std::vector
 Volume gray_scott(std::size_t n, int steps, unsigned seed, const GrayScottParams& params) {
   std::vector<double> u(n * n * n, 1.0), v(n * n * n, 0.0), u2(u.size()), v2(v.size());
   std::mt19937 rng(seed);
-  const std::size_t side = std::max<std::size_t>(3, n / 8);
+  const std::size_t side = std::max<std::size_t>(4, n / 8);  // smaller seeds die out
   const int seeds = 12;
   for (int s = 0; s < seeds; ++s) {
     std::size_t c[3];
