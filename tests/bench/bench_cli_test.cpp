@@ -147,7 +147,8 @@ TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
                          "--anchors", "openjpeg", "--cli", "/bin/false", "--out", out.string()},
                         dir_ / "log.txt", environment_path());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.output.find("pupwave: error: 1 of 2 rd jobs failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 2 rd jobs failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("pupwave: error: 1 job(s) failed"), std::string::npos) << r.output;
   const auto rows = read_csv(out / "results.csv");
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[1][15].rfind("failed: false failed (exit 1)", 0), 0u) << rows[1][15];

@@ -12,12 +12,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// PSNR of the reference curve at `bpp`, linear in log(bpp) between its points; NaN outside.
+// PSNR of the reference curve at `bpp`, linear in log(bpp) between its points, and extended
+// along the end segments by up to 3% in rate (rate control lands a little off target); NaN
+// farther out.
 double interpolate(const std::vector<std::pair<double, double>>& ref, double bpp) {
+  constexpr double kReach = 0.03;
+  const double x = std::log(bpp);
   for (std::size_t i = 0; i + 1 < ref.size(); ++i) {
-    const double a = std::log(ref[i].first), b = std::log(ref[i + 1].first), x = std::log(bpp);
-    if (x >= a && x <= b) return b > a ? ref[i].second + (ref[i + 1].second - ref[i].second) * (x - a) / (b - a)
-                                       : ref[i].second;
+    const double a = std::log(ref[i].first), b = std::log(ref[i + 1].first);
+    const bool first = i == 0, last = i + 2 == ref.size();
+    if (b > a && x >= a - (first ? kReach : 0.0) && x <= b + (last ? kReach : 0.0))
+      return ref[i].second + (ref[i + 1].second - ref[i].second) * (x - a) / (b - a);
   }
   return NAN;
 }
