@@ -4,6 +4,7 @@
 
 #include "transforms/cdf.h"
 #include "transforms/kobbelt/kobbelt_transform.h"
+#include "transforms/pups/pups_transform.h"
 
 namespace pupwave {
 namespace {
@@ -21,6 +22,7 @@ std::string joined_specs() {
 
 std::vector<std::string> transform_specs() {
   std::vector<std::string> specs{"cdf97", "cdf53"};
+  for (auto& s : pups_transform_specs()) specs.push_back(std::move(s));
   for (auto& s : kobbelt_transform_specs()) specs.push_back(std::move(s));
   return specs;
 }
@@ -30,10 +32,7 @@ Transform1DPtr make_transform(std::string_view spec) {
   if (spec == "cdf53") return make_cdf53();
   if (spec.starts_with(kKobbeltPrefix))
     return make_kobbelt_transform_from_spec(spec.substr(kKobbeltPrefix.size()));
-  if (spec.starts_with(kPupsPrefix)) {
-    throw std::invalid_argument("transform family of '" + std::string(spec) +
-                                "' is not available yet; valid specs: " + joined_specs());
-  }
+  if (spec.starts_with(kPupsPrefix)) return make_pups_transform_from_spec(spec.substr(kPupsPrefix.size()));
   throw std::invalid_argument("unknown transform spec '" + std::string(spec) +
                               "'; valid specs: " + joined_specs());
 }

@@ -54,7 +54,12 @@ TEST_P(EverySpec, LinesReconstructPerfectly) {
   }
 }
 
-// 2-D and 3-D arrays of odd, even and prime sizes (and 1), 1..8 levels.
+// 2-D and 3-D arrays of odd, even and prime sizes (and 1), 1..8 levels. The bound is
+// 1e-9 x signal range plus 1e-12 x the largest coefficient: double rounding is relative to
+// the coefficients, and an ill-conditioned bank (pups:cinpact-c3, 1-D condition number up
+// to 56) grows white noise to ~2e9 after 6 levels in 2-D, so its round-trip error (~2e-6,
+// 1e-15 of the coefficients) is rounding, not a defect of the inverse. For the other
+// transforms the coefficients stay near the signal range and the second term is ~1e-9.
 TEST_P(EverySpec, ArraysReconstructPerfectly) {
   const auto t = make_transform(GetParam());
   std::mt19937 rng(7);
@@ -64,8 +69,11 @@ TEST_P(EverySpec, ArraysReconstructPerfectly) {
       const auto x = random_samples(d[0] * d[1] * d[2], rng);
       auto y = x;
       forward(*t, y.data(), d, levels);
+      double largest = 0;
+      for (double v : y) largest = std::max(largest, std::abs(v));
       inverse(*t, y.data(), d, levels);
-      EXPECT_LT(max_abs_diff(x, y), 1e-9 * 255) << d[0] << "x" << d[1] << "x" << d[2] << " L" << levels;
+      EXPECT_LT(max_abs_diff(x, y), 1e-9 * 255 + 1e-12 * largest)
+          << d[0] << "x" << d[1] << "x" << d[2] << " L" << levels << " largest coefficient " << largest;
     }
   }
 }
