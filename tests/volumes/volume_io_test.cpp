@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "tools/volume_io.h"
@@ -178,6 +179,30 @@ TEST_F(VolumeTest, VdbDenseAndEmptyGrids) {
   EXPECT_EQ(back[0].volume.active_count(), 60u);
   EXPECT_EQ(back[1].volume.count(), 0u);
   EXPECT_EQ(back[1].volume.background, 2.0);
+}
+
+}  // namespace
+}  // namespace pupwave::test
+
+namespace pupwave::test {
+namespace {
+
+// The CLI path: the real simulation field raw -> .vdb -> raw comes back byte for byte.
+TEST_F(VolumeTest, ConvertVolumeCliRoundTrip) {
+  const std::string wmag = std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float";
+  const fs::path vdb = dir_ / "wmag.vdb", raw = dir_ / "wmag.raw";
+  CliResult r = run_cli({"convert-volume", wmag, vdb.string(), "--dims", "91,91,91", "--dtype", "f32", "--name", "wmag"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_cli({"convert-volume", vdb.string(), raw.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream a(wmag, std::ios::binary), b(raw, std::ios::binary);
+  EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), std::istreambuf_iterator<char>(),
+                         std::istreambuf_iterator<char>(b), std::istreambuf_iterator<char>()));
+  EXPECT_EQ(read_grids(vdb)[0]->getName(), "wmag");
+  const CliResult no_dims = run_cli({"convert-volume", wmag, (dir_ / "x.vdb").string()});
+  EXPECT_EQ(no_dims.exit_code, 1);
+  EXPECT_NE(no_dims.output.find("--dims"), std::string::npos) << no_dims.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x.vdb"));
 }
 
 }  // namespace
