@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "transforms/norms.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -74,6 +75,30 @@ TEST_P(EverySpec, ArraysReconstructPerfectly) {
       inverse(*t, y.data(), d, levels);
       EXPECT_LT(max_abs_diff(x, y), 1e-9 * 255 + 1e-12 * largest)
           << d[0] << "x" << d[1] << "x" << d[2] << " L" << levels << " largest coefficient " << largest;
+    }
+  }
+}
+
+// synthesis_norms (product of 1-D norms) equals brute-force N-D impulse responses for every
+// family, including IIR Kobbelt synthesis and non-orthogonal PUPs banks.
+TEST_P(EverySpec, NormsEqualBruteForceImpulseResponses) {
+  const auto t = make_transform(GetParam());
+  for (const Extent& d : {Extent{21, 13, 1}, Extent{9, 7, 6}}) {
+    const int levels = 2;
+    const auto norms = synthesis_norms(*t, d, levels);
+    const auto bands = subbands(d, levels);
+    ASSERT_EQ(norms.size(), bands.size());
+    for (std::size_t k = 0; k < bands.size(); ++k) {
+      const Subband& b = bands[k];
+      std::vector<double> v(d[0] * d[1] * d[2], 0.0);
+      const std::size_t x = b.offset[0] + b.size[0] / 2, y = b.offset[1] + b.size[1] / 2,
+                        z = b.offset[2] + b.size[2] / 2;
+      v[(z * d[1] + y) * d[0] + x] = 1.0;
+      inverse(*t, v.data(), d, levels);
+      double sum = 0;
+      for (double s : v) sum += s * s;
+      EXPECT_NEAR(norms[k], std::sqrt(sum), 1e-10 * std::sqrt(sum)) << "band " << k;
+      EXPECT_GT(norms[k], 0.0);
     }
   }
 }
