@@ -1,18 +1,43 @@
-// `pupwave info FILE`: describe an image file or a compressed pupwave file.
+// `pupwave info FILE`: describe a compressed pupwave file or an image file.
+#include <cstring>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
 
+#include "codec/container.h"
+#include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 
 namespace pupwave::cli {
+namespace {
+
+// True when the file starts with the .pw signature "PUPW" (docs/bitstream.md).
+bool is_pupwave_stream(const std::string& path) {
+  char sig[4] = {};
+  std::ifstream in(path, std::ios::binary);
+  return in.read(sig, 4) && std::memcmp(sig, "PUPW", 4) == 0;
+}
+
+void run_info(const std::string& path) {
+  if (is_pupwave_stream(path)) {
+    std::cout << path << ": " << describe_stream(read_file_bytes(path)) << '\n';
+  } else {
+    std::cout << describe_image_file(path) << '\n';
+  }
+}
+
+}  // namespace
 
 void add_info_command(CLI::App& app) {
   auto path = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("info", "Describe an image file (format, size, channels, sample type)");
+  auto* cmd = app.add_subcommand(
+      "info",
+      "Describe a compressed .pw file (header fields, transform, levels, chunk sizes; every\n"
+      "checksum verified) or an image file (format, size, channels, sample type)");
   cmd->add_option("FILE", *path, "file to describe")->required()->check(CLI::ExistingFile);
-  cmd->callback([path] { std::cout << describe_image_file(*path) << '\n'; });
+  cmd->callback([path] { run_info(*path); });
 }
 
 }  // namespace pupwave::cli
