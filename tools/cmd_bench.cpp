@@ -89,7 +89,8 @@ std::vector<BenchImage> load_images(const std::vector<std::string>& args) {
 }
 
 std::string command_line(const std::string& sub, const BenchOptions& o, bool rd, bool coarse) {
-  std::string c = "pupwave bench " + sub + " --images " + join(o.images, " ") + " --transforms " + o.transforms;
+  std::string c =
+      "pupwave bench " + sub + " --images " + join(o.images, " ") + " --transforms " + o.transforms;
   if (rd) c += " --bpp " + o.bpps + " --anchors " + o.anchors;
   if (coarse) c += " --levels " + o.levels;
   return c + " --jobs " + std::to_string(o.jobs) + " --out " + o.out;
@@ -114,8 +115,10 @@ std::vector<RdCodecPtr> build_codecs(const BenchOptions& o, const std::vector<st
   const auto anchors = o.anchors == "none" ? std::vector<std::string>{} : split_list(o.anchors);
   for (const std::string& name : anchors) {
     std::string missing;
-    if (RdCodecPtr a = make_anchor(name, environment_path(), missing)) codecs.push_back(a);
-    else notes.push_back(missing);
+    if (RdCodecPtr a = make_anchor(name, environment_path(), missing))
+      codecs.push_back(a);
+    else
+      notes.push_back(missing);
   }
   return codecs;
 }
@@ -140,7 +143,8 @@ std::size_t run_rd_into(const BenchOptions& o, const fs::path& dir, const std::s
   std::vector<std::string> names;
   for (const BenchImage& img : run.images) names.push_back(img.name);
   std::string plot_note;
-  for (const auto& svgs : draw_rd_plots(records, names, ctx.codecs, dir / "plots", environment_path(), plot_note)) {
+  for (const auto& svgs :
+       draw_rd_plots(records, names, ctx.codecs, dir / "plots", environment_path(), plot_note)) {
     ctx.plots.emplace_back();
     for (const fs::path& svg : svgs) ctx.plots.back().push_back(fs::relative(svg, dir).string());
   }
@@ -165,21 +169,27 @@ std::size_t run_coarse_into(const BenchOptions& o, const fs::path& dir, const st
   fs::create_directories(dir);
   const auto records = run_coarse(images, specs, levels, o.jobs, Progress::is_terminal(2), std::cerr);
   write_coarse_report(records, levels, command, machine_paragraph(o.jobs), dir);
-  std::cout << "coarse: " << records.size() << " reconstructions in " << (dir / "summary.md").string() << '\n';
-  const auto failed = std::count_if(records.begin(), records.end(), [](const CoarseRecord& r) { return !r.ok; });
+  std::cout << "coarse: " << records.size() << " reconstructions in " << (dir / "summary.md").string()
+            << '\n';
+  const auto failed =
+      std::count_if(records.begin(), records.end(), [](const CoarseRecord& r) { return !r.ok; });
   if (failed) std::cerr << "pupwave bench: " << failed << " coarse reconstructions failed (see coarse.csv)\n";
   return static_cast<std::size_t>(failed);
 }
 
 // Failed jobs make the command fail, after every output has been written.
 void fail_if(std::size_t failed) {
-  if (failed) throw std::runtime_error(std::to_string(failed) + " job(s) failed; results and summaries list them");
+  if (failed)
+    throw std::runtime_error(std::to_string(failed) + " job(s) failed; results and summaries list them");
 }
 
 void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
   cmd->add_option("--images", o.images, "image files, or directories of them (8-bit grey or RGB)")
-      ->required()->expected(1, -1);
-  cmd->add_option("--transforms", o.transforms, "'all', 'none' (rd: anchors only) or a comma list of transform specs")->capture_default_str();
+      ->required()
+      ->expected(1, -1);
+  cmd->add_option("--transforms", o.transforms,
+                  "'all', 'none' (rd: anchors only) or a comma list of transform specs")
+      ->capture_default_str();
   if (rd) {
     cmd->add_option("--bpp", o.bpps, "comma list of target bits per pixel")->capture_default_str();
     cmd->add_option("--anchors", o.anchors, "comma list of openjpeg, jxl, or 'none'")->capture_default_str();
@@ -193,22 +203,28 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
-  auto* bench = app.add_subcommand("bench", "PSNR comparison harness: rate-distortion against JPEG 2000 and JPEG XL, "
-                                            "and the coarse-band experiment");
+  auto* bench = app.add_subcommand("bench",
+                                   "PSNR comparison harness: rate-distortion against JPEG 2000 and JPEG XL, "
+                                   "and the coarse-band experiment");
   bench->require_subcommand(1);
   auto opt = std::make_shared<BenchOptions>();
   auto* rd = bench->add_subcommand(
-      "rd", "Compress/decompress every image x transform x rate (and the anchors); writes results.csv, "
-            "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG) and plots/ (gnuplot SVG) into --out");
+      "rd",
+      "Compress/decompress every image x transform x rate (and the anchors); writes results.csv, "
+      "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG) and plots/ (gnuplot SVG) into --out");
   add_common(rd, *opt, true, false);
   rd->callback([opt] { fail_if(run_rd_into(*opt, opt->out, command_line("rd", *opt, true, false))); });
   auto* coarse = bench->add_subcommand(
-      "coarse", "Reconstruct from the coarse band alone after L levels (details zeroed), luma PSNR per transform "
-                "(Fig. 16 of the PUPs multiresolution paper); writes coarse.csv and summary.md into --out");
+      "coarse",
+      "Reconstruct from the coarse band alone after L levels (details zeroed), luma PSNR per transform "
+      "(Fig. 16 of the PUPs multiresolution paper); writes coarse.csv and summary.md into --out");
   add_common(coarse, *opt, false, true);
-  coarse->callback([opt] { fail_if(run_coarse_into(*opt, opt->out, command_line("coarse", *opt, false, true))); });
-  auto* all = bench->add_subcommand("all", "Both: rd into --out/rd and coarse into --out/coarse "
-                                           "(regenerates bench/results/ with --images testimages --out bench/results)");
+  coarse->callback(
+      [opt] { fail_if(run_coarse_into(*opt, opt->out, command_line("coarse", *opt, false, true))); });
+  auto* all =
+      bench->add_subcommand("all",
+                            "Both: rd into --out/rd and coarse into --out/coarse "
+                            "(regenerates bench/results/ with --images testimages --out bench/results)");
   add_common(all, *opt, true, true);
   all->callback([opt] {
     const std::string command = command_line("all", *opt, true, true);

@@ -63,13 +63,14 @@ TEST(BdMetrics, OnlyTheOverlapCounts) {
 
 TEST(BdMetrics, UnusableCurvesGiveNaN) {
   const auto a = curve_of_rate([](double x) { return 30.0 + 10.0 * x; });
-  EXPECT_TRUE(std::isnan(bd_psnr(a, {{1.0, 40.0}})));              // one point
-  EXPECT_TRUE(std::isnan(bd_rate(a, {})));                          // no points
+  EXPECT_TRUE(std::isnan(bd_psnr(a, {{1.0, 40.0}})));                // one point
+  EXPECT_TRUE(std::isnan(bd_rate(a, {})));                           // no points
   EXPECT_TRUE(std::isnan(bd_psnr(a, {{8.0, 50.0}, {16.0, 53.0}})));  // rates do not overlap
-  EXPECT_TRUE(std::isnan(bd_rate(a, {{1.0, 60.0}, {2.0, 70.0}})));  // PSNRs do not overlap
+  EXPECT_TRUE(std::isnan(bd_rate(a, {{1.0, 60.0}, {2.0, 70.0}})));   // PSNRs do not overlap
   const double inf = std::numeric_limits<double>::infinity();
   // An infinite PSNR (lossless point) is ignored, leaving the two finite points.
-  std::vector<RdPoint> b = {{0.125, 21.0 + 10.0 * std::log10(0.125)}, {2.0, 21.0 + 10.0 * std::log10(2.0)}, {8.0, inf}};
+  std::vector<RdPoint> b = {
+      {0.125, 21.0 + 10.0 * std::log10(0.125)}, {2.0, 21.0 + 10.0 * std::log10(2.0)}, {8.0, inf}};
   EXPECT_NEAR(bd_psnr(a, b), -9.0, 1e-9);
 }
 

@@ -77,9 +77,9 @@ class BenchCli : public ::testing::Test {
 
 TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
   const fs::path out = dir_ / "rd";
-  const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97,cdf53", "--bpp",
-                         "0.5,2", "--jobs", "2", "--out", out.string()},
-                        dir_ / "log.txt", environment_path());
+  const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97,cdf53",
+                            "--bpp", "0.5,2", "--jobs", "2", "--out", out.string()},
+                           dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "results.csv");
   ASSERT_EQ(rows.size(), 1u + 4 * 2) << "header + (2 transforms + 2 anchors) x 2 rates";
@@ -126,8 +126,8 @@ TEST_F(BenchCli, MissingAnchorToolsAreSkippedWithANote) {
   const fs::path out = dir_ / "rd", empty = dir_ / "empty-path";
   fs::create_directories(empty);
   const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97", "--bpp", "1",
-                         "--jobs", "1", "--out", out.string()},
-                        dir_ / "log.txt", empty.string());
+                            "--jobs", "1", "--out", out.string()},
+                           dir_ / "log.txt", empty.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("anchor openjpeg skipped: opj_compress not found"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("anchor jxl skipped: cjxl not found"), std::string::npos) << r.output;
@@ -144,8 +144,8 @@ TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
   // /bin/false as "pupwave" makes every codec job fail; the anchors' results must survive.
   const fs::path out = dir_ / "rd";
   const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97", "--bpp", "1",
-                         "--anchors", "openjpeg", "--cli", "/bin/false", "--out", out.string()},
-                        dir_ / "log.txt", environment_path());
+                            "--anchors", "openjpeg", "--cli", "/bin/false", "--out", out.string()},
+                           dir_ / "log.txt", environment_path());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("1 of 2 rd jobs failed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("pupwave: error: 1 job(s) failed"), std::string::npos) << r.output;
@@ -153,7 +153,11 @@ TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[1][15].rfind("failed: false failed (exit 1)", 0), 0u) << rows[1][15];
   EXPECT_EQ(rows[2][15], "ok");
-  EXPECT_NE(read_text(out / "summary.md").find("## Failed jobs"), std::string::npos);
+  const std::string summary = read_text(out / "summary.md");
+  EXPECT_NE(summary.find("## Failed jobs"), std::string::npos);
+  EXPECT_NE(summary.find("| cdf97 | n/a | n/a | n/a | n/a | n/a | n/a |"), std::string::npos) << summary;
+  // The failed codec keeps its (empty) data block, so gnuplot's `index` still matches the key.
+  EXPECT_NE(read_text(out / "plots" / "crop.dat").find("# cdf97\n? ? ?\n\n\n# openjpeg\n"), std::string::npos);
 }
 
 TEST_F(BenchCli, BadArgumentsAreRejectedBeforeAnyWork) {
@@ -172,17 +176,18 @@ TEST_F(BenchCli, BadArgumentsAreRejectedBeforeAnyWork) {
 
 TEST_F(BenchCli, CoarseRunWritesItsTable) {
   const fs::path out = dir_ / "coarse";
-  const CliRun r = run_cli({"bench", "coarse", "--images", image_.string(), "--transforms", "cdf97,cdf53", "--levels",
-                         "1..2", "--out", out.string()},
-                        dir_ / "log.txt", environment_path());
+  const CliRun r = run_cli({"bench", "coarse", "--images", image_.string(), "--transforms", "cdf97,cdf53",
+                            "--levels", "1..2", "--out", out.string()},
+                           dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "coarse.csv");
   ASSERT_EQ(rows.size(), 1u + 2 * 2);
   EXPECT_EQ(rows[0], (std::vector<std::string>{"image", "transform", "levels", "psnr_luma_db", "status"}));
   const std::string summary = read_text(out / "summary.md");
   EXPECT_NE(summary.find("| transform | L=1 | L=2 |"), std::string::npos);
-  EXPECT_NE(summary.find("| cdf97 | " + fixed(std::stod(rows[1][3]), 2) + " | " + fixed(std::stod(rows[2][3]), 2)),
-            std::string::npos);
+  EXPECT_NE(
+      summary.find("| cdf97 | " + fixed(std::stod(rows[1][3]), 2) + " | " + fixed(std::stod(rows[2][3]), 2)),
+      std::string::npos);
 }
 
 }  // namespace

@@ -52,7 +52,8 @@ TEST(Coarse, PhotographLosesDetailWithEveryLevel) {
 TEST(Coarse, LevelsParse) {
   EXPECT_EQ(parse_levels("1..5"), (std::vector<int>{1, 2, 3, 4, 5}));
   EXPECT_EQ(parse_levels("4,2,2"), (std::vector<int>{2, 4}));
-  for (const char* bad : {"", "0..3", "a", "3..1", "1,17"}) EXPECT_THROW(parse_levels(bad), std::invalid_argument) << bad;
+  for (const char* bad : {"", "0..3", "a", "3..1", "1,17"})
+    EXPECT_THROW(parse_levels(bad), std::invalid_argument) << bad;
 }
 
 TEST(Coarse, UnknownTransformIsRejected) {

@@ -21,7 +21,8 @@ namespace {
 void zero_band(std::vector<double>& data, const Extent& dims, const Subband& band) {
   for (std::size_t z = 0; z < band.size[2]; ++z)
     for (std::size_t y = 0; y < band.size[1]; ++y) {
-      const std::size_t row = band.offset[0] + dims[0] * (band.offset[1] + y + dims[1] * (band.offset[2] + z));
+      const std::size_t row =
+          band.offset[0] + dims[0] * (band.offset[1] + y + dims[1] * (band.offset[2] + z));
       std::fill_n(data.begin() + static_cast<std::ptrdiff_t>(row), band.size[0], 0.0);
     }
 }
@@ -43,18 +44,21 @@ Image coarse_reconstruction(const Image& image, const std::string& spec, int lev
   for (std::size_t c = 0; c < image.channels; ++c) {
     std::copy_n(image.plane(c), data.size(), data.begin());
     forward(*t, data.data(), dims, levels);
-    for (std::size_t b = 1; b < bands.size(); ++b) zero_band(data, dims, bands[b]);  // bands[0] is the coarse band
+    for (std::size_t b = 1; b < bands.size(); ++b)
+      zero_band(data, dims, bands[b]);  // bands[0] is the coarse band
     inverse(*t, data.data(), dims, levels);
     float* dst = out.plane(c);
     // Round and clamp as a decoder writing an image file of the original type would.
     for (std::size_t i = 0; i < data.size(); ++i)
-      dst[i] = static_cast<float>(is_integer(image.type) ? std::clamp(std::round(data[i]), 0.0, peak) : data[i]);
+      dst[i] =
+          static_cast<float>(is_integer(image.type) ? std::clamp(std::round(data[i]), 0.0, peak) : data[i]);
   }
   return out;
 }
 
-std::vector<CoarseRecord> run_coarse(const std::vector<BenchImage>& images, const std::vector<std::string>& specs,
-                                     const std::vector<int>& levels, unsigned jobs, bool terminal, std::ostream& log) {
+std::vector<CoarseRecord> run_coarse(const std::vector<BenchImage>& images,
+                                     const std::vector<std::string>& specs, const std::vector<int>& levels,
+                                     unsigned jobs, bool terminal, std::ostream& log) {
   std::vector<CoarseRecord> records;
   for (const BenchImage& img : images)
     for (const std::string& spec : specs)
@@ -77,7 +81,8 @@ std::vector<CoarseRecord> run_coarse(const std::vector<BenchImage>& images, cons
         r.error = e.what();
         progress.note("warning: coarse " + r.image + " " + r.transform + ": " + r.error);
       }
-      progress.step(r.image + " " + r.transform + " L=" + std::to_string(r.levels) + ": " + fixed(r.psnr_luma, 2) + " dB");
+      progress.step(r.image + " " + r.transform + " L=" + std::to_string(r.levels) + ": " +
+                    fixed(r.psnr_luma, 2) + " dB");
     }
   };
   std::vector<std::thread> pool;
@@ -112,7 +117,8 @@ std::string level_table(const std::vector<int>& levels, const std::vector<std::s
 }  // namespace
 
 void write_coarse_report(const std::vector<CoarseRecord>& records, const std::vector<int>& levels,
-                         const std::string& command, const std::string& machine, const std::filesystem::path& dir) {
+                         const std::string& command, const std::string& machine,
+                         const std::filesystem::path& dir) {
   std::vector<std::string> images, specs;
   std::map<std::string, std::map<std::pair<std::string, int>, double>> per_image;
   std::map<std::pair<std::string, int>, std::pair<double, int>> sums;  // NaN for a failure
@@ -125,20 +131,25 @@ void write_coarse_report(const std::vector<CoarseRecord>& records, const std::ve
     per_image[r.image][{r.transform, r.levels}] = v;
     auto& s = sums[{r.transform, r.levels}];
     s.first += v, ++s.second;
-    csv << r.image << ',' << r.transform << ',' << r.levels << ',' << (r.ok ? fixed(r.psnr_luma, 4) : "") << ','
-        << (r.ok ? "ok" : "\"failed: " + r.error + "\"") << '\n';
+    csv << r.image << ',' << r.transform << ',' << r.levels << ',' << (r.ok ? fixed(r.psnr_luma, 4) : "")
+        << ',' << (r.ok ? "ok" : "\"failed: " + r.error + "\"") << '\n';
   }
   std::map<std::pair<std::string, int>, double> mean;
   for (const auto& [key, s] : sums) mean[key] = s.first / s.second;
   std::ostringstream md;
-  md << "# Coarse-band reconstruction (Fig. 16 experiment)\n\nMade by `" << command << "`.\n\n" << machine
+  md << "# Coarse-band reconstruction (Fig. 16 experiment)\n\nMade by `" << command << "`.\n\n"
+     << machine
      << "\n\nEach image is transformed L levels (separable, Mallat), every detail band is set to zero, the "
         "inverse transform rebuilds a full-size image from the coarse band alone (channel by channel in RGB, "
-        "rounded to 8 bits), and the PSNR of its Rec. 601 luma (the grey channel for grey images) against the "
-        "original is reported in dB. The seed paper reports, on Lena after 3 levels, 25.39 dB for CDF 9/7 and "
+        "rounded to 8 bits), and the PSNR of its Rec. 601 luma (the grey channel for grey images) against "
+        "the "
+        "original is reported in dB. The seed paper reports, on Lena after 3 levels, 25.39 dB for CDF 9/7 "
+        "and "
         "25.55 dB for extended (l = 32) interpolating CINPACT (c = 5); Lena is not used here.\n\n"
-     << "## Mean over " << images.size() << " image(s)\n\n" << level_table(levels, specs, mean);
-  for (const std::string& image : images) md << "\n## " << image << "\n\n" << level_table(levels, specs, per_image[image]);
+     << "## Mean over " << images.size() << " image(s)\n\n"
+     << level_table(levels, specs, mean);
+  for (const std::string& image : images)
+    md << "\n## " << image << "\n\n" << level_table(levels, specs, per_image[image]);
   std::filesystem::create_directories(dir);
   write_text_file(dir / "coarse.csv", csv.str());
   write_text_file(dir / "summary.md", md.str());
@@ -146,7 +157,9 @@ void write_coarse_report(const std::vector<CoarseRecord>& records, const std::ve
 
 std::vector<int> parse_levels(const std::string& text) {
   std::vector<int> levels;
-  auto bad = [&] { return std::invalid_argument("--levels: expected 'A..B' or a comma list of 1..16, got '" + text + "'"); };
+  auto bad = [&] {
+    return std::invalid_argument("--levels: expected 'A..B' or a comma list of 1..16, got '" + text + "'");
+  };
   try {
     const auto dots = text.find("..");
     if (dots != std::string::npos) {

@@ -27,12 +27,14 @@ Image coarse_reconstruction(const Image& image, const std::string& spec, int lev
 
 // Every image x transform x level; failures (e.g. an unknown spec) become records with
 // ok = false. Progress goes to `log`.
-std::vector<CoarseRecord> run_coarse(const std::vector<BenchImage>& images, const std::vector<std::string>& specs,
-                                     const std::vector<int>& levels, unsigned jobs, bool terminal, std::ostream& log);
+std::vector<CoarseRecord> run_coarse(const std::vector<BenchImage>& images,
+                                     const std::vector<std::string>& specs, const std::vector<int>& levels,
+                                     unsigned jobs, bool terminal, std::ostream& log);
 
 // Writes coarse.csv and summary.md (a table per image and the mean) into `dir`.
 void write_coarse_report(const std::vector<CoarseRecord>& records, const std::vector<int>& levels,
-                         const std::string& command, const std::string& machine, const std::filesystem::path& dir);
+                         const std::string& command, const std::string& machine,
+                         const std::filesystem::path& dir);
 
 // Parses "1..5" or "1,2,4" into ascending level counts in [1, 16]; std::invalid_argument
 // otherwise.

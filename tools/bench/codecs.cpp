@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 #include "tools/bench/process.h"
@@ -29,14 +29,15 @@ double run_checked(const std::vector<std::string>& argv, const fs::path& log, co
   std::error_code ec;
   if (r.exit_code != 0 || !fs::is_regular_file(product, ec)) {
     const std::string tail = log_tail(log);
-    throw std::runtime_error(fs::path(argv[0]).filename().string() + " failed (exit " + std::to_string(r.exit_code) +
-                             (tail.empty() ? ")" : "): " + tail));
+    throw std::runtime_error(fs::path(argv[0]).filename().string() + " failed (exit " +
+                             std::to_string(r.exit_code) + (tail.empty() ? ")" : "): " + tail));
   }
   return r.seconds;
 }
 
 std::uintmax_t target_bytes(const EncodeRequest& q) {
-  return static_cast<std::uintmax_t>(std::llround(q.target_bpp * static_cast<double>(q.width * q.height) / 8.0));
+  return static_cast<std::uintmax_t>(
+      std::llround(q.target_bpp * static_cast<double>(q.width * q.height) / 8.0));
 }
 
 class PupwaveCodec final : public RdCodec {
@@ -49,8 +50,9 @@ class PupwaveCodec final : public RdCodec {
   EncodeOutcome encode(const EncodeRequest& q) const override {
     const std::string bpp = format_number(q.target_bpp);
     EncodeOutcome out;
-    out.seconds = run_checked({cli_.string(), "compress", q.input.string(), q.output.string(), "--transform",
-                               spec_, "--bpp", bpp}, q.log, q.output);
+    out.seconds = run_checked(
+        {cli_.string(), "compress", q.input.string(), q.output.string(), "--transform", spec_, "--bpp", bpp},
+        q.log, q.output);
     out.bytes = fs::file_size(q.output);
     out.setting = "--bpp " + bpp;
     return out;
@@ -79,8 +81,9 @@ class OpenJpegAnchor final : public RdCodec {
     while (resolutions > 1 && (std::min(q.width, q.height) >> (resolutions - 1)) < 1) --resolutions;
     const std::string ratio = format_number(8.0 * static_cast<double>(q.channels) / q.target_bpp);
     EncodeOutcome out;
-    out.seconds = run_checked({enc_.string(), "-i", q.input.string(), "-o", q.output.string(), "-I", "-r", ratio,
-                               "-n", std::to_string(resolutions)}, q.log, q.output);
+    out.seconds = run_checked({enc_.string(), "-i", q.input.string(), "-o", q.output.string(), "-I", "-r",
+                               ratio, "-n", std::to_string(resolutions)},
+                              q.log, q.output);
     out.bytes = fs::file_size(q.output);
     out.setting = "-I -r " + ratio + " -n " + std::to_string(resolutions);
     return out;
@@ -114,8 +117,8 @@ class JxlAnchor final : public RdCodec {
       // Start at the upper end: when even the coarsest setting is too big, stop there.
       const double d = trials == 0 ? kMaxDistance : std::exp(0.5 * (lo + hi));
       const fs::path trial = q.output.string() + ".trial";
-      const double seconds = run_checked({enc_.string(), q.input.string(), trial.string(), "-d",
-                                          format_number(d, "%.4f")}, q.log, trial);
+      const double seconds = run_checked(
+          {enc_.string(), q.input.string(), trial.string(), "-d", format_number(d, "%.4f")}, q.log, trial);
       ++trials;
       const auto bytes = fs::file_size(trial);
       const double miss = std::abs(std::log(static_cast<double>(bytes) / target));
@@ -154,9 +157,12 @@ const std::vector<std::string>& anchor_names() {
 
 RdCodecPtr make_anchor(const std::string& name, const std::string& search_path, std::string& missing_note) {
   std::vector<std::string> tools;
-  if (name == "openjpeg") tools = {"opj_compress", "opj_decompress"};
-  else if (name == "jxl") tools = {"cjxl", "djxl"};
-  else throw std::invalid_argument("unknown anchor '" + name + "' (known: openjpeg, jxl)");
+  if (name == "openjpeg")
+    tools = {"opj_compress", "opj_decompress"};
+  else if (name == "jxl")
+    tools = {"cjxl", "djxl"};
+  else
+    throw std::invalid_argument("unknown anchor '" + name + "' (known: openjpeg, jxl)");
   std::vector<fs::path> found;
   for (const std::string& tool : tools) {
     const auto path = find_tool(tool, search_path);
@@ -176,14 +182,16 @@ namespace {
 
 // First line of a tool's output that contains `marker`, from `marker` to the end of the line.
 std::string version_line(const fs::path& tool, const std::string& flag, const std::string& marker) {
-  const fs::path log = fs::temp_directory_path() / ("pupwave-bench-version-" + std::to_string(::getpid()) + ".txt");
+  const fs::path log =
+      fs::temp_directory_path() / ("pupwave-bench-version-" + std::to_string(::getpid()) + ".txt");
   run_process({tool.string(), flag}, log);
   std::ifstream in(log);
   std::string line, found;
   while (found.empty() && std::getline(in, line))
     if (const auto at = line.find(marker); at != std::string::npos) found = line.substr(at);
   fs::remove(log);
-  while (!found.empty() && (found.back() == '.' || std::isspace(static_cast<unsigned char>(found.back())))) found.pop_back();
+  while (!found.empty() && (found.back() == '.' || std::isspace(static_cast<unsigned char>(found.back()))))
+    found.pop_back();
   return found;
 }
 
@@ -193,7 +201,8 @@ std::string anchor_versions(const std::string& search_path) {
   std::vector<std::string> parts;
   if (const auto opj = find_tool("opj_compress", search_path))
     parts.push_back("opj_compress (" + version_line(*opj, "-h", "openjp2 library") + ")");
-  if (const auto cjxl = find_tool("cjxl", search_path)) parts.push_back(version_line(*cjxl, "--version", "cjxl v"));
+  if (const auto cjxl = find_tool("cjxl", search_path))
+    parts.push_back(version_line(*cjxl, "--version", "cjxl v"));
   std::string joined;
   for (const std::string& p : parts) joined += (joined.empty() ? "" : ", ") + p;
   return joined;

@@ -17,7 +17,7 @@ struct EncodeRequest {
   std::filesystem::path input;   // 8-bit PPM (RGB) or PGM (grey)
   std::filesystem::path output;  // compressed file to create
   std::filesystem::path log;
-  double target_bpp = 0.0;       // bits per pixel (all channels together)
+  double target_bpp = 0.0;  // bits per pixel (all channels together)
   std::size_t width = 0, height = 0, channels = 0;
 };
 

@@ -46,11 +46,17 @@ std::string data_blocks(const std::vector<RdRecord>& records, const std::string&
   d << "# bpp psnr_db psnr_minus_openjpeg_db\n";
   for (const std::string& codec : codecs) {
     d << "# " << codec << "\n";
-    for (const auto& [bpp, psnr] : points(records, image, codec)) {
+    const auto curve = points(records, image, codec);
+    // A codec without points still needs a (missing) row, or gnuplot would merge its empty
+    // block into the separator and shift every later `index`.
+    if (curve.empty()) d << "? ? ?\n";
+    for (const auto& [bpp, psnr] : curve) {
       const double delta = psnr - interpolate(reference, bpp);
       d << bpp << ' ' << psnr << ' ';
-      if (std::isnan(delta)) d << "?\n";
-      else d << delta << '\n';
+      if (std::isnan(delta))
+        d << "?\n";
+      else
+        d << delta << '\n';
     }
     d << "\n\n";
   }
@@ -73,22 +79,24 @@ std::string plot_commands(const std::string& title, const std::string& ylabel, i
     std::string style = "with linespoints lw 1.5 pt " + std::to_string(1 + k % 13);
     if (codecs[k] == "openjpeg") style = "with linespoints ls 100";
     if (codecs[k] == "jxl") style = "with linespoints ls 101";
-    g << "  '" << data.filename().string() << "' index " << k << " using 1:" << column << " " << style << " title '"
-      << codecs[k] << "'" << (k + 1 < codecs.size() ? ", \\\n" : "\n");
+    g << "  '" << data.filename().string() << "' index " << k << " using 1:" << column << " " << style
+      << " title '" << codecs[k] << "'" << (k + 1 < codecs.size() ? ", \\\n" : "\n");
   }
   return g.str();
 }
 
 // The script drawing the plots of one image: PSNR, and PSNR relative to OpenJPEG when it ran.
-std::string plot_script(const std::string& image, const std::vector<std::string>& codecs, const fs::path& data,
-                        const std::vector<fs::path>& svgs) {
+std::string plot_script(const std::string& image, const std::vector<std::string>& codecs,
+                        const fs::path& data, const std::vector<fs::path>& svgs) {
   std::string g =
       "set datafile missing '?'\nset logscale x 2\nset grid\n"
-      "set style line 100 lc rgb 'black' dt 2 lw 2 pt 6\nset style line 101 lc rgb '#777777' dt 4 lw 2 pt 8\n";
-  g += plot_commands("PSNR against bits per pixel: " + image, "PSNR (dB, all channels)", 2, codecs, data, svgs[0]);
+      "set style line 100 lc rgb 'black' dt 2 lw 2 pt 6\nset style line 101 lc rgb '#777777' dt 4 lw 2 pt "
+      "8\n";
+  g += plot_commands("PSNR against bits per pixel: " + image, "PSNR (dB, all channels)", 2, codecs, data,
+                     svgs[0]);
   if (svgs.size() > 1)
-    g += plot_commands("PSNR minus the PSNR of OpenJPEG at the same rate: " + image, "PSNR difference (dB)", 3, codecs,
-                       data, svgs[1]);
+    g += plot_commands("PSNR minus the PSNR of OpenJPEG at the same rate: " + image, "PSNR difference (dB)",
+                       3, codecs, data, svgs[1]);
   return g;
 }
 
@@ -114,13 +122,17 @@ std::vector<std::vector<fs::path>> draw_rd_plots(const std::vector<RdRecord>& re
     write_text_file(data, data_blocks(records, images[i], codecs));
     write_text_file(script, plot_script(images[i], codecs, data, svgs));
     // gnuplot resolves the data and output names relative to its working directory.
-    const ProcessResult r = run_process({"/bin/sh", "-c", "cd \"$1\" && exec \"$2\" \"$3\"", "sh", dir.string(),
-                                         gnuplot->string(), script.filename().string()}, log);
+    const ProcessResult r = run_process({"/bin/sh", "-c", "cd \"$1\" && exec \"$2\" \"$3\"", "sh",
+                                         dir.string(), gnuplot->string(), script.filename().string()},
+                                        log);
     const std::string tail = log_tail(log);
     fs::remove(log);
-    const bool ok = r.exit_code == 0 && std::all_of(svgs.begin(), svgs.end(), [](auto& p) { return fs::is_regular_file(p); });
-    if (ok) drawn[i] = svgs;
-    else note = "plot of " + images[i] + " failed: gnuplot exit " + std::to_string(r.exit_code) + ": " + tail;
+    const bool ok = r.exit_code == 0 &&
+                    std::all_of(svgs.begin(), svgs.end(), [](auto& p) { return fs::is_regular_file(p); });
+    if (ok)
+      drawn[i] = svgs;
+    else
+      note = "plot of " + images[i] + " failed: gnuplot exit " + std::to_string(r.exit_code) + ": " + tail;
   }
   return drawn;
 }

@@ -16,9 +16,10 @@ namespace pupwave::bench {
 // Returns the SVG paths per image (empty where drawing failed). When gnuplot is not in
 // `search_path`, draws nothing and sets `note`; a failing gnuplot run also sets `note`.
 std::vector<std::vector<std::filesystem::path>> draw_rd_plots(const std::vector<RdRecord>& records,
-                                                 const std::vector<std::string>& images,
-                                                 const std::vector<std::string>& codecs,
-                                                 const std::filesystem::path& dir,
-                                                 const std::string& search_path, std::string& note);
+                                                              const std::vector<std::string>& images,
+                                                              const std::vector<std::string>& codecs,
+                                                              const std::filesystem::path& dir,
+                                                              const std::string& search_path,
+                                                              std::string& note);
 
 }  // namespace pupwave::bench

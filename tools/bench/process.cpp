@@ -87,8 +87,10 @@ std::string log_tail(const std::filesystem::path& log_file, std::size_t max_char
   // One line of text: runs of whitespace (newlines included) become one space.
   for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
     const bool space = std::isspace(static_cast<unsigned char>(*it)) != 0;
-    if (!space) text += *it;
-    else if (!text.empty() && text.back() != ' ') text += ' ';
+    if (!space)
+      text += *it;
+    else if (!text.empty() && text.back() != ' ')
+      text += ' ';
   }
   if (!text.empty() && text.back() == ' ') text.pop_back();
   if (text.size() > max_chars) text = "..." + text.substr(text.size() - max_chars);

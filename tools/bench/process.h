@@ -17,13 +17,11 @@ struct ProcessResult {
 // Runs argv[0] (an absolute or relative path, not searched in PATH) with the given arguments,
 // stdin from /dev/null and stdout + stderr appended to `log_file`. Throws std::runtime_error
 // when the program cannot be started.
-ProcessResult run_process(const std::vector<std::string>& argv,
-                          const std::filesystem::path& log_file);
+ProcessResult run_process(const std::vector<std::string>& argv, const std::filesystem::path& log_file);
 
 // Finds an executable by name in a PATH-style list of directories (':'-separated); nullopt when
 // no directory holds an executable file of that name.
-std::optional<std::filesystem::path> find_tool(const std::string& name,
-                                               const std::string& search_path);
+std::optional<std::filesystem::path> find_tool(const std::string& name, const std::string& search_path);
 
 // The process's PATH (empty when unset).
 std::string environment_path();

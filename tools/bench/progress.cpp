@@ -8,7 +8,10 @@
 namespace pupwave::bench {
 
 Progress::Progress(std::ostream& out, std::size_t total, std::string label, bool terminal)
-    : out_(out), total_(total), label_(std::move(label)), terminal_(terminal),
+    : out_(out),
+      total_(total),
+      label_(std::move(label)),
+      terminal_(terminal),
       start_(std::chrono::steady_clock::now()) {}
 
 bool Progress::is_terminal(int fd) { return isatty(fd) == 1; }
@@ -17,9 +20,12 @@ std::string format_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "?";
   const long s = std::lround(seconds);
   char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
-  else if (s >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-  else std::snprintf(buf, sizeof buf, "%lds", s);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", s);
   return buf;
 }
 
@@ -45,14 +51,18 @@ void Progress::step(const std::string& what) {
   std::lock_guard lock(mutex_);
   if (done_ < total_) ++done_;
   last_ = status_line(what);
-  if (terminal_) out_ << "\r\033[K" << last_ << std::flush;
-  else out_ << last_ << '\n' << std::flush;
+  if (terminal_)
+    out_ << "\r\033[K" << last_ << std::flush;
+  else
+    out_ << last_ << '\n' << std::flush;
 }
 
 void Progress::note(const std::string& message) {
   std::lock_guard lock(mutex_);
-  if (terminal_) out_ << "\r\033[K" << message << '\n' << last_ << std::flush;
-  else out_ << message << '\n' << std::flush;
+  if (terminal_)
+    out_ << "\r\033[K" << message << '\n' << last_ << std::flush;
+  else
+    out_ << message << '\n' << std::flush;
 }
 
 void Progress::finish() {

@@ -45,7 +45,8 @@ std::vector<const RdRecord*> curve_records(const std::vector<RdRecord>& records,
   return out;
 }
 
-std::vector<RdPoint> curve(const std::vector<RdRecord>& records, const std::string& image, const std::string& codec) {
+std::vector<RdPoint> curve(const std::vector<RdRecord>& records, const std::string& image,
+                           const std::string& codec) {
   std::vector<RdPoint> points;
   for (const RdRecord* r : curve_records(records, image, codec))
     if (r->ok) points.push_back({r->bpp, r->psnr});
@@ -70,7 +71,7 @@ std::vector<std::string> image_names(const std::vector<RdRecord>& records) {
 struct CodecStats {
   std::vector<double> psnr;  // per target rate (NaN when failed)
   double bd_psnr = NAN, bd_rate = NAN;
-  double worst_miss = 0.0;  // largest |achieved / target - 1| over the rates, in percent
+  double worst_miss = 0.0;                // largest |achieved / target - 1| over the rates, in percent
   double encode_s = 0.0, decode_s = 0.0;  // totals over the rates
 };
 
@@ -85,6 +86,8 @@ CodecStats stats_for(const std::vector<RdRecord>& records, const std::string& im
     s.worst_miss = std::max(s.worst_miss, std::abs(r->bpp / r->target_bpp - 1.0) * 100.0);
     s.encode_s += r->encode_s, s.decode_s += r->decode_s;
   }
+  if (std::all_of(s.psnr.begin(), s.psnr.end(), [](double p) { return std::isnan(p); }))
+    s.worst_miss = s.encode_s = s.decode_s = NAN;  // nothing measured: no rate, no time
   if (have_reference) {
     const auto ref = curve(records, image, kReference);
     const auto mine = curve(records, image, codec);
@@ -107,8 +110,8 @@ std::string table_row(const std::string& codec, const CodecStats& s) {
   std::ostringstream row;
   row << "| " << codec << " |";
   for (double p : s.psnr) row << ' ' << fixed(p, 2) << " |";
-  row << ' ' << fixed(s.bd_psnr, 2) << " | " << fixed(s.bd_rate, 1) << " | " << fixed(s.worst_miss, 1) << " | "
-      << fixed(s.encode_s, 2) << " | " << fixed(s.decode_s, 2) << " |\n";
+  row << ' ' << fixed(s.bd_psnr, 2) << " | " << fixed(s.bd_rate, 1) << " | " << fixed(s.worst_miss, 1)
+      << " | " << fixed(s.encode_s, 2) << " | " << fixed(s.decode_s, 2) << " |\n";
   return row.str();
 }
 
@@ -118,7 +121,8 @@ CodecStats mean_stats(const std::vector<CodecStats>& per_image) {
   for (std::size_t i = 1; i < per_image.size(); ++i) {
     for (std::size_t k = 0; k < m.psnr.size(); ++k) m.psnr[k] += per_image[i].psnr[k];
     m.bd_psnr += per_image[i].bd_psnr, m.bd_rate += per_image[i].bd_rate;
-    m.worst_miss = std::max(m.worst_miss, per_image[i].worst_miss);
+    const double miss = per_image[i].worst_miss;
+    m.worst_miss = std::isnan(m.worst_miss) || std::isnan(miss) ? NAN : std::max(m.worst_miss, miss);
     m.encode_s += per_image[i].encode_s, m.decode_s += per_image[i].decode_s;
   }
   const double n = static_cast<double>(per_image.size());
@@ -130,7 +134,8 @@ CodecStats mean_stats(const std::vector<CodecStats>& per_image) {
 std::string failures(const std::vector<RdRecord>& records) {
   std::ostringstream f;
   for (const RdRecord& r : records)
-    if (!r.ok) f << "- " << r.image << ", " << r.codec << ", " << number(r.target_bpp) << " bpp: " << r.error << '\n';
+    if (!r.ok)
+      f << "- " << r.image << ", " << r.codec << ", " << number(r.target_bpp) << " bpp: " << r.error << '\n';
   return f.str();
 }
 
@@ -138,8 +143,8 @@ std::string failures(const std::vector<RdRecord>& records) {
 
 const std::vector<std::string>& results_csv_columns() {
   static const std::vector<std::string> columns = {
-      "image", "width", "height", "channels", "codec", "kind", "target_bpp", "bytes", "bpp", "psnr_db",
-      "psnr_luma_db", "max_error", "encode_s", "decode_s", "setting", "status"};
+      "image", "width",   "height",       "channels",  "codec",    "kind",     "target_bpp", "bytes",
+      "bpp",   "psnr_db", "psnr_luma_db", "max_error", "encode_s", "decode_s", "setting",    "status"};
   return columns;
 }
 
@@ -150,18 +155,18 @@ void write_results_csv(const std::vector<RdRecord>& records, const fs::path& pat
   out << '\n';
   for (const RdRecord& r : records) {
     auto ok_number = [&](double v) { return r.ok ? number(v) : std::string(); };
-    out << csv_field(r.image) << ',' << r.width << ',' << r.height << ',' << r.channels << ',' << csv_field(r.codec)
-        << ',' << r.kind << ',' << number(r.target_bpp) << ',' << (r.ok ? std::to_string(r.bytes) : "") << ','
-        << ok_number(r.bpp) << ',' << ok_number(r.psnr) << ',' << ok_number(r.psnr_luma) << ','
-        << ok_number(r.max_error) << ',' << ok_number(r.encode_s) << ',' << ok_number(r.decode_s) << ','
-        << csv_field(r.setting) << ',' << csv_field(r.ok ? "ok" : "failed: " + r.error) << '\n';
+    out << csv_field(r.image) << ',' << r.width << ',' << r.height << ',' << r.channels << ','
+        << csv_field(r.codec) << ',' << r.kind << ',' << number(r.target_bpp) << ','
+        << (r.ok ? std::to_string(r.bytes) : "") << ',' << ok_number(r.bpp) << ',' << ok_number(r.psnr) << ','
+        << ok_number(r.psnr_luma) << ',' << ok_number(r.max_error) << ',' << ok_number(r.encode_s) << ','
+        << ok_number(r.decode_s) << ',' << csv_field(r.setting) << ','
+        << csv_field(r.ok ? "ok" : "failed: " + r.error) << '\n';
   }
   write_text_file(path, out.str());
 }
 
 void write_rd_summary(const std::vector<RdRecord>& records, const ReportContext& ctx, const fs::path& path) {
-  const bool have_reference =
-      std::find(ctx.codecs.begin(), ctx.codecs.end(), kReference) != ctx.codecs.end();
+  const bool have_reference = std::find(ctx.codecs.begin(), ctx.codecs.end(), kReference) != ctx.codecs.end();
   const auto images = image_names(records);
   std::ostringstream md;
   md << "# Rate-distortion results\n\nMade by `" << ctx.command << "`.\n\nCodecs: ";
@@ -171,22 +176,26 @@ void write_rd_summary(const std::vector<RdRecord>& records, const ReportContext&
   md << "PSNR in dB over all channels (RGB for colour images, peak 255) at each target rate; achieved "
         "rates are in `results.csv` and the worst miss is shown. BD-PSNR and BD-rate (Bjontegaard, cubic fit "
         "in log rate over achieved rates) are against "
-     << (have_reference ? "OpenJPEG (JPEG 2000, 9/7, 6 resolutions): positive BD-PSNR and negative BD-rate mean "
-                          "better than JPEG 2000."
-                        : "OpenJPEG, which did not run, so they are n/a.")
+     << (have_reference
+             ? "OpenJPEG (JPEG 2000, 9/7, 6 resolutions): positive BD-PSNR and negative BD-rate mean "
+               "better than JPEG 2000."
+             : "OpenJPEG, which did not run, so they are n/a.")
      << " Times are wall-clock per file summed over the rates, including process start.\n\n";
   std::map<std::string, std::vector<CodecStats>> per_codec;
   std::ostringstream detail;
   for (std::size_t i = 0; i < images.size(); ++i) {
-    const RdRecord& first = *std::find_if(records.begin(), records.end(), [&](auto& r) { return r.image == images[i]; });
+    const RdRecord& first =
+        *std::find_if(records.begin(), records.end(), [&](auto& r) { return r.image == images[i]; });
     detail << "### " << images[i] << " (" << first.width << "x" << first.height << ", "
-           << (first.channels == 1 ? "grey" : "RGB") << ")\n\n" << table_header(ctx.bpps);
+           << (first.channels == 1 ? "grey" : "RGB") << ")\n\n"
+           << table_header(ctx.bpps);
     for (const std::string& codec : ctx.codecs) {
       per_codec[codec].push_back(stats_for(records, images[i], codec, ctx.bpps, have_reference));
       detail << table_row(codec, per_codec[codec].back());
     }
     if (i < ctx.plots.size())
-      for (const std::string& plot : ctx.plots[i]) detail << "\n![" << images[i] << ": " << plot << "](" << plot << ")\n";
+      for (const std::string& plot : ctx.plots[i])
+        detail << "\n![" << images[i] << ": " << plot << "](" << plot << ")\n";
     detail << '\n';
   }
   md << "## Mean over " << images.size() << " image(s)\n\n" << table_header(ctx.bpps);
@@ -212,8 +221,8 @@ std::string describe_machine() {
     if (line.rfind("PRETTY_NAME=", 0) == 0) os = line.substr(13, line.size() - 14);
   utsname u{};
   uname(&u);
-  return "Machine: " + model + ", " + std::to_string(std::thread::hardware_concurrency()) + " logical cores, " +
-         os + ", Linux " + u.release + ".";
+  return "Machine: " + model + ", " + std::to_string(std::thread::hardware_concurrency()) +
+         " logical cores, " + os + ", Linux " + u.release + ".";
 }
 
 void write_text_file(const fs::path& path, const std::string& text) {

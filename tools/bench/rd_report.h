@@ -18,11 +18,11 @@ void write_results_csv(const std::vector<RdRecord>& records, const std::filesyst
 
 // What summary.md says about how it was made.
 struct ReportContext {
-  std::string command;              // the command line that produced the run
-  std::string machine;              // machine and tool versions, one markdown paragraph
-  std::vector<std::string> notes;   // e.g. anchors skipped because their tools are missing
-  std::vector<double> bpps;         // target rates, ascending
-  std::vector<std::string> codecs;  // codec names in report order
+  std::string command;                          // the command line that produced the run
+  std::string machine;                          // machine and tool versions, one markdown paragraph
+  std::vector<std::string> notes;               // e.g. anchors skipped because their tools are missing
+  std::vector<double> bpps;                     // target rates, ascending
+  std::vector<std::string> codecs;              // codec names in report order
   std::vector<std::vector<std::string>> plots;  // per image: plot files relative to summary.md
 };
 

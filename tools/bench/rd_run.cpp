@@ -48,14 +48,20 @@ RdRecord run_job(const RdRun& run, const Job& job, const fs::path& work) {
   const BenchImage& img = run.images[job.image];
   const RdCodec& codec = *run.codecs[job.codec];
   RdRecord r;
-  r.image = img.name, r.width = img.pixels.width, r.height = img.pixels.height, r.channels = img.pixels.channels;
+  r.image = img.name, r.width = img.pixels.width, r.height = img.pixels.height,
+  r.channels = img.pixels.channels;
   r.codec = codec.name(), r.kind = codec.kind(), r.target_bpp = run.bpps[job.rate];
   const fs::path dir = work / safe_name(img.name) / safe_name(codec.name()) / bpp_label(r.target_bpp);
   try {
     fs::create_directories(dir);
     const std::string pnm = img.pixels.channels == 1 ? ".pgm" : ".ppm";
-    EncodeRequest q{work / (safe_name(img.name) + pnm), dir / ("coded" + codec.extension()), dir / "log.txt",
-                    r.target_bpp, r.width, r.height, r.channels};
+    EncodeRequest q{work / (safe_name(img.name) + pnm),
+                    dir / ("coded" + codec.extension()),
+                    dir / "log.txt",
+                    r.target_bpp,
+                    r.width,
+                    r.height,
+                    r.channels};
     const EncodeOutcome e = codec.encode(q);
     r.bytes = e.bytes, r.encode_s = e.seconds, r.setting = e.setting;
     r.bpp = 8.0 * static_cast<double>(e.bytes) / static_cast<double>(r.width * r.height);
@@ -110,7 +116,8 @@ BenchImage load_bench_image(const fs::path& path) {
   BenchImage b{path.stem().string(), path, cli::read_image(path)};
   if (b.pixels.type != SampleType::u8 || (b.pixels.channels != 1 && b.pixels.channels != 3))
     throw std::invalid_argument(path.string() + ": the harness takes 8-bit grey or RGB images (got " +
-                                std::to_string(b.pixels.channels) + " channel(s), " + to_string(b.pixels.type) + ")");
+                                std::to_string(b.pixels.channels) + " channel(s), " +
+                                to_string(b.pixels.type) + ")");
   return b;
 }
 

@@ -34,9 +34,9 @@ struct RdRecord {
   double psnr_luma = 0.0;  // dB of Rec. 601 luma; the grey channel itself for grey images
   double max_error = 0.0;  // largest absolute sample error
   double encode_s = 0.0, decode_s = 0.0;
-  std::string setting;     // encoder parameter used
+  std::string setting;  // encoder parameter used
   bool ok = false;
-  std::string error;       // why the job failed when !ok
+  std::string error;  // why the job failed when !ok
 };
 
 struct RdRun {
