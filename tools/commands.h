@@ -12,6 +12,9 @@ void add_convert_command(CLI::App& app);
 void add_compress_command(CLI::App& app);
 void add_decompress_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_generate_volume_command(CLI::App& app);
+void add_lod_command(CLI::App& app);
+void add_convert_volume_command(CLI::App& app);
 void add_subdivide_command(CLI::App& app);
 
 }  // namespace pupwave::cli
