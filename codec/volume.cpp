@@ -39,7 +39,8 @@ Volume::Volume(const Extent& d, VoxelType t) : dims(d), type(t), samples(d[0] * 
 
 std::size_t Volume::active_count() const {
   if (active.empty()) return count();
-  return static_cast<std::size_t>(std::count_if(active.begin(), active.end(), [](std::uint8_t a) { return a != 0; }));
+  return static_cast<std::size_t>(
+      std::count_if(active.begin(), active.end(), [](std::uint8_t a) { return a != 0; }));
 }
 
 std::string to_string(GridClass grid_class) {

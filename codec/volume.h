@@ -62,9 +62,7 @@ std::string to_string(GridClass grid_class);
 
 // One metadata entry of a grid, typed so that it is written back with its original type.
 struct MetaValue {
-  enum class Kind : std::uint8_t {
-    string = 0, boolean, int32, int64, float32, float64, vec3i, vec3f, vec3d
-  };
+  enum class Kind : std::uint8_t { string = 0, boolean, int32, int64, float32, float64, vec3i, vec3f, vec3d };
   Kind kind = Kind::string;
   std::string text;                        // Kind::string
   std::int64_t integer = 0;                // boolean, int32, int64

@@ -45,7 +45,8 @@ void write_output(std::vector<VolumeGrid> grids, const ConvertVolumeOptions& o) 
                                 " grids; choose one with --grid NAME for raw output");
   Volume& v = grids[0].volume;
   if (v.count() == 0) throw std::runtime_error("grid '" + grids[0].name + "' has no active voxels");
-  if (!o.dtype.empty() && is_vdb_path(o.input)) v.type = parse_voxel_type(o.dtype);  // raw input: its own type
+  if (!o.dtype.empty() && is_vdb_path(o.input))
+    v.type = parse_voxel_type(o.dtype);  // raw input: its own type
   write_raw_volume(v, o.output);
 }
 
@@ -61,10 +62,12 @@ void add_convert_volume_command(CLI::App& app) {
   cmd->add_option("IN", opt->input, "input .raw or .vdb")->required();
   cmd->add_option("OUT", opt->output, "output .raw or .vdb (written atomically)")->required();
   cmd->add_option("--dims", opt->dims, "raw input extent X,Y,Z");
-  cmd->add_option("--dtype", opt->dtype, "raw input sample type (u8, u16, f32, f64); for .vdb -> raw, the output type");
+  cmd->add_option("--dtype", opt->dtype,
+                  "raw input sample type (u8, u16, f32, f64); for .vdb -> raw, the output type");
   cmd->add_option("--grid", opt->grid, "the .vdb grid to convert (default: all)");
   cmd->add_option("--name", opt->name, "grid name for raw input (default: the file's stem)");
-  cmd->add_option("--voxel-size", opt->voxel_size, "voxel size for raw input (world units)")->check(CLI::PositiveNumber);
+  cmd->add_option("--voxel-size", opt->voxel_size, "voxel size for raw input (world units)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([opt] {
     check_output_path(opt->output);
     std::vector<VolumeGrid> grids = read_input(*opt);

@@ -176,7 +176,8 @@ void add_generate_volume_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("generate-volume",
                                  "Generate a deterministic 3-D float test field (size^3, x fastest) as\n"
                                  "raw float32 little endian (OUT.raw) or an OpenVDB FloatGrid (OUT.vdb).");
-  cmd->add_option("--kind", opt->kind, "gray-scott (reaction-diffusion, v field) or turbulence (-5/3 spectrum)")
+  cmd->add_option("--kind", opt->kind,
+                  "gray-scott (reaction-diffusion, v field) or turbulence (-5/3 spectrum)")
       ->check(CLI::IsMember({"gray-scott", "turbulence"}));
   cmd->add_option("--size", opt->size, "voxels per axis (turbulence: a power of two)")
       ->check(CLI::Range(std::size_t(4), std::size_t(1024)));

@@ -39,10 +39,12 @@ constexpr int kMaxLodLevel = 12;
 int parse_level(std::string_view text, std::string_view option) {
   int value = -1;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value < 0 || value > kMaxLodLevel)
-    throw std::invalid_argument("invalid " + std::string(option) + " '" + std::string(text) +
-                                "' (integer levels 0.." + std::to_string(kMaxLodLevel) +
-                                "; a wavelet low band halves the resolution, so fractional levels do not exist)");
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value < 0 ||
+      value > kMaxLodLevel)
+    throw std::invalid_argument(
+        "invalid " + std::string(option) + " '" + std::string(text) + "' (integer levels 0.." +
+        std::to_string(kMaxLodLevel) +
+        "; a wavelet low band halves the resolution, so fractional levels do not exist)");
   return value;
 }
 
@@ -54,11 +56,13 @@ std::vector<int> parse_range(std::string_view text) {
   const int from = parse_level(text.substr(0, dash), "--range");
   int to = from, step = 1;
   if (dash != std::string_view::npos) {
-    to = parse_level(text.substr(dash + 1, colon == std::string_view::npos ? colon : colon - dash - 1), "--range");
+    to = parse_level(text.substr(dash + 1, colon == std::string_view::npos ? colon : colon - dash - 1),
+                     "--range");
     if (colon != std::string_view::npos) step = parse_level(text.substr(colon + 1), "--range step");
   }
   if (to < from || step < 1)
-    throw std::invalid_argument("invalid --range '" + std::string(text) + "' (need FROM <= TO and STEP >= 1)");
+    throw std::invalid_argument("invalid --range '" + std::string(text) +
+                                "' (need FROM <= TO and STEP >= 1)");
   std::vector<int> levels;
   for (int k = from; k <= to; k += step) levels.push_back(k);
   return levels;
@@ -93,14 +97,16 @@ Pyramid pad_to_blocks(const VolumeGrid& g, int top_level) {
   const std::size_t count = p.dims[0] * p.dims[1] * p.dims[2];
   if (count / p.dims[0] / p.dims[1] != p.dims[2] || count > kMaxVdbBoxVoxels)
     throw std::runtime_error("grid '" + g.name + "' padded to level " + std::to_string(top_level) +
-                             " blocks exceeds the dense limit of " + std::to_string(kMaxVdbBoxVoxels) + " voxels");
+                             " blocks exceeds the dense limit of " + std::to_string(kMaxVdbBoxVoxels) +
+                             " voxels");
   p.values.assign(count, v.background);
   p.mask.assign(count, 0);
   for (std::size_t z = 0; z < v.dims[2]; ++z)
     for (std::size_t y = 0; y < v.dims[1]; ++y)
       for (std::size_t x = 0; x < v.dims[0]; ++x) {
         const std::size_t i = v.index(x, y, z);
-        const std::size_t j = std::size_t(x + shift[0]) + p.dims[0] * (std::size_t(y + shift[1]) + p.dims[1] * std::size_t(z + shift[2]));
+        const std::size_t j = std::size_t(x + shift[0]) +
+                              p.dims[0] * (std::size_t(y + shift[1]) + p.dims[1] * std::size_t(z + shift[2]));
         p.values[j] = v.samples[i];
         p.mask[j] = v.is_active(i) ? 1 : 0;
       }
@@ -130,7 +136,8 @@ void halve(Pyramid& p, const Transform1D& t) {
     for (std::size_t i = 0; i < out.size(); ++i) {
       const std::size_t c = i / out_stride % next[axis];
       const std::size_t base = i - c * out_stride;  // same position with coordinate 0 on `axis`
-      const std::size_t in_base = (base / out_stride / next[axis]) * in_stride * ext[axis] + base % out_stride;
+      const std::size_t in_base =
+          (base / out_stride / next[axis]) * in_stride * ext[axis] + base % out_stride;
       for (std::size_t f = (c == 0 ? 0 : 2 * c - 1); f <= std::min(2 * c + 1, ext[axis] - 1); ++f)
         out[i] = static_cast<std::uint8_t>(out[i] | cur[in_base + f * in_stride]);
     }
@@ -148,7 +155,8 @@ void halve(Pyramid& p, const Transform1D& t) {
 }
 
 // Level-k grid from the pyramid's current state.
-VolumeGrid level_grid(const VolumeGrid& in, const Pyramid& p, int level, int top_level, double lo, double hi) {
+VolumeGrid level_grid(const VolumeGrid& in, const Pyramid& p, int level, int top_level, double lo,
+                      double hi) {
   VolumeGrid g;
   g.name = in.name + "_level_" + std::to_string(level);
   g.grid_class = in.grid_class;
@@ -171,15 +179,19 @@ VolumeGrid level_grid(const VolumeGrid& in, const Pyramid& p, int level, int top
     for (std::size_t y = 0; y < p.dims[1]; ++y)
       for (std::size_t x = 0; x < p.dims[0]; ++x, ++i) {
         const double value = std::clamp(p.values[i] / (p.gain[0][x] * p.gain[1][y] * p.gain[2][z]), lo, hi);
-        if (p.mask[i]) g.volume.samples[i] = value;
-        else if (in.grid_class == GridClass::level_set) g.volume.samples[i] = value < 0 ? -std::abs(bg) : std::abs(bg);
-        else g.volume.samples[i] = bg;
+        if (p.mask[i])
+          g.volume.samples[i] = value;
+        else if (in.grid_class == GridClass::level_set)
+          g.volume.samples[i] = value < 0 ? -std::abs(bg) : std::abs(bg);
+        else
+          g.volume.samples[i] = bg;
       }
   return g;
 }
 
 // All requested levels of one grid, in ascending order.
-std::vector<VolumeGrid> level_of_detail(const VolumeGrid& in, const Transform1D& t, const std::vector<int>& levels) {
+std::vector<VolumeGrid> level_of_detail(const VolumeGrid& in, const Transform1D& t,
+                                        const std::vector<int>& levels) {
   const int top = levels.back();
   std::vector<VolumeGrid> out;
   if (in.volume.count() == 0) {  // no active voxels: every level is empty as well
@@ -195,7 +207,8 @@ std::vector<VolumeGrid> level_of_detail(const VolumeGrid& in, const Transform1D&
     for (std::size_t a = 0; a < 3; ++a)
       for (double gain : p.gain[a])
         if (!(std::abs(gain) > 1e-3))
-          throw std::runtime_error("transform " + t.spec() + " has no usable coarse-band response to a constant");
+          throw std::runtime_error("transform " + t.spec() +
+                                   " has no usable coarse-band response to a constant");
     out.push_back(level_grid(in, p, k, top, lo, hi));
   }
   return out;
@@ -220,16 +233,18 @@ void add_lod_command(CLI::App& app) {
     int levels = -1;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("lod",
-                                 "Write a level-of-detail pyramid of the float/double grids of an OpenVDB file:\n"
-                                 "level k is the wavelet low band at 2^k times the voxel size, named NAME_level_K\n"
-                                 "as OpenVDB's vdb_lod names them (level 0 is the input).");
+  auto* cmd =
+      app.add_subcommand("lod",
+                         "Write a level-of-detail pyramid of the float/double grids of an OpenVDB file:\n"
+                         "level k is the wavelet low band at 2^k times the voxel size, named NAME_level_K\n"
+                         "as OpenVDB's vdb_lod names them (level 0 is the input).");
   cmd->add_option("IN", opt->input, "input .vdb")->required();
   cmd->add_option("OUT", opt->output, "output .vdb (written atomically)")->required();
   cmd->add_option("--levels", opt->levels, "write levels 0..N (same as --range 0-N)");
   cmd->add_option("--range", opt->range, "levels FROM[-TO[:STEP]] as vdb_lod's -range (integers)");
   cmd->add_option("--transform", opt->transform, "wavelet whose low band makes each level (default cdf97)");
-  cmd->add_option("--name", opt->names, "grid name(s) to process, comma separated (default: every float/double grid)");
+  cmd->add_option("--name", opt->names,
+                  "grid name(s) to process, comma separated (default: every float/double grid)");
   cmd->callback([opt] {
     if ((opt->levels >= 0) == !opt->range.empty())
       throw std::invalid_argument("give exactly one of --levels N and --range FROM[-TO[:STEP]]");
@@ -249,7 +264,8 @@ void add_lod_command(CLI::App& app) {
     write_vdb(out, opt->output);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (const VolumeGrid& g : out)
-      std::cout << g.name << ": " << g.volume.active_count() << " active voxels, voxel size " << g.voxel_size()[0] << '\n';
+      std::cout << g.name << ": " << g.volume.active_count() << " active voxels, voxel size "
+                << g.voxel_size()[0] << '\n';
     std::cout << opt->output << ": " << out.size() << " grid(s), " << t->spec() << ", " << seconds << " s\n";
   });
 }

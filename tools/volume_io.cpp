@@ -163,13 +163,25 @@ static const T* typed_meta(const openvdb::Metadata& m) {
 // The typed value of one metadata entry, or false for types VolumeGrid does not hold.
 static bool meta_from_vdb(const openvdb::Metadata& m, MetaValue& out) {
   using K = MetaValue::Kind;
-  if (const auto* s = typed_meta<std::string>(m)) { out.kind = K::string; out.text = *s; }
-  else if (const auto* b = typed_meta<bool>(m)) { out.kind = K::boolean; out.integer = *b ? 1 : 0; }
-  else if (const auto* i = typed_meta<openvdb::Int32>(m)) { out.kind = K::int32; out.integer = *i; }
-  else if (const auto* l = typed_meta<openvdb::Int64>(m)) { out.kind = K::int64; out.integer = *l; }
-  else if (const auto* f = typed_meta<float>(m)) { out.kind = K::float32; out.numbers[0] = *f; }
-  else if (const auto* d = typed_meta<double>(m)) { out.kind = K::float64; out.numbers[0] = *d; }
-  else if (const auto* vi = typed_meta<openvdb::Vec3i>(m)) {
+  if (const auto* s = typed_meta<std::string>(m)) {
+    out.kind = K::string;
+    out.text = *s;
+  } else if (const auto* b = typed_meta<bool>(m)) {
+    out.kind = K::boolean;
+    out.integer = *b ? 1 : 0;
+  } else if (const auto* i = typed_meta<openvdb::Int32>(m)) {
+    out.kind = K::int32;
+    out.integer = *i;
+  } else if (const auto* l = typed_meta<openvdb::Int64>(m)) {
+    out.kind = K::int64;
+    out.integer = *l;
+  } else if (const auto* f = typed_meta<float>(m)) {
+    out.kind = K::float32;
+    out.numbers[0] = *f;
+  } else if (const auto* d = typed_meta<double>(m)) {
+    out.kind = K::float64;
+    out.numbers[0] = *d;
+  } else if (const auto* vi = typed_meta<openvdb::Vec3i>(m)) {
     out.kind = K::vec3i;
     for (int a = 0; a < 3; ++a) out.numbers[std::size_t(a)] = (*vi)[a];
   } else if (const auto* vs = typed_meta<openvdb::Vec3s>(m)) {
@@ -190,7 +202,9 @@ static void meta_to_vdb(openvdb::GridBase& grid, const std::string& key, const M
   switch (v.kind) {
     case K::string: grid.insertMeta(key, openvdb::StringMetadata(v.text)); break;
     case K::boolean: grid.insertMeta(key, openvdb::BoolMetadata(v.integer != 0)); break;
-    case K::int32: grid.insertMeta(key, openvdb::Int32Metadata(static_cast<openvdb::Int32>(v.integer))); break;
+    case K::int32:
+      grid.insertMeta(key, openvdb::Int32Metadata(static_cast<openvdb::Int32>(v.integer)));
+      break;
     case K::int64: grid.insertMeta(key, openvdb::Int64Metadata(v.integer)); break;
     case K::float32: grid.insertMeta(key, openvdb::FloatMetadata(static_cast<float>(n[0]))); break;
     case K::float64: grid.insertMeta(key, openvdb::DoubleMetadata(n[0])); break;
@@ -252,8 +266,8 @@ static Volume extract_dense(const GridT& grid, VolumeGrid& out, std::size_t max_
   }
   const std::size_t count = checked_count(dims);
   if (count == 0 || count > max_box_voxels)
-    throw std::runtime_error("cannot read " + path.string() + ": grid '" + grid.getName() +
-                             "' spans " + dims_text(dims) + " voxels, more than the limit of " +
+    throw std::runtime_error("cannot read " + path.string() + ": grid '" + grid.getName() + "' spans " +
+                             dims_text(dims) + " voxels, more than the limit of " +
                              std::to_string(max_box_voxels));
   Volume v(dims, type);
   v.background = double(grid.background());
@@ -281,7 +295,8 @@ static std::string available_names(const openvdb::GridPtrVec& grids) {
 static openvdb::GridPtrVecPtr read_all_grids(const fs::path& path) {
   ensure_openvdb();
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw std::runtime_error("cannot read " + path.string() + ": no such file");
+  if (!fs::is_regular_file(path, ec))
+    throw std::runtime_error("cannot read " + path.string() + ": no such file");
   try {
     openvdb::io::File file(path.string());
     file.open(false);  // no delayed loading: the file is read now, errors surface here
@@ -290,7 +305,8 @@ static openvdb::GridPtrVecPtr read_all_grids(const fs::path& path) {
     if (!grids) throw std::runtime_error("no grids");
     return grids;
   } catch (const openvdb::Exception& e) {
-    throw std::runtime_error("cannot read " + path.string() + ": not a valid OpenVDB file (" + e.what() + ")");
+    throw std::runtime_error("cannot read " + path.string() + ": not a valid OpenVDB file (" + e.what() +
+                             ")");
   } catch (const std::bad_alloc&) {
     throw std::runtime_error("cannot read " + path.string() + ": corrupt OpenVDB file (allocation failed)");
   }
@@ -299,7 +315,8 @@ static openvdb::GridPtrVecPtr read_all_grids(const fs::path& path) {
 std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_name,
                                  std::vector<std::string>* skipped, std::size_t max_box_voxels) {
   const openvdb::GridPtrVecPtr grids = read_all_grids(path);
-  if (grids->empty()) throw std::runtime_error("cannot read " + path.string() + ": no grids (empty or truncated file)");
+  if (grids->empty())
+    throw std::runtime_error("cannot read " + path.string() + ": no grids (empty or truncated file)");
   std::vector<VolumeGrid> result;
   for (const openvdb::GridBase::Ptr& base : *grids) {
     if (!grid_name.empty() && base->getName() != grid_name) continue;
@@ -345,8 +362,10 @@ static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
       for (std::size_t x = 0; x < vol.dims[0]; ++x, ++i) {
         const openvdb::Coord ijk = origin + openvdb::Coord(int(x), int(y), int(z));
         const V value = static_cast<V>(vol.samples[i]);
-        if (vol.is_active(i)) acc.setValueOn(ijk, value);
-        else if (value != background) acc.setValueOff(ijk, value);
+        if (vol.is_active(i))
+          acc.setValueOn(ijk, value);
+        else if (value != background)
+          acc.setValueOff(ijk, value);
       }
   openvdb::tools::prune(grid->tree());
   return grid;
@@ -364,7 +383,8 @@ static void describe_to_vdb(const VolumeGrid& g, openvdb::GridBase& grid) {
     auto map = openvdb::math::simplify(std::make_shared<openvdb::math::AffineMap>(m));
     grid.setTransform(std::make_shared<openvdb::math::Transform>(map));
   } catch (const openvdb::Exception& e) {
-    throw std::invalid_argument("write_vdb: grid '" + g.name + "' has an invalid transform (" + e.what() + ")");
+    throw std::invalid_argument("write_vdb: grid '" + g.name + "' has an invalid transform (" + e.what() +
+                                ")");
   }
 }
 
@@ -373,7 +393,8 @@ void write_vdb(const std::vector<VolumeGrid>& grids, const fs::path& path) {
   openvdb::GridPtrVec out;
   for (const VolumeGrid& g : grids) {
     const bool dbl = g.volume.type == VoxelType::f64;
-    openvdb::GridBase::Ptr grid = dbl ? build_grid<openvdb::DoubleGrid>(g) : build_grid<openvdb::FloatGrid>(g);
+    openvdb::GridBase::Ptr grid =
+        dbl ? build_grid<openvdb::DoubleGrid>(g) : build_grid<openvdb::FloatGrid>(g);
     describe_to_vdb(g, *grid);
     out.push_back(grid);
   }

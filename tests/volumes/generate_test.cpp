@@ -19,14 +19,16 @@ std::vector<char> file_bytes(const fs::path& p) {
 
 TEST_F(VolumeTest, GrayScottReproducesCommittedTestVolume) {
   const fs::path out = dir_ / "gs.raw";
-  const CliResult r = run_cli({"generate-volume", "--kind", "gray-scott", "--size", "64", "--steps", "4000", out.string()});
+  const CliResult r =
+      run_cli({"generate-volume", "--kind", "gray-scott", "--size", "64", "--steps", "4000", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(file_bytes(out) == file_bytes(testimage("gray_scott64.raw")));
 }
 
 TEST_F(VolumeTest, GrayScottDeterministicAndStructured) {
   const auto run = [&](const std::string& name, const std::string& seed) {
-    const CliResult r = run_cli({"generate-volume", "--size", "24", "--steps", "1000", "--seed", seed, (dir_ / name).string()});
+    const CliResult r = run_cli(
+        {"generate-volume", "--size", "24", "--steps", "1000", "--seed", seed, (dir_ / name).string()});
     EXPECT_EQ(r.exit_code, 0) << r.output;
     return cli::read_raw_volume(dir_ / name, {24, 24, 24}, VoxelType::f32);
   };
@@ -36,7 +38,7 @@ TEST_F(VolumeTest, GrayScottDeterministicAndStructured) {
   double mean = 0, var = 0;
   for (double v : a.samples) mean += v / double(a.count());
   for (double v : a.samples) var += (v - mean) * (v - mean) / double(a.count());
-  EXPECT_GT(std::sqrt(var), 0.01);  // a pattern, not a uniform state
+  EXPECT_GT(std::sqrt(var), 0.01);                                    // a pattern, not a uniform state
   for (double v : a.samples) ASSERT_TRUE(v >= 0.0 && v <= 1.0) << v;  // concentrations
 }
 
@@ -51,14 +53,16 @@ std::vector<double> shell_spectrum(const std::vector<double>& f, std::size_t n) 
       for (std::size_t k = 0; k < n; ++k) {
         line[k] = 0;
         for (std::size_t x = 0; x < n; ++x)
-          line[k] += a[i + x * stride[axis]] * std::polar(1.0, -2.0 * std::numbers::pi * double(k * x % n) / double(n));
+          line[k] += a[i + x * stride[axis]] *
+                     std::polar(1.0, -2.0 * std::numbers::pi * double(k * x % n) / double(n));
       }
       for (std::size_t k = 0; k < n; ++k) a[i + k * stride[axis]] = line[k];
     }
   std::vector<double> shells(n, 0.0);
   const auto wave = [n](std::size_t i) { return i <= n / 2 ? double(i) : double(i) - double(n); };
   for (std::size_t i = 0; i < a.size(); ++i) {
-    const double k = std::sqrt(std::pow(wave(i % n), 2) + std::pow(wave(i / n % n), 2) + std::pow(wave(i / n / n), 2));
+    const double k =
+        std::sqrt(std::pow(wave(i % n), 2) + std::pow(wave(i / n % n), 2) + std::pow(wave(i / n / n), 2));
     const auto shell = std::size_t(std::lround(k));
     if (shell < n) shells[shell] += std::norm(a[i]);
   }
@@ -67,7 +71,8 @@ std::vector<double> shell_spectrum(const std::vector<double>& f, std::size_t n) 
 
 TEST_F(VolumeTest, TurbulenceHasKolmogorovSpectrum) {
   const std::size_t n = 32;
-  const CliResult r = run_cli({"generate-volume", "--kind", "turbulence", "--size", "32", (dir_ / "t.raw").string()});
+  const CliResult r =
+      run_cli({"generate-volume", "--kind", "turbulence", "--size", "32", (dir_ / "t.raw").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Volume v = cli::read_raw_volume(dir_ / "t.raw", {n, n, n}, VoxelType::f32);
   double mean = 0, sq = 0;
@@ -82,7 +87,7 @@ TEST_F(VolumeTest, TurbulenceHasKolmogorovSpectrum) {
   }
   const double slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
   EXPECT_NEAR(slope, -5.0 / 3.0, 0.2);
-  EXPECT_LT(e[15] / e[14], 1.0);  // energy keeps falling up to the cut-off N/2
+  EXPECT_LT(e[15] / e[14], 1.0);   // energy keeps falling up to the cut-off N/2
   EXPECT_LT(e[17], 1e-6 * e[16]);  // nothing beyond the cut-off
 }
 
@@ -94,7 +99,8 @@ TEST_F(VolumeTest, GenerateVdbAndErrors) {
   EXPECT_EQ(grids[0]->getName(), "v");
   EXPECT_EQ(grids[0]->activeVoxelCount(), 512u);
   EXPECT_NEAR(grids[0]->voxelSize()[0], 1.0 / 8.0, 1e-12);
-  const CliResult odd = run_cli({"generate-volume", "--kind", "turbulence", "--size", "12", (dir_ / "t.raw").string()});
+  const CliResult odd =
+      run_cli({"generate-volume", "--kind", "turbulence", "--size", "12", (dir_ / "t.raw").string()});
   EXPECT_EQ(odd.exit_code, 1);
   EXPECT_NE(odd.output.find("power-of-two"), std::string::npos) << odd.output;
   EXPECT_FALSE(fs::exists(dir_ / "t.raw"));

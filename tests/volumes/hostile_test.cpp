@@ -40,10 +40,16 @@ TEST_F(VolumeTest, RawTruncatedWrongDimsAbsurdDims) {
   expect_has(truncated, "419 bytes");
   expect_has(truncated, "needs 420");
   expect_has(error_of([&] { cli::read_raw_volume(p, {7, 5, 4}, VoxelType::u8); }), "--dims 7,5,4");
-  expect_has(error_of([&] { cli::read_raw_volume(p, {100000, 100000, 100000}, VoxelType::f32); }), "too large");
+  expect_has(error_of([&] {
+               cli::read_raw_volume(p, {100000, 100000, 100000}, VoxelType::f32);
+             }),
+             "too large");
   const std::size_t big = std::size_t(1) << 40;  // product overflows 64 bits
   expect_has(error_of([&] { cli::read_raw_volume(p, {big, big, big}, VoxelType::f64); }), "too large");
-  expect_has(error_of([&] { cli::read_raw_volume(dir_ / "none.raw", {1, 1, 1}, VoxelType::u8); }), "no such file");
+  expect_has(error_of([&] {
+               cli::read_raw_volume(dir_ / "none.raw", {1, 1, 1}, VoxelType::u8);
+             }),
+             "no such file");
 }
 
 // Every broken .vdb given to `pupwave lod`: exit 1 with pupwave's message, nothing written.
@@ -58,7 +64,8 @@ void expect_lod_rejects(const fs::path& dir, const fs::path& in, const std::stri
 TEST_F(VolumeTest, CorruptVdbFiles) {
   const std::vector<char> good = file_bytes(testimage("sphere_ls.vdb"));
   ASSERT_GT(good.size(), 1000u);
-  write_bytes(dir_ / "truncated.vdb", std::vector<char>(good.begin(), good.begin() + std::ptrdiff_t(good.size() / 2)));
+  write_bytes(dir_ / "truncated.vdb",
+              std::vector<char>(good.begin(), good.begin() + std::ptrdiff_t(good.size() / 2)));
   write_bytes(dir_ / "header.vdb", std::vector<char>(good.begin(), good.begin() + 40));
   std::vector<char> magic = good;
   magic[0] = char(magic[0] ^ 0x5A);
@@ -80,8 +87,10 @@ TEST_F(VolumeTest, FlippedBytesNeverCrash) {
     std::vector<char> bad = good;
     for (int f = 0; f < 4; ++f) bad[rng() % bad.size()] ^= char(1 + rng() % 255);
     write_bytes(dir_ / "bad.vdb", bad);
-    const CliResult r = run_cli({"lod", (dir_ / "bad.vdb").string(), (dir_ / "out.vdb").string(), "--levels", "1"});
-    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "trial " << trial << ": exit " << r.exit_code << r.output;
+    const CliResult r =
+        run_cli({"lod", (dir_ / "bad.vdb").string(), (dir_ / "out.vdb").string(), "--levels", "1"});
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1)
+        << "trial " << trial << ": exit " << r.exit_code << r.output;
     EXPECT_EQ(r.output.find("terminate called"), std::string::npos) << r.output;
     if (r.exit_code != 0) {
       EXPECT_FALSE(fs::exists(dir_ / "out.vdb"));
@@ -106,7 +115,8 @@ TEST_F(VolumeTest, LodOutputProblems) {
   const CliResult dir_out = run_cli({"lod", testimage("sphere_ls.vdb"), dir_.string(), "--levels", "1"});
   EXPECT_EQ(dir_out.exit_code, 1);
   expect_has(dir_out.output, "is a directory");
-  const CliResult missing = run_cli({"lod", testimage("sphere_ls.vdb"), (dir_ / "no" / "o.vdb").string(), "--levels", "1"});
+  const CliResult missing =
+      run_cli({"lod", testimage("sphere_ls.vdb"), (dir_ / "no" / "o.vdb").string(), "--levels", "1"});
   EXPECT_EQ(missing.exit_code, 1);
   expect_has(missing.output, "does not exist");
   EXPECT_EQ(files_in_dir(), 0u);

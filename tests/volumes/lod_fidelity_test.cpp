@@ -24,7 +24,8 @@ double box_average(openvdb::FloatGrid::ConstAccessor& acc, const openvdb::Coord&
   for (int dz = -h; dz <= h; ++dz)
     for (int dy = -h; dy <= h; ++dy)
       for (int dx = -h; dx <= h; ++dx) {
-        const double w = (std::abs(dx) == h ? 0.5 : 1.0) * (std::abs(dy) == h ? 0.5 : 1.0) * (std::abs(dz) == h ? 0.5 : 1.0);
+        const double w = (std::abs(dx) == h ? 0.5 : 1.0) * (std::abs(dy) == h ? 0.5 : 1.0) *
+                         (std::abs(dz) == h ? 0.5 : 1.0);
         sum += w * acc.getValue(p + openvdb::Coord(dx, dy, dz));
       }
   return sum / std::pow(2.0, 3 * k);
@@ -40,7 +41,9 @@ Error error_to_box(const openvdb::FloatGrid& level, const openvdb::FloatGrid& fi
   Error e;
   double n = 0;
   for (auto it = level.cbeginValueOn(); it; ++it, ++n) {
-    const double d = std::abs(double(*it) - box_average(acc, openvdb::Coord(it.getCoord().asVec3i() * (1 << k)), k)) / range;
+    const double d =
+        std::abs(double(*it) - box_average(acc, openvdb::Coord(it.getCoord().asVec3i() * (1 << k)), k)) /
+        range;
     e.rms += d * d;
     e.max = std::max(e.max, d);
   }
@@ -62,7 +65,8 @@ void report(const std::string& dataset, const fs::path& in, const fs::path& dir,
   std::vector<fs::path> ours;
   for (const std::string spec : {"cdf97", "cdf53"}) {
     ours.push_back(dir / (spec + ".vdb"));
-    const CliResult r = run_cli({"lod", in.string(), ours.back().string(), "--levels", std::to_string(top), "--transform", spec});
+    const CliResult r = run_cli(
+        {"lod", in.string(), ours.back().string(), "--levels", std::to_string(top), "--transform", spec});
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   for (int k = 1; k <= top; ++k) {
@@ -70,8 +74,8 @@ void report(const std::string& dataset, const fs::path& in, const fs::path& dir,
     const Error e97 = error_to_box(*level_of(ours[0], name), *fine, k, range);
     const Error e53 = error_to_box(*level_of(ours[1], name), *fine, k, range);
     const Error ev = error_to_box(*mrg.grid(std::size_t(k)), *fine, k, range);
-    std::printf("| %s | %d | %.2e / %.2e | %.2e / %.2e | %.2e / %.2e |\n", dataset.c_str(), k, e97.rms, e97.max,
-                e53.rms, e53.max, ev.rms, ev.max);
+    std::printf("| %s | %d | %.2e / %.2e | %.2e / %.2e | %.2e / %.2e |\n", dataset.c_str(), k, e97.rms,
+                e97.max, e53.rms, e53.max, ev.rms, ev.max);
     // Every pyramid is a low pass of the same field, close to the box average (measured: RMS at
     // most 0.035 of the range for cdf97 and full weighting, 0.16 for cdf53, whose low pass keeps
     // half the band); a level shifted by one voxel or mis-scaled is far off.
@@ -84,7 +88,8 @@ void report(const std::string& dataset, const fs::path& in, const fs::path& dir,
 }
 
 TEST_F(VolumeTest, LodFidelityToBoxAverage) {
-  std::printf("| volume | level | cdf97 rms / max | cdf53 rms / max | vdb_lod rms / max |\n|---|---|---|---|---|\n");
+  std::printf(
+      "| volume | level | cdf97 rms / max | cdf53 rms / max | vdb_lod rms / max |\n|---|---|---|---|---|\n");
   report("sphere_ls.vdb (level set)", testimage("sphere_ls.vdb"), dir_, 3);
   report("dodeca_fog.vdb (fog)", testimage("dodeca_fog.vdb"), dir_, 3);
   VolumeGrid gs;
@@ -94,7 +99,8 @@ TEST_F(VolumeTest, LodFidelityToBoxAverage) {
   report("gray_scott64.raw", dir_ / "gs.vdb", dir_, 3);
   VolumeGrid w;
   w.name = "wmag";
-  w.volume = cli::read_raw_volume(std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float", {91, 91, 91}, VoxelType::f32);
+  w.volume = cli::read_raw_volume(std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float", {91, 91, 91},
+                                  VoxelType::f32);
   cli::write_vdb({w}, dir_ / "wmag.vdb");
   report("wmag91.float", dir_ / "wmag.vdb", dir_, 3);
 }

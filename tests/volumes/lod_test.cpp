@@ -18,13 +18,15 @@ openvdb::FloatGrid::Ptr find_grid(const openvdb::GridPtrVec& grids, const std::s
 }
 
 // Same active voxels, transform and vdb_lod metadata as MultiResGrid's level k.
-void expect_like_vdb_lod(const openvdb::FloatGrid& ours, openvdb::tools::MultiResGrid<openvdb::FloatTree>& mrg,
-                         std::size_t k, const openvdb::FloatGrid& input) {
+void expect_like_vdb_lod(const openvdb::FloatGrid& ours,
+                         openvdb::tools::MultiResGrid<openvdb::FloatTree>& mrg, std::size_t k,
+                         const openvdb::FloatGrid& input) {
   const openvdb::FloatGrid::Ptr theirs = mrg.grid(k);
   const openvdb::Mat4d mo = ours.transform().baseMap()->getAffineMap()->getMat4();
   const openvdb::Mat4d mt = theirs->transform().baseMap()->getAffineMap()->getMat4();
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) EXPECT_NEAR(mo(r, c), mt(r, c), 1e-14) << "transform (" << r << "," << c << ") level " << k;
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(mo(r, c), mt(r, c), 1e-14) << "transform (" << r << "," << c << ") level " << k;
   EXPECT_NEAR(ours.voxelSize()[0], input.voxelSize()[0] * double(1 << k), 1e-12);
   EXPECT_EQ(ours.evalActiveVoxelBoundingBox(), theirs->evalActiveVoxelBoundingBox()) << "level " << k;
   EXPECT_EQ(ours.activeVoxelCount(), theirs->activeVoxelCount()) << "level " << k;
@@ -105,14 +107,16 @@ Expected expected_level(const openvdb::FloatGrid& grid, const Transform1D& t, in
   e.origin = openvdb::Coord(lo[0] >> k, lo[1] >> k, lo[2] >> k);
   e.n = n;
   for (std::size_t i = 0; i < v.size(); ++i)
-    v[i] = std::clamp(v[i] / (gain[0][i % n[0]] * gain[1][i / n[0] % n[1]] * gain[2][i / n[0] / n[1]]), vmin, vmax);
+    v[i] = std::clamp(v[i] / (gain[0][i % n[0]] * gain[1][i / n[0] % n[1]] * gain[2][i / n[0] / n[1]]), vmin,
+                      vmax);
   e.values = std::move(v);
   return e;
 }
 
 // Runs `lod --levels top` and checks every level against MultiResGrid and the expected values.
 void check_lod(const fs::path& in, const fs::path& out, const std::string& spec, int top) {
-  const CliResult r = run_cli({"lod", in.string(), out.string(), "--levels", std::to_string(top), "--transform", spec});
+  const CliResult r =
+      run_cli({"lod", in.string(), out.string(), "--levels", std::to_string(top), "--transform", spec});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const openvdb::GridPtrVec input = read_grids(in), output = read_grids(out);
   ASSERT_EQ(output.size(), input.size() * std::size_t(top + 1));
@@ -133,14 +137,17 @@ void check_lod(const fs::path& in, const fs::path& out, const std::string& spec,
       std::size_t checked = 0;
       auto acc = ours->getConstAccessor();
       for (auto it = openvdb::CoordBBox(e.origin, e.origin + openvdb::Coord(int(e.n[0]) - 1, int(e.n[1]) - 1,
-                                                                          int(e.n[2]) - 1)).begin(); it; ++it) {
+                                                                            int(e.n[2]) - 1))
+                         .begin();
+           it; ++it) {
         float value = 0;
         const double want = e.at(*it);
         if (acc.probeValue(*it, value)) {
           ASSERT_NEAR(value, want, tol * 8) << spec << " level " << k << " voxel " << *it;
           ++checked;
         } else if (grid->getGridClass() == openvdb::GRID_LEVEL_SET && std::abs(want) > 1e-6) {
-          ASSERT_EQ(value, want < 0 ? -std::abs(float(bg)) : std::abs(float(bg))) << "inactive sign at " << *it;
+          ASSERT_EQ(value, want < 0 ? -std::abs(float(bg)) : std::abs(float(bg)))
+              << "inactive sign at " << *it;
         }
       }
       EXPECT_EQ(checked, ours->activeVoxelCount());
@@ -178,8 +185,8 @@ TEST_F(VolumeTest, LodConstantFieldStaysConstant) {
   c->setName("c");
   write_grids({c}, dir_ / "c.vdb");
   for (const std::string spec : {"cdf97", "cdf53"}) {
-    const CliResult r = run_cli({"lod", (dir_ / "c.vdb").string(), (dir_ / "o.vdb").string(), "--levels", "2",
-                                 "--transform", spec});
+    const CliResult r = run_cli(
+        {"lod", (dir_ / "c.vdb").string(), (dir_ / "o.vdb").string(), "--levels", "2", "--transform", spec});
     ASSERT_EQ(r.exit_code, 0) << r.output;
     std::size_t checked = 0;
     for (const auto& base : read_grids(dir_ / "o.vdb")) {
@@ -205,15 +212,20 @@ TEST_F(VolumeTest, LodRangeAndNames) {
   auto b = random_grid<openvdb::FloatGrid>({0, 0, 0}, {9, 9, 9}, 0.5, 6);
   b->setName("temperature");
   write_grids({a, b}, dir_ / "in.vdb");
-  const CliResult r = run_cli({"lod", (dir_ / "in.vdb").string(), (dir_ / "o.vdb").string(), "--range", "1-3:2",
-                               "--name", "density"});
+  const CliResult r = run_cli({"lod", (dir_ / "in.vdb").string(), (dir_ / "o.vdb").string(), "--range",
+                               "1-3:2", "--name", "density"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::vector<std::string> names;
   for (const auto& g : read_grids(dir_ / "o.vdb")) names.push_back(g->getName());
   EXPECT_EQ(names, (std::vector<std::string>{"density_level_1", "density_level_3"}));
-  for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
-           {"--range", "0-1:0.5"}, {"--range", "3-1"}, {"--levels", "2", "--range", "0-2"}, {}, {"--levels", "99"},
-           {"--levels", "2", "--transform", "nope"}, {"--levels", "2", "--name", "missing"}}) {
+  for (const std::vector<std::string>& bad :
+       std::vector<std::vector<std::string>>{{"--range", "0-1:0.5"},
+                                             {"--range", "3-1"},
+                                             {"--levels", "2", "--range", "0-2"},
+                                             {},
+                                             {"--levels", "99"},
+                                             {"--levels", "2", "--transform", "nope"},
+                                             {"--levels", "2", "--name", "missing"}}) {
     std::vector<std::string> args{"lod", (dir_ / "in.vdb").string(), (dir_ / "bad.vdb").string()};
     args.insert(args.end(), bad.begin(), bad.end());
     const CliResult e = run_cli(args);

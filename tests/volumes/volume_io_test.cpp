@@ -39,12 +39,29 @@ TEST_F(VolumeTest, RawRoundTripEveryType) {
     for (std::size_t i = 0; i < n; ++i) {
       const auto r = static_cast<std::uint32_t>(rng());
       char* p = bytes.data() + i * bytes_per_voxel(type);
-      if (type == VoxelType::u8) { const std::uint8_t v = std::uint8_t(r); std::memcpy(p, &v, 1); expected[i] = v; }
-      if (type == VoxelType::u16) { const std::uint16_t v = std::uint16_t(r); std::memcpy(p, &v, 2); expected[i] = v; }
-      if (type == VoxelType::f32) { const float v = float(r) * 1e-7f - 200.0f; std::memcpy(p, &v, 4); expected[i] = v; }
-      if (type == VoxelType::f64) { const double v = double(r) * 1e-9 - 2.0; std::memcpy(p, &v, 8); expected[i] = v; }
+      if (type == VoxelType::u8) {
+        const std::uint8_t v = std::uint8_t(r);
+        std::memcpy(p, &v, 1);
+        expected[i] = v;
+      }
+      if (type == VoxelType::u16) {
+        const std::uint16_t v = std::uint16_t(r);
+        std::memcpy(p, &v, 2);
+        expected[i] = v;
+      }
+      if (type == VoxelType::f32) {
+        const float v = float(r) * 1e-7f - 200.0f;
+        std::memcpy(p, &v, 4);
+        expected[i] = v;
+      }
+      if (type == VoxelType::f64) {
+        const double v = double(r) * 1e-9 - 2.0;
+        std::memcpy(p, &v, 8);
+        expected[i] = v;
+      }
     }
-    const fs::path in = dir_ / ("in_" + to_string(type) + ".raw"), out = dir_ / ("out_" + to_string(type) + ".raw");
+    const fs::path in = dir_ / ("in_" + to_string(type) + ".raw"),
+                   out = dir_ / ("out_" + to_string(type) + ".raw");
     std::ofstream(in, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
     const Volume v = read_raw_volume(in, dims, type);
     EXPECT_EQ(v.dims, dims);
@@ -61,11 +78,13 @@ TEST_F(VolumeTest, RawIntegerWriteRoundsAndClamps) {
   Volume v({4, 1, 1}, VoxelType::u8);
   v.samples = {-3.0, 2.6, 300.0, std::numeric_limits<double>::quiet_NaN()};
   write_raw_volume(v, dir_ / "c.raw");
-  EXPECT_EQ(read_raw_volume(dir_ / "c.raw", {4, 1, 1}, VoxelType::u8).samples, (std::vector<double>{0, 3, 255, 0}));
+  EXPECT_EQ(read_raw_volume(dir_ / "c.raw", {4, 1, 1}, VoxelType::u8).samples,
+            (std::vector<double>{0, 3, 255, 0}));
 }
 
 TEST_F(VolumeTest, RawSharedSimulationField) {
-  const Volume v = read_raw_volume(std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float", {91, 91, 91}, VoxelType::f32);
+  const Volume v =
+      read_raw_volume(std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float", {91, 91, 91}, VoxelType::f32);
   const auto [lo, hi] = std::minmax_element(v.samples.begin(), v.samples.end());
   EXPECT_NEAR(*hi - *lo, 265.25, 0.01);  // the value range quoted in ../shared/data/README.md
 }
@@ -82,7 +101,8 @@ void expect_vdb_round_trip(const fs::path& in, const fs::path& out) {
     ASSERT_TRUE(ga && gb) << "grid type changed";
     EXPECT_EQ(ga->getName(), gb->getName());
     EXPECT_EQ(ga->getGridClass(), gb->getGridClass());
-    EXPECT_EQ(ga->transform().baseMap()->getAffineMap()->getMat4(), gb->transform().baseMap()->getAffineMap()->getMat4());
+    EXPECT_EQ(ga->transform().baseMap()->getAffineMap()->getMat4(),
+              gb->transform().baseMap()->getAffineMap()->getMat4());
     EXPECT_TRUE(same_voxels(*ga, *gb));
     for (auto it = ga->beginMeta(); it != ga->endMeta(); ++it) {
       if (it->first.rfind("file_", 0) == 0) continue;
@@ -167,7 +187,8 @@ TEST_F(VolumeTest, VdbDenseAndEmptyGrids) {
   dense.name = "dense";
   dense.origin = {-3, 4, 5};
   dense.volume = Volume({3, 4, 5}, VoxelType::f32);
-  for (std::size_t i = 0; i < dense.volume.count(); ++i) dense.volume.samples[i] = double(i % 3);  // zeros included
+  for (std::size_t i = 0; i < dense.volume.count(); ++i)
+    dense.volume.samples[i] = double(i % 3);  // zeros included
   VolumeGrid empty;
   empty.name = "empty";
   empty.volume.background = 2.0;
@@ -191,7 +212,8 @@ namespace {
 TEST_F(VolumeTest, ConvertVolumeCliRoundTrip) {
   const std::string wmag = std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float";
   const fs::path vdb = dir_ / "wmag.vdb", raw = dir_ / "wmag.raw";
-  CliResult r = run_cli({"convert-volume", wmag, vdb.string(), "--dims", "91,91,91", "--dtype", "f32", "--name", "wmag"});
+  CliResult r = run_cli(
+      {"convert-volume", wmag, vdb.string(), "--dims", "91,91,91", "--dtype", "f32", "--name", "wmag"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run_cli({"convert-volume", vdb.string(), raw.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;

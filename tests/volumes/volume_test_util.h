@@ -33,7 +33,9 @@ class VolumeTest : public ::testing::Test {
   fs::path dir_;
 };
 
-inline std::string testimage(const std::string& name) { return std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name; }
+inline std::string testimage(const std::string& name) {
+  return std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name;
+}
 
 // Every grid of an OpenVDB file, read with OpenVDB itself.
 inline openvdb::GridPtrVec read_grids(const fs::path& path) {
@@ -53,7 +55,8 @@ inline void write_grids(const openvdb::GridPtrVec& grids, const fs::path& path) 
 // A sparse grid of random values on an odd-sized box at an odd origin; about `fill` of the
 // voxels active, inactive ones holding either the background or a second value.
 template <class GridT>
-typename GridT::Ptr random_grid(const openvdb::Coord& lo, const openvdb::Coord& size, double fill, unsigned seed) {
+typename GridT::Ptr random_grid(const openvdb::Coord& lo, const openvdb::Coord& size, double fill,
+                                unsigned seed) {
   using V = typename GridT::ValueType;
   auto grid = GridT::create(V(0.25));
   std::mt19937 rng(seed);
@@ -64,8 +67,10 @@ typename GridT::Ptr random_grid(const openvdb::Coord& lo, const openvdb::Coord& 
       for (int x = 0; x < size[0]; ++x) {
         const openvdb::Coord ijk = lo + openvdb::Coord(x, y, z);
         const double c = coin(rng);
-        if (c < fill) acc.setValueOn(ijk, V(value(rng)));
-        else if (c < fill + 0.1) acc.setValueOff(ijk, V(-7.5));
+        if (c < fill)
+          acc.setValueOn(ijk, V(value(rng)));
+        else if (c < fill + 0.1)
+          acc.setValueOff(ijk, V(-7.5));
       }
   return grid;
 }
@@ -76,7 +81,8 @@ template <class GridT>
 ::testing::AssertionResult same_voxels(const GridT& a, const GridT& b, int margin = 2) {
   if (a.background() != b.background()) return ::testing::AssertionFailure() << "background differs";
   if (a.activeVoxelCount() != b.activeVoxelCount())
-    return ::testing::AssertionFailure() << "active voxel count " << a.activeVoxelCount() << " vs " << b.activeVoxelCount();
+    return ::testing::AssertionFailure()
+           << "active voxel count " << a.activeVoxelCount() << " vs " << b.activeVoxelCount();
   openvdb::CoordBBox box = a.evalActiveVoxelBoundingBox();
   box.expand(margin);
   auto ca = a.getConstAccessor();
@@ -85,8 +91,8 @@ template <class GridT>
     typename GridT::ValueType va, vb;
     const bool on_a = ca.probeValue(*it, va), on_b = cb.probeValue(*it, vb);
     if (on_a != on_b || va != vb)
-      return ::testing::AssertionFailure() << "voxel " << *it << ": " << va << (on_a ? " on" : " off") << " vs " << vb
-                                           << (on_b ? " on" : " off");
+      return ::testing::AssertionFailure() << "voxel " << *it << ": " << va << (on_a ? " on" : " off")
+                                           << " vs " << vb << (on_b ? " on" : " off");
   }
   return ::testing::AssertionSuccess();
 }
