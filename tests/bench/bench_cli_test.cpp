@@ -157,7 +157,8 @@ TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
   EXPECT_NE(summary.find("## Failed jobs"), std::string::npos);
   EXPECT_NE(summary.find("| cdf97 | n/a | n/a | n/a | n/a | n/a | n/a |"), std::string::npos) << summary;
   // The failed codec keeps its (empty) data block, so gnuplot's `index` still matches the key.
-  EXPECT_NE(read_text(out / "plots" / "crop.dat").find("# cdf97\n? ? ?\n\n\n# openjpeg\n"), std::string::npos);
+  EXPECT_NE(read_text(out / "plots" / "crop.dat").find("# cdf97\n? ? ?\n\n\n# openjpeg\n"),
+            std::string::npos);
 }
 
 TEST_F(BenchCli, BadArgumentsAreRejectedBeforeAnyWork) {
