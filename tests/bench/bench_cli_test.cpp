@@ -77,6 +77,8 @@ class BenchCli : public ::testing::Test {
 
 TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
   const fs::path out = dir_ / "rd";
+  fs::create_directories(out / "plots");
+  std::ofstream(out / "plots" / "stale.svg") << "<svg/>";  // from an earlier run on other images
   const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97,cdf53",
                             "--bpp", "0.5,2", "--jobs", "2", "--out", out.string()},
                            dir_ / "log.txt", environment_path());
@@ -111,6 +113,7 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
     EXPECT_NE(summary.find("![crop: " + plot + "](" + plot + ")"), std::string::npos) << plot;
     EXPECT_NE(read_text(out / plot).find("<svg"), std::string::npos) << plot;
   }
+  EXPECT_FALSE(fs::exists(out / "plots" / "stale.svg"));
   // The relative plot's data: OpenJPEG against itself is 0 dB at its own points.
   const std::string data = read_text(out / "plots" / "crop.dat");
   const auto block = data.find("# openjpeg\n");

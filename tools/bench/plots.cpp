@@ -114,6 +114,11 @@ std::vector<std::vector<fs::path>> draw_rd_plots(const std::vector<RdRecord>& re
   }
   const bool relative = std::find(codecs.begin(), codecs.end(), "openjpeg") != codecs.end();
   fs::create_directories(dir);
+  // Plots of images no longer in the run would otherwise survive a regeneration.
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string ext = entry.path().extension().string();
+    if (entry.is_regular_file() && (ext == ".svg" || ext == ".dat" || ext == ".gp")) fs::remove(entry.path());
+  }
   for (std::size_t i = 0; i < images.size(); ++i) {
     const std::string base = (dir / images[i]).string();
     const fs::path data = base + ".dat", script = base + ".gp", log = base + ".log";

@@ -13,7 +13,8 @@ namespace pupwave::bench {
 // block per codec), <dir>/<image>.gp (the script) and runs gnuplot to draw <dir>/<image>.svg
 // (PSNR against bpp) and, when "openjpeg" is among the codecs, <dir>/<image>-vs-openjpeg.svg
 // (PSNR minus OpenJPEG's, interpolated in log rate, against bpp: small gaps become visible).
-// Returns the SVG paths per image (empty where drawing failed). When gnuplot is not in
+// Earlier .svg, .dat and .gp files in `dir` are removed first, so `dir` holds this run's
+// plots only. Returns the SVG paths per image (empty where drawing failed). When gnuplot is not in
 // `search_path`, draws nothing and sets `note`; a failing gnuplot run also sets `note`.
 std::vector<std::vector<std::filesystem::path>> draw_rd_plots(const std::vector<RdRecord>& records,
                                                               const std::vector<std::string>& images,
