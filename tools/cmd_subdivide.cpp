@@ -108,8 +108,8 @@ void add_subdivide_command(CLI::App& app) {
   cmd->add_option("--scheme", opt->scheme, "k2, k3, kspl or k4pt")->capture_default_str();
   cmd->add_option("--levels", opt->levels, "refinement levels, 0..12")->capture_default_str();
   cmd->add_flag("--closed", opt->closed, "treat the points as a closed polygon");
-  cmd->add_option("--param", opt->parameterization,
-                  "uniform, or centripetal (k2 and k3 only)")->capture_default_str();
+  cmd->add_option("--param", opt->parameterization, "uniform, or centripetal (k2 and k3 only)")
+      ->capture_default_str();
   cmd->add_option("POINTS", opt->input, "input file, 'x y' per line")->required();
   cmd->add_option("-o,--output", opt->output, "output file (default: stdout)");
   cmd->callback([opt] { run_subdivide(*opt); });

@@ -37,9 +37,8 @@ std::string slurp(const fs::path& p) {
 class SubdivideCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pupwave_subdivide_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() / ("pupwave_subdivide_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -89,7 +88,8 @@ TEST_F(SubdivideCli, FourPointRuleOnStdout) {
   for (std::size_t i = 0; i < in_pts.size(); ++i) EXPECT_EQ(out[2 * i], in_pts[i]);
   for (std::size_t j = 1; j + 2 < in_pts.size(); ++j) {
     for (int c = 0; c < 2; ++c) {
-      const double rule = (-in_pts[j - 1][c] + 9 * in_pts[j][c] + 9 * in_pts[j + 1][c] - in_pts[j + 2][c]) / 16;
+      const double rule =
+          (-in_pts[j - 1][c] + 9 * in_pts[j][c] + 9 * in_pts[j + 1][c] - in_pts[j + 2][c]) / 16;
       EXPECT_NEAR(out[2 * j + 1][c], rule, 1e-13);
     }
   }

@@ -101,8 +101,8 @@ TEST(Stability, ConditionNumbers) {
     std::vector<Conditions> stable, raw;
     for (int levels = 1; levels <= 8; ++levels) {
       stable.push_back(condition_numbers(*make_kobbelt_transform_from_spec(scheme), n, levels));
-      raw.push_back(condition_numbers(
-          *make_kobbelt_transform_from_spec(std::string(scheme) + "-raw"), n, levels));
+      raw.push_back(
+          condition_numbers(*make_kobbelt_transform_from_spec(std::string(scheme) + "-raw"), n, levels));
     }
     for (const auto* rows : {&stable, &raw}) {
       std::printf("%-9s", (std::string(scheme) + (rows == &raw ? "-raw" : "")).c_str());
@@ -124,12 +124,34 @@ struct Counted {
   static inline long mul = 0, add = 0;
   Counted() = default;
   explicit Counted(double x) : v(x) {}
-  Counted operator*(Counted o) const { ++mul; return Counted(v * o.v); }
-  Counted operator+(Counted o) const { ++add; return Counted(v + o.v); }
-  Counted& operator+=(Counted o) { ++add; v += o.v; return *this; }
-  Counted& operator-=(Counted o) { ++add; v -= o.v; return *this; }
-  Counted& operator*=(Counted o) { ++mul; v *= o.v; return *this; }
-  Counted& operator/=(Counted o) { ++mul; v /= o.v; return *this; }
+  Counted operator*(Counted o) const {
+    ++mul;
+    return Counted(v * o.v);
+  }
+  Counted operator+(Counted o) const {
+    ++add;
+    return Counted(v + o.v);
+  }
+  Counted& operator+=(Counted o) {
+    ++add;
+    v += o.v;
+    return *this;
+  }
+  Counted& operator-=(Counted o) {
+    ++add;
+    v -= o.v;
+    return *this;
+  }
+  Counted& operator*=(Counted o) {
+    ++mul;
+    v *= o.v;
+    return *this;
+  }
+  Counted& operator/=(Counted o) {
+    ++mul;
+    v /= o.v;
+    return *this;
+  }
 };
 
 // Section 2.4: CR costs [6n mult, 4n add] for n unknowns in general, the complete scheme
@@ -146,10 +168,11 @@ TEST(Stability, OperationCounts) {
     const double cr_mul = double(Counted::mul) / unknowns, cr_add = double(Counted::add) / unknowns;
     kobbelt::lift<Counted>(el.b, even, b);  // the predict-odd box -B p_even
     const double all_mul = double(Counted::mul) / unknowns, all_add = double(Counted::add) / unknowns;
-    std::printf("%-5s CR: %.3f mult %.3f add per unknown; with predict-odd box: %.3f mult "
-                "%.3f add per unknown = %.3f mult %.3f add per fine sample\n",
-                std::string(kobbelt::scheme_name(s)).c_str(), cr_mul, cr_add, all_mul, all_add,
-                all_mul / 2, all_add / 2);
+    std::printf(
+        "%-5s CR: %.3f mult %.3f add per unknown; with predict-odd box: %.3f mult "
+        "%.3f add per unknown = %.3f mult %.3f add per fine sample\n",
+        std::string(kobbelt::scheme_name(s)).c_str(), cr_mul, cr_add, all_mul, all_add, all_mul / 2,
+        all_add / 2);
     EXPECT_LE(cr_mul, 6.0);  // the paper's bound for the general (non-Toeplitz) case
     EXPECT_LE(cr_add, 4.0);
     EXPECT_LE(all_mul, 10.0);

@@ -38,8 +38,7 @@ class NaturalSpline {
     }
     const auto i = std::min(static_cast<std::size_t>(x), n - 2);
     const double a = static_cast<double>(i + 1) - x, b = x - static_cast<double>(i);
-    return a * y_[i] + b * y_[i + 1] +
-           ((a * a * a - a) * m_[i] + (b * b * b - b) * m_[i + 1]) / 6.0;
+    return a * y_[i] + b * y_[i + 1] + ((a * a * a - a) * m_[i] + (b * b * b - b) * m_[i + 1]) / 6.0;
   }
 
  private:
@@ -47,8 +46,7 @@ class NaturalSpline {
 };
 
 // Synthesis with zero details = one subdivision step of the coarse samples.
-std::vector<double> subdivide_line(const std::string& body, std::span<const double> coarse,
-                                   std::size_t n) {
+std::vector<double> subdivide_line(const std::string& body, std::span<const double> coarse, std::size_t n) {
   std::vector<double> line(n, 0.0);
   std::copy(coarse.begin(), coarse.end(), line.begin());
   make_kobbelt_transform_from_spec(body)->synthesize(std::span<double>(line));
@@ -106,9 +104,12 @@ TEST(Subdivision, KsplRefinesSplineSamplesOnTheSameSpline) {
 // K3 quintics (inside); every scheme reproduces straight lines up to the ends.
 TEST(Subdivision, PolynomialReproduction) {
   const auto poly = [](double x, int degree) { return std::pow(x / 60.0 - 1.1, degree); };
-  struct Case { Scheme s; int degree; };
-  for (const Case cs : {Case{Scheme::k2, 3}, Case{Scheme::kspl, 3}, Case{Scheme::k4pt, 3},
-                        Case{Scheme::k3, 5}}) {
+  struct Case {
+    Scheme s;
+    int degree;
+  };
+  for (const Case cs :
+       {Case{Scheme::k2, 3}, Case{Scheme::kspl, 3}, Case{Scheme::k4pt, 3}, Case{Scheme::k3, 5}}) {
     std::vector<double> c(120), line(20);
     for (std::size_t i = 0; i < c.size(); ++i) c[i] = poly(static_cast<double>(i), cs.degree);
     for (std::size_t i = 0; i < line.size(); ++i) line[i] = poly(static_cast<double>(i), 1);
@@ -197,12 +198,9 @@ TEST(Subdivision, NonUniformK2AndK3) {
 TEST(Subdivision, RejectsBadInput) {
   const std::vector<Point2> one{{0, 0}}, two{{0, 0}, {1, 1}}, dup{{0, 0}, {0, 0}, {1, 1}};
   EXPECT_THROW(subdivide(one, {}), std::invalid_argument);
-  EXPECT_THROW(subdivide(two, {Scheme::k2, 13, false, Parameterization::uniform}),
-               std::invalid_argument);
-  EXPECT_THROW(subdivide(two, {Scheme::k2, -1, false, Parameterization::uniform}),
-               std::invalid_argument);
-  EXPECT_THROW(subdivide(dup, {Scheme::k2, 1, false, Parameterization::centripetal}),
-               std::invalid_argument);
+  EXPECT_THROW(subdivide(two, {Scheme::k2, 13, false, Parameterization::uniform}), std::invalid_argument);
+  EXPECT_THROW(subdivide(two, {Scheme::k2, -1, false, Parameterization::uniform}), std::invalid_argument);
+  EXPECT_THROW(subdivide(dup, {Scheme::k2, 1, false, Parameterization::centripetal}), std::invalid_argument);
   EXPECT_THROW(subdivide(two, {Scheme::kspl, 1, false, Parameterization::centripetal}),
                std::invalid_argument);
   const std::vector<Point2> nan{{0, 0}, {std::nan(""), 1}};

@@ -14,9 +14,9 @@ namespace pupwave::kobbelt {
 // A banded matrix acting between two wires: target[i] += sum_k coeff[i][k] source[i+offset+k].
 // Source indices outside the wire must carry zero coefficients (they are skipped).
 struct BandedStep {
-  std::size_t width = 0;            // taps per target sample
-  std::ptrdiff_t offset = 0;        // source index of tap 0 relative to the target index
-  std::vector<double> coeff;        // rows() * width coefficients, row-major
+  std::size_t width = 0;      // taps per target sample
+  std::ptrdiff_t offset = 0;  // source index of tap 0 relative to the target index
+  std::vector<double> coeff;  // rows() * width coefficients, row-major
   std::size_t rows() const { return width == 0 ? 0 : coeff.size() / width; }
   double& at(std::size_t row, std::size_t k) { return coeff[row * width + k]; }
   double at(std::size_t row, std::size_t k) const { return coeff[row * width + k]; }
@@ -35,8 +35,8 @@ T banded_sum(const BandedStep& s, std::span<const T> source, std::size_t i) {
   const auto first = static_cast<std::ptrdiff_t>(i) + s.offset;
   const auto k0 = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, -first));
   const auto avail = static_cast<std::ptrdiff_t>(source.size()) - first;
-  const auto k1 = static_cast<std::size_t>(
-      std::clamp<std::ptrdiff_t>(avail, 0, static_cast<std::ptrdiff_t>(s.width)));
+  const auto k1 =
+      static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(avail, 0, static_cast<std::ptrdiff_t>(s.width)));
   if (k0 >= k1) return T(0);
   const T* src = source.data() + first;  // first + k >= 0 for k >= k0
   T sum = T(s.at(i, k0)) * src[k0];      // w taps cost w multiplications, w - 1 additions

@@ -23,8 +23,8 @@ bool is_diagonal(const Tridiagonal& a) {
 
 double checked_pivot(double v, std::size_t row) {
   if (!std::isfinite(v) || v == 0.0) {
-    throw std::domain_error("cyclic reduction: zero or non-finite pivot at row " +
-                            std::to_string(row) + " (singular system)");
+    throw std::domain_error("cyclic reduction: zero or non-finite pivot at row " + std::to_string(row) +
+                            " (singular system)");
   }
   return v;
 }
@@ -34,8 +34,7 @@ double checked_pivot(double v, std::size_t row) {
 // - (super_j / diag_{j+1}) row_{j+1}. Fills the R b update and returns R A U_e.
 Tridiagonal reduce(const Tridiagonal& a, BandedStep& update) {
   const std::size_t m = a.size(), ne = (m + 1) / 2;
-  Tridiagonal r{std::vector<double>(ne, 0.0), std::vector<double>(ne, 0.0),
-                std::vector<double>(ne, 0.0)};
+  Tridiagonal r{std::vector<double>(ne, 0.0), std::vector<double>(ne, 0.0), std::vector<double>(ne, 0.0)};
   update = make_banded_step(ne, 2, -1);  // sources: odd wire k-1 and k
   for (std::size_t k = 0; k < ne; ++k) {
     const std::size_t j = 2 * k;

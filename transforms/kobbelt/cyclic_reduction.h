@@ -44,9 +44,9 @@ class CyclicReduction {
 
  private:
   struct Level {
-    std::size_t m = 0;          // unknowns at this level
-    BandedStep update;          // even[k] += R weights * odd[k-1], odd[k]      (R b)
-    BandedStep predict;         // odd[k]  -= off-diagonals * even[k], even[k+1] (Eq. 16)
+    std::size_t m = 0;             // unknowns at this level
+    BandedStep update;             // even[k] += R weights * odd[k-1], odd[k]      (R b)
+    BandedStep predict;            // odd[k]  -= off-diagonals * even[k], even[k+1] (Eq. 16)
     std::vector<double> inv_diag;  // odd[k] *= 1 / diagonal                    (Eq. 16)
   };
   std::size_t size_ = 0;

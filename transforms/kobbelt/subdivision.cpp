@@ -25,8 +25,8 @@ std::vector<double> odd_samples(const EulerLagrangeSystem& el, const CyclicReduc
 }
 
 // One refinement step of an open polyline with per-edge parameter steps dt (uniform: null).
-std::vector<Point2> refine_open_polyline(std::span<const Point2> p, std::span<const double> dt,
-                                         Scheme scheme, bool uniform) {
+std::vector<Point2> refine_open_polyline(std::span<const Point2> p, std::span<const double> dt, Scheme scheme,
+                                         bool uniform) {
   const std::size_t n = p.size(), fine = 2 * n - 1;
   EulerLagrangeSystem el;
   if (uniform) {
@@ -74,8 +74,8 @@ std::vector<double> edge_parameters(std::span<const Point2> p, bool closed, bool
     const Point2 a = p[i], b = p[(i + 1) % p.size()];
     dt[i] = std::sqrt(std::hypot(b.x - a.x, b.y - a.y));
     if (!(dt[i] > 0.0)) {
-      throw std::invalid_argument("centripetal parameterization: points " + std::to_string(i) +
-                                  " and " + std::to_string((i + 1) % p.size()) + " coincide");
+      throw std::invalid_argument("centripetal parameterization: points " + std::to_string(i) + " and " +
+                                  std::to_string((i + 1) % p.size()) + " coincide");
     }
   }
   return dt;

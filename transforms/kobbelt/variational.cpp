@@ -31,8 +31,7 @@ Row energy_row(std::size_t n, std::size_t order, const TermFn& beta_of, std::siz
 void store_row(const Row& row, std::size_t j, EulerLagrangeSystem& s) {
   const double diag = row[3];
   if (!(std::abs(diag) > 0.0) || !std::isfinite(diag)) {
-    throw std::domain_error("variational subdivision: degenerate Euler-Lagrange row " +
-                            std::to_string(j));
+    throw std::domain_error("variational subdivision: degenerate Euler-Lagrange row " + std::to_string(j));
   }
   s.a.sub[j] = row[1] / diag;
   s.a.diag[j] = 1.0;
@@ -44,8 +43,7 @@ EulerLagrangeSystem empty_system(std::size_t n) {
   const std::size_t no = n / 2;
   EulerLagrangeSystem s;
   s.n = n;
-  s.a = Tridiagonal{std::vector<double>(no, 0.0), std::vector<double>(no, 1.0),
-                    std::vector<double>(no, 0.0)};
+  s.a = Tridiagonal{std::vector<double>(no, 0.0), std::vector<double>(no, 1.0), std::vector<double>(no, 0.0)};
   s.b = make_banded_step(no, 4, -1);
   return s;
 }
@@ -72,9 +70,8 @@ std::vector<double> uniform_stencil(std::size_t order) {
 
 EulerLagrangeSystem uniform_energy_system(std::size_t order, std::size_t n) {
   const std::vector<double> st = uniform_stencil(order);
-  return from_energy(n, order, [&](std::size_t, std::span<double> beta) {
-    std::copy(st.begin(), st.end(), beta.begin());
-  });
+  return from_energy(
+      n, order, [&](std::size_t, std::span<double> beta) { std::copy(st.begin(), st.end(), beta.begin()); });
 }
 
 // K4pt rows. Inside, the Euler-Lagrange row of (3 + sqrt 3) K2 + K3 is 6 Delta^4 + Delta^6
@@ -108,8 +105,8 @@ Row four_point_row(std::size_t n, std::size_t c) {
 // e = (13 b + a - 8 m) / 6.
 Row spline_row(std::size_t n, std::size_t c) {
   const std::size_t last_knot = n % 2 == 1 ? n - 1 : n - 2;
-  if (c == n - 1) return {-1, 8, -13, 6, 0, 0, 0};       // beyond the last knot (n even)
-  if (c == 1) return {0, 0, 9, -24, 22, -8, 1};           // first segment, s''(t_0) = 0
+  if (c == n - 1) return {-1, 8, -13, 6, 0, 0, 0};           // beyond the last knot (n even)
+  if (c == 1) return {0, 0, 9, -24, 22, -8, 1};              // first segment, s''(t_0) = 0
   if (c + 1 == last_knot) return {1, -8, 22, -24, 9, 0, 0};  // last segment, mirrored
   return {-1, 8, -23, 32, -23, 8, -1};
 }
@@ -167,9 +164,8 @@ EulerLagrangeSystem euler_lagrange_system(Scheme scheme, std::span<const double>
   }
   const std::size_t n = t.size();
   const std::size_t order = n < 3 ? 1 : (scheme == Scheme::k2 || n < 5 ? 2 : 3);
-  return from_energy(n, order, [&](std::size_t i, std::span<double> beta) {
-    divided_difference(t, i, beta);
-  });
+  return from_energy(n, order,
+                     [&](std::size_t i, std::span<double> beta) { divided_difference(t, i, beta); });
 }
 
 std::vector<double> euler_lagrange_row(const EulerLagrangeSystem& s, std::size_t j) {
@@ -177,7 +173,7 @@ std::vector<double> euler_lagrange_row(const EulerLagrangeSystem& s, std::size_t
   const std::size_t no = s.a.size();
   if (j >= no) throw std::out_of_range("euler_lagrange_row: no such odd row");
   const auto c = static_cast<std::ptrdiff_t>(2 * j + 1), n = static_cast<std::ptrdiff_t>(s.n);
-  const double values[7] = {s.b.at(j, 0), j > 0 ? s.a.sub[j] : 0.0, s.b.at(j, 1), 1.0,
+  const double values[7] = {s.b.at(j, 0), j > 0 ? s.a.sub[j] : 0.0,        s.b.at(j, 1), 1.0,
                             s.b.at(j, 2), j + 1 < no ? s.a.super[j] : 0.0, s.b.at(j, 3)};
   for (std::ptrdiff_t k = 0; k < 7; ++k) {
     const std::ptrdiff_t pos = c - 3 + k;

@@ -4,9 +4,10 @@
 // The discrete Euler-Lagrange equations C p = 0 (Eq. 5/9), one row per odd sample, split
 // into A = C U_o (tridiagonal) and B = C U_e, so that A p_odd = -B p_even (Eq. 7).
 //
-// Finite open polygons use natural boundary conditions: the energy sums only the
-// differences that exist on the polygon, whatever its length (odd or even). docs/kobbelt.md
-// lists the resulting boundary rows.
+// Finite open polygons (odd and even lengths): K2 and K3 use natural boundary conditions,
+// the energy summing only the differences that exist; Kspl uses the natural spline's end
+// conditions (Appendix A), K4pt the polynomial through the existing stencil samples (its
+// energy boundary is badly conditioned). docs/kobbelt.md lists all boundary rows.
 
 #include <cstddef>
 #include <span>
