@@ -2,6 +2,7 @@
 // Adaptive probability of one binary context, shared by the range encoder and decoder.
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 
 namespace pupwave {
@@ -25,8 +26,7 @@ struct BitModel {
 
   void update(int bit) {
     // shift = 1 + floor(log2(count + 1)), capped: 1, 2, 2, 3, 3, 3, 3, 4, ...
-    int shift = 1;
-    for (unsigned c = count + 1u; c > 1u && shift < kMaxShift; c >>= 1) ++shift;
+    const int shift = std::min(int(std::bit_width(unsigned(count) + 1u)), kMaxShift);
     std::uint32_t p = p0;
     if (bit)
       p -= p >> shift;

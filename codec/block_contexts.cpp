@@ -25,17 +25,20 @@ constexpr int context_diagonal(int h, int v, int d) {
   return hv >= 2 ? 2 : hv;
 }
 
-using SigTable = std::array<std::array<std::array<std::array<std::uint8_t, 5>, 3>, 3>, 3>;
+// Context for every packed neighbour word (see BlockState::neighbours_), per orientation
+// table; diagonal counts above 4 (3-D blocks) saturate at 4.
+using SigTable = std::array<std::array<std::uint8_t, 256>, 3>;
 
 constexpr SigTable make_sig_table() {
   SigTable t{};
-  for (int h = 0; h < 3; ++h)
-    for (int v = 0; v < 3; ++v)
-      for (int d = 0; d < 5; ++d) {
-        t[0][h][v][d] = std::uint8_t(context_hv(h, v, d));
-        t[1][h][v][d] = std::uint8_t(context_hv(v, h, d));  // high-pass in x: vertical edges
-        t[2][h][v][d] = std::uint8_t(context_diagonal(h, v, d));
-      }
+  for (int word = 0; word < 256; ++word) {
+    const int h = std::min(word & 3, 2);
+    const int v = std::min((word >> 2) & 3, 2);
+    const int d = std::min(word >> 4, 4);
+    t[0][std::size_t(word)] = std::uint8_t(context_hv(h, v, d));
+    t[1][std::size_t(word)] = std::uint8_t(context_hv(v, h, d));  // high-pass in x: vertical edges
+    t[2][std::size_t(word)] = std::uint8_t(context_diagonal(h, v, d));
+  }
   return t;
 }
 
@@ -51,17 +54,11 @@ BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
   stride_y_ = size[0] + 2;
   stride_z_ = stride_y_ * (size[1] + 2);
   flags_.assign(stride_z_ * (size[2] + 2), 0);
+  neighbours_.assign(flags_.size(), 0);
+  sig_table_ = kSigTable[std::size_t(table_)].data();
   // Most coefficients of a block stay insignificant with no significant neighbour.
   models[0] = BitModel(std::uint16_t(kProbabilityOne * 15 / 16));
   models[kRunContext] = BitModel(std::uint16_t(kProbabilityOne * 7 / 8));
-}
-
-int BlockState::significance_context(std::size_t p) const {
-  const int h = sig(p - 1) + sig(p + 1);
-  const int v = sig(p - stride_y_) + sig(p + stride_y_);
-  int d = sig(p - stride_y_ - 1) + sig(p - stride_y_ + 1) + sig(p + stride_y_ - 1) + sig(p + stride_y_ + 1);
-  if (volume_) d = std::min(4, d + sig(p - stride_z_) + sig(p + stride_z_));
-  return kSigTable[std::size_t(table_)][std::size_t(h)][std::size_t(v)][std::size_t(d)];
 }
 
 std::pair<int, int> BlockState::sign_context(std::size_t p) const {
@@ -75,19 +72,6 @@ std::pair<int, int> BlockState::sign_context(std::size_t p) const {
   const int vv = flip ? -v : v;
   const int ctx = hh == 0 ? (vv == 0 ? 0 : 1) : 3 + vv;  // (0,0) (0,1) (1,-1) (1,0) (1,1)
   return {kSignContext0 + ctx, flip};
-}
-
-bool BlockState::isolated(std::size_t p) const {
-  const std::size_t sy = stride_y_;
-  bool any = sig(p - 1) || sig(p + 1) || sig(p - sy) || sig(p + sy) || sig(p - sy - 1) || sig(p - sy + 1) ||
-             sig(p + sy - 1) || sig(p + sy + 1);
-  if (volume_) any = any || sig(p - stride_z_) || sig(p + stride_z_);
-  return !any;
-}
-
-int BlockState::refinement_context(std::size_t p) const {
-  if (flags_[p] & kRefined) return kRefineContext0 + 2;
-  return kRefineContext0 + (isolated(p) ? 0 : 1);
 }
 
 void BlockState::clear_visited() {

@@ -50,12 +50,36 @@ class BlockState {
   std::uint8_t& flags(std::size_t p) { return flags_[p]; }
   std::uint8_t flags(std::size_t p) const { return flags_[p]; }
 
-  int significance_context(std::size_t p) const;
+  // Significance context from the packed neighbour counts (JPEG 2000 Table D.1).
+  int significance_context(std::size_t p) const { return sig_table_[neighbours_[p]]; }
   // Sign context number and the bit the sign is XORed with before coding.
   std::pair<int, int> sign_context(std::size_t p) const;
-  int refinement_context(std::size_t p) const;
+  int refinement_context(std::size_t p) const {
+    if (flags_[p] & kRefined) return kRefineContext0 + 2;
+    return kRefineContext0 + (isolated(p) ? 0 : 1);
+  }
   // True when no neighbour is significant (the run mode and the first refinement ask this).
-  bool isolated(std::size_t p) const;
+  bool isolated(std::size_t p) const { return neighbours_[p] == 0; }
+
+  // Marks coefficient p significant with the given sign and counts it in its neighbours'
+  // packed words, so contexts are one table look-up instead of 8 (or 10) flag reads.
+  void make_significant(std::size_t p, bool negative) {
+    flags_[p] = std::uint8_t(flags_[p] | kSignificant | (negative ? kNegative : 0));
+    std::uint8_t* n = neighbours_.data() + p;
+    const std::size_t sy = stride_y_;
+    n[-1] = std::uint8_t(n[-1] + kHorizontalUnit);
+    n[1] = std::uint8_t(n[1] + kHorizontalUnit);
+    *(n - sy) = std::uint8_t(*(n - sy) + kVerticalUnit);
+    *(n + sy) = std::uint8_t(*(n + sy) + kVerticalUnit);
+    *(n - sy - 1) = std::uint8_t(*(n - sy - 1) + kDiagonalUnit);
+    *(n - sy + 1) = std::uint8_t(*(n - sy + 1) + kDiagonalUnit);
+    *(n + sy - 1) = std::uint8_t(*(n + sy - 1) + kDiagonalUnit);
+    *(n + sy + 1) = std::uint8_t(*(n + sy + 1) + kDiagonalUnit);
+    if (volume_) {  // neighbours across slices count with the diagonal ones
+      *(n - stride_z_) = std::uint8_t(*(n - stride_z_) + kDiagonalUnit);
+      *(n + stride_z_) = std::uint8_t(*(n + stride_z_) + kDiagonalUnit);
+    }
+  }
 
   // Clears kVisited on every coefficient (end of each cleanup pass).
   void clear_visited();
@@ -73,6 +97,14 @@ class BlockState {
   std::size_t stride_y_ = 0;
   std::size_t stride_z_ = 0;
   std::vector<std::uint8_t> flags_;
+  // Per coefficient, counts of significant neighbours packed as h (bits 0-1, 0..2),
+  // v (bits 2-3, 0..2) and diagonal plus across-slice (bits 4-7, 0..6).
+  std::vector<std::uint8_t> neighbours_;
+  const std::uint8_t* sig_table_ = nullptr;  // context by packed neighbour word, per orientation
+
+  static constexpr std::uint8_t kHorizontalUnit = 1;
+  static constexpr std::uint8_t kVerticalUnit = 4;
+  static constexpr std::uint8_t kDiagonalUnit = 16;
 };
 
 // Calls visit(x, y, z, rows) for every stripe column: `rows` (1..4) coefficients starting at

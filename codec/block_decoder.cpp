@@ -46,7 +46,7 @@ class BitPlaneDecoder {
   void become_significant(std::size_t f, std::size_t i, int p) {
     const auto [ctx, flip] = state_.sign_context(f);
     const bool negative = (rc_.decode(state_.models[std::size_t(ctx)]) ^ flip) != 0;
-    state_.flags(f) = std::uint8_t(state_.flags(f) | kSignificant | (negative ? kNegative : 0));
+    state_.make_significant(f, negative);
     const std::int32_t bit = std::int32_t(1u << p);
     out_.known[i] = negative ? -bit : bit;
     out_.low_plane[i] = std::uint8_t(p);

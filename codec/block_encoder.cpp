@@ -72,7 +72,7 @@ class BitPlaneEncoder {
   void become_significant(std::size_t p_flag, std::size_t i, int p) {
     const auto [ctx, flip] = state_.sign_context(p_flag);
     rc_.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
-    state_.flags(p_flag) = std::uint8_t(state_.flags(p_flag) | kSignificant | (negative_[i] ? kNegative : 0));
+    state_.make_significant(p_flag, negative_[i] != 0);
     add_gain(m_[i], 0.0, reconstruction(q_[i], p));
   }
 

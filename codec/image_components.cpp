@@ -7,15 +7,15 @@
 namespace pupwave {
 namespace {
 
-// Copies the low-corner region of a plane into a compact one (rows of size[0]).
+// Compacts the low-corner region of a plane in place (rows of size[0]); each row moves to
+// an earlier position, so a forward copy never overwrites rows not yet moved.
 template <class T>
-std::vector<T> crop(const std::vector<T>& plane, const Extent& dims, const Extent& size) {
-  if (size == dims) return plane;
-  std::vector<T> out(size[0] * size[1]);
+void crop_in_place(std::vector<T>& plane, const Extent& dims, const Extent& size) {
+  if (size == dims) return;
   for (std::size_t y = 0; y < size[1]; ++y)
-    std::copy_n(plane.begin() + std::ptrdiff_t(y * dims[0]), size[0],
-                out.begin() + std::ptrdiff_t(y * size[0]));
-  return out;
+    std::copy_n(plane.begin() + std::ptrdiff_t(y * dims[0]), size[0], plane.begin() + std::ptrdiff_t(y * size[0]));
+  plane.resize(size[0] * size[1]);
+  plane.shrink_to_fit();
 }
 
 // Rounds and clamps decoded values to what the sample type can hold.
@@ -23,6 +23,20 @@ float finish_sample(double v, SampleType type) {
   if (is_integer(type)) return float(std::clamp(std::nearbyint(v), 0.0, nominal_max(type)));
   if (type == SampleType::f16) return float(std::clamp(v, -65504.0, 65504.0));
   return float(v);
+}
+
+// Writes component planes to the output image, freeing each plane once written so the
+// decoder never holds more than one full copy of the image besides the output.
+template <class T>
+void write_planes(std::vector<std::vector<T>>& planes, Image& out) {
+  const double shift = level_shift(out.type);
+  const std::size_t n = out.plane_size();
+  for (std::size_t c = 0; c < planes.size(); ++c) {
+    float* dst = out.plane(c);
+    const T* src = planes[c].data();
+    for (std::size_t i = 0; i < n; ++i) dst[i] = finish_sample(double(src[i]) + shift, out.type);
+    std::vector<T>().swap(planes[c]);
+  }
 }
 
 }  // namespace
@@ -82,30 +96,23 @@ double coarse_gain(const Transform1D& t, const Extent& dims, int level) {
 
 Image image_from_components(std::vector<std::vector<float>>& planes, const Extent& dims, const Extent& size,
                             SampleType type, ColourTransform colour, double gain) {
-  Image out(size[0], size[1], planes.size(), type);
-  const std::size_t n = out.plane_size();
-  std::vector<std::vector<float>> cropped;
   for (auto& p : planes) {
-    cropped.push_back(crop(p, dims, size));
-    for (float& v : cropped.back()) v = float(double(v) / gain);
+    crop_in_place(p, dims, size);
+    if (gain != 1.0)  // dividing by exactly 1 would change no value
+      for (float& v : p) v = float(double(v) / gain);
   }
-  if (colour == ColourTransform::ict) inverse_ict(cropped[0].data(), cropped[1].data(), cropped[2].data(), n);
-  const double shift = level_shift(type);
-  for (std::size_t c = 0; c < planes.size(); ++c)
-    for (std::size_t i = 0; i < n; ++i) out.plane(c)[i] = finish_sample(double(cropped[c][i]) + shift, type);
+  Image out(size[0], size[1], planes.size(), type);
+  if (colour == ColourTransform::ict) inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
+  write_planes(planes, out);
   return out;
 }
 
 Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims,
                             const Extent& size, SampleType type, ColourTransform colour) {
+  for (auto& p : planes) crop_in_place(p, dims, size);
   Image out(size[0], size[1], planes.size(), type);
-  const std::size_t n = out.plane_size();
-  std::vector<std::vector<std::int32_t>> cropped;
-  for (auto& p : planes) cropped.push_back(crop(p, dims, size));
-  if (colour == ColourTransform::rct) inverse_rct(cropped[0].data(), cropped[1].data(), cropped[2].data(), n);
-  const double shift = level_shift(type);
-  for (std::size_t c = 0; c < planes.size(); ++c)
-    for (std::size_t i = 0; i < n; ++i) out.plane(c)[i] = finish_sample(double(cropped[c][i]) + shift, type);
+  if (colour == ColourTransform::rct) inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
+  write_planes(planes, out);
   return out;
 }
 

@@ -32,6 +32,7 @@ double coarse_gain(const Transform1D& t, const Extent& dims, int level);
 
 // Builds the output image from the low-corner `size` region of component planes laid out
 // over `dims`: divide by `gain`, undo colour and level shift, round and clamp to the type.
+// Consumes `planes` (they are transformed in place and freed as the image is written).
 Image image_from_components(std::vector<std::vector<float>>& planes, const Extent& dims, const Extent& size,
                             SampleType type, ColourTransform colour, double gain);
 Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims,

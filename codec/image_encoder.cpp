@@ -125,6 +125,7 @@ EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
     const CodedImage coded = code_blocks(plan);
     const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
     if (fits_all && round < kMaxStepRefinements) continue;
+    release_coefficients(plan);  // no further coding round: free them before measuring PSNR
     auto passes = allocate_by_slope(coded.hulls, true, [&](const std::vector<int>& p) {
       return double(stream_size(plan, coded, p)) <= budget;
     });
@@ -171,11 +172,13 @@ EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
   switch (options.mode) {
     case RateMode::lossless: {
       const CodedImage coded = code_blocks(plan);
+      release_coefficients(plan);
       return finish(image, plan, build(plan, coded, all_passes(coded)), 1.0);
     }
     case RateMode::step: {
       set_base_step(plan, options.target);
       const CodedImage coded = code_blocks(plan);
+      release_coefficients(plan);
       return finish(image, plan, build(plan, coded, all_passes(coded)), options.target);
     }
     case RateMode::bpp: return encode_for_size(image, plan, options.target);

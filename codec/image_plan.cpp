@@ -93,6 +93,11 @@ void set_base_step(ImagePlan& plan, double base_step) {
   plan.header.steps = subband_steps(base_step, plan.norms, plan.weights);
 }
 
+void release_coefficients(ImagePlan& plan) {
+  std::vector<std::vector<float>>().swap(plan.coef);
+  std::vector<std::vector<std::int32_t>>().swap(plan.icoef);
+}
+
 void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
                     std::vector<std::uint8_t>& negative) {
   const CodeBlock& b = plan.blocks[i];

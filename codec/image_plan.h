@@ -33,6 +33,9 @@ ImagePlan plan_image(const Image& image, const EncodeOptions& options);
 // Sets the quantizer steps of every (component, band) from a base step.
 void set_base_step(ImagePlan& plan, double base_step);
 
+// Frees the transformed components once every block has been coded for the last time.
+void release_coefficients(ImagePlan& plan);
+
 // Index-unit magnitudes and signs of block i under the plan's steps.
 void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
                     std::vector<std::uint8_t>& negative);
