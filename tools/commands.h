@@ -15,6 +15,7 @@ void add_bench_command(CLI::App& app);
 void add_generate_volume_command(CLI::App& app);
 void add_lod_command(CLI::App& app);
 void add_convert_volume_command(CLI::App& app);
+void add_filters_command(CLI::App& app);
 void add_subdivide_command(CLI::App& app);
 
 }  // namespace pupwave::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   pupwave::cli::add_generate_volume_command(app);
   pupwave::cli::add_lod_command(app);
   pupwave::cli::add_convert_volume_command(app);
+  pupwave::cli::add_filters_command(app);
   pupwave::cli::add_subdivide_command(app);
   try {
     app.parse(argc, argv);

@@ -140,15 +140,15 @@ TEST(PupsTransform, ConstantLineGivesThatConstantAsCoarseBand) {
   }
 }
 
-// Bounds measured over N = 1..300, 511, 512, 513, 1023 (docs/pups.md), with ~20% margin.
+// Largest values measured over N = 1..300, 511, 512, 513, 1023 (docs/pups.md) plus ~20%.
 struct CondBound {
   const char* preset;
   double one_norm, two_norm;
 };
 constexpr CondBound kCondBounds[] = {
-    {"chaikin", 6.5, 3.4},       {"cubic-bspline", 16, 8.2},      {"cinpact-c3", 230, 56},
-    {"cinpact-c3-ext", 250, 50}, {"cinpact-interp-c5", 8.5, 4.2}, {"cinpact-interp-c5-ext", 11, 3.7},
-    {"poly10", 14, 7.4},
+    {"chaikin", 7.0, 4.2},      {"cubic-bspline", 17, 8.0},      {"cinpact-c3", 105, 55},
+    {"cinpact-c3-ext", 92, 47}, {"cinpact-interp-c5", 9.3, 4.1}, {"cinpact-interp-c5-ext", 8.8, 3.6},
+    {"poly10", 15.1, 7.2},
 };
 
 TEST(PupsTransform, ConditionNumberIsBounded) {
