@@ -4,6 +4,8 @@
 #include <cmath>
 #include <span>
 
+#include "codec/metrics.h"
+
 namespace pupwave {
 namespace {
 
@@ -37,6 +39,25 @@ void write_planes(std::vector<std::vector<T>>& planes, Image& out) {
     for (std::size_t i = 0; i < n; ++i) dst[i] = finish_sample(double(src[i]) + shift, out.type);
     std::vector<T>().swap(planes[c]);
   }
+}
+
+// Squared error of every sample against the reference, summed in compare_images' order
+// (channel by channel, sample by sample) so the PSNR is the same to the last bit.
+template <class T>
+double components_psnr_after_colour(const Image& reference, const std::vector<std::vector<T>>& planes) {
+  const double shift = level_shift(reference.type);
+  const std::size_t n = reference.plane_size();
+  double sum_sq = 0.0;
+  for (std::size_t c = 0; c < planes.size(); ++c) {
+    const float* a = reference.plane(c);
+    const T* b = planes[c].data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double d = double(a[i]) - double(finish_sample(double(b[i]) + shift, reference.type));
+      sum_sq += d * d;
+    }
+  }
+  const std::size_t count = n * planes.size();
+  return psnr_from_mse(count ? sum_sq / double(count) : 0.0, psnr_peak(reference));
 }
 
 }  // namespace
@@ -114,6 +135,19 @@ Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, cons
   if (colour == ColourTransform::rct) inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
   write_planes(planes, out);
   return out;
+}
+
+double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes, ColourTransform colour) {
+  if (colour == ColourTransform::ict)
+    inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
+  return components_psnr_after_colour(reference, planes);
+}
+
+double components_psnr(const Image& reference, std::vector<std::vector<std::int32_t>>& planes,
+                       ColourTransform colour) {
+  if (colour == ColourTransform::rct)
+    inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
+  return components_psnr_after_colour(reference, planes);
 }
 
 }  // namespace pupwave

@@ -38,4 +38,12 @@ Image image_from_components(std::vector<std::vector<float>>& planes, const Exten
 Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims,
                             const Extent& size, SampleType type, ColourTransform colour);
 
+// PSNR (all channels, as compare_images(reference, decoded).overall) of full-resolution
+// component planes laid out over the reference's extent, without building the decoded
+// image: undoes colour and level shift, rounds and clamps like image_from_components.
+// Consumes `planes` (the colour transform is undone in place).
+double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes, ColourTransform colour);
+double components_psnr(const Image& reference, std::vector<std::vector<std::int32_t>>& planes,
+                       ColourTransform colour);
+
 }  // namespace pupwave

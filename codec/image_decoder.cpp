@@ -8,6 +8,7 @@
 #include "codec/error.h"
 #include "codec/image_codec.h"
 #include "codec/image_components.h"
+#include "codec/image_plan.h"
 #include "codec/parallel.h"
 #include "codec/zstd_blocks.h"
 #include "transforms/separable.h"
@@ -73,6 +74,25 @@ Image decode_image(std::span<const std::uint8_t> bytes, int level, unsigned thre
   auto planes = decode_planes<float>(s, threads);
   for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level);
   return image_from_components(planes, h.dims, size, h.type, h.colour, coarse_gain(*t, h.dims, level));
+}
+
+// The encoder's check of a stream: decodes it at full resolution and compares it with the
+// input without building the decoded image.
+double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads) {
+  const ParsedStream s = parse_container(bytes, 0);
+  const StreamHeader& h = s.header;
+  require_stream(h.dims[2] == 1, "a volume stream, not an image");
+  if (h.dims[0] != image.width || h.dims[1] != image.height || h.channels != image.channels || h.type != image.type)
+    throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
+  const auto t = make_transform(h.spec);
+  if (h.reversible) {
+    auto planes = decode_planes<std::int32_t>(s, threads);
+    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0);
+    return components_psnr(image, planes, h.colour);
+  }
+  auto planes = decode_planes<float>(s, threads);
+  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0);
+  return components_psnr(image, planes, h.colour);
 }
 
 }  // namespace pupwave

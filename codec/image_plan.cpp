@@ -127,8 +127,4 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
   return write_container(plan.header, entries, data);
 }
 
-double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads) {
-  return compare_images(image, decode_image(bytes, 0, threads)).overall.psnr;
-}
-
 }  // namespace pupwave
