@@ -1,16 +1,22 @@
-// `pupwave compress IN OUT.pw`: read an image, encode it, write the stream atomically and
-// report size, rate, PSNR against the input and time.
+// `pupwave compress IN OUT.pw`: read an image (or a volume: a .vdb file, or a raw file given
+// --dims and --dtype), encode it, write the stream atomically and report size, rate, quality
+// against the input and time.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "codec/image_codec.h"
+#include "codec/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/volume_io.h"
 #include "transforms/separable.h"
 
 namespace pupwave::cli {
@@ -25,7 +31,89 @@ struct CompressOptions {
   bool lossless = false;
   EntropyCoder entropy = EntropyCoder::ebcot;
   unsigned threads = 0;
+  // volumes
+  std::string dims, dtype, grid;
+  double bpv = 0.0, max_error = 0.0, max_error_rel = 0.0;
+  std::size_t brick = 64;
 };
+
+bool is_volume_input(const CompressOptions& opt) { return !opt.dims.empty() || is_vdb_path(opt.input); }
+
+std::vector<VolumeGrid> read_volume_input(const CompressOptions& opt) {
+  if (is_vdb_path(opt.input)) {
+    if (!opt.dims.empty() || !opt.dtype.empty()) throw std::invalid_argument("--dims/--dtype apply to raw input only");
+    auto grids = read_vdb(opt.input, opt.grid);
+    if (grids.empty()) throw std::runtime_error(opt.input + " holds no float or double grid");
+    return grids;
+  }
+  if (opt.dtype.empty()) throw std::invalid_argument("raw volume input needs --dtype u8|u16|f32|f64 with --dims");
+  if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to .vdb input only");
+  VolumeGrid g;
+  g.name = std::filesystem::path(opt.input).stem().string();
+  g.volume = read_raw_volume(opt.input, parse_dims(opt.dims), parse_voxel_type(opt.dtype));
+  return {std::move(g)};
+}
+
+// Largest value range (max - min of the active voxels) of the grids, for --max-error-rel.
+double largest_range(const std::vector<VolumeGrid>& grids) {
+  double range = 0.0;
+  for (const VolumeGrid& g : grids) {
+    double lo = 0.0, hi = 0.0;
+    bool any = false;
+    for (std::size_t i = 0; i < g.volume.count(); ++i)
+      if (g.volume.is_active(i)) {
+        lo = any ? std::min(lo, g.volume.samples[i]) : g.volume.samples[i];
+        hi = any ? std::max(hi, g.volume.samples[i]) : g.volume.samples[i];
+        any = true;
+      }
+    range = std::max(range, hi - lo);
+  }
+  return range;
+}
+
+// Volume rate flags to the library's mode. Default: lossless for integer volumes, otherwise
+// a point-wise bound of 1e-3 of the value range.
+void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& grids, VolumeEncodeOptions& enc) {
+  if (opt.bpp > 0.0) throw std::invalid_argument("use --bpv (bits per voxel) for volumes, not --bpp");
+  bool all_integer = true;
+  for (const VolumeGrid& g : grids) all_integer = all_integer && is_integer(g.volume.type);
+  const bool none = !opt.lossless && opt.bpv <= 0.0 && opt.psnr <= 0.0 && opt.step <= 0.0 && opt.max_error <= 0.0 &&
+                    opt.max_error_rel <= 0.0;
+  if (opt.lossless || (none && all_integer)) {
+    enc.mode = VolumeRateMode::lossless;
+    if (opt.transform.empty()) enc.transform = "cdf53";
+  } else if (opt.bpv > 0.0) {
+    enc.mode = VolumeRateMode::bpv;
+    enc.target = opt.bpv;
+  } else if (opt.psnr > 0.0) {
+    enc.mode = VolumeRateMode::psnr;
+    enc.target = opt.psnr;
+  } else if (opt.step > 0.0) {
+    enc.mode = VolumeRateMode::step;
+    enc.target = opt.step;
+  } else {
+    enc.mode = VolumeRateMode::max_error;
+    const double range = largest_range(grids);
+    const double rel = opt.max_error_rel > 0.0 ? opt.max_error_rel : 1e-3;
+    enc.target = opt.max_error > 0.0 ? opt.max_error : rel * (range > 0.0 ? range : 1.0);
+  }
+}
+
+void run_compress_volume(const CompressOptions& opt) {
+  const auto grids = read_volume_input(opt);
+  VolumeEncodeOptions enc;
+  if (!opt.transform.empty()) enc.transform = opt.transform;
+  enc.levels = opt.levels;
+  enc.brick = opt.brick;
+  enc.threads = opt.threads;
+  set_volume_rate(opt, grids, enc);
+  const auto start = std::chrono::steady_clock::now();
+  const VolumeEncodeResult r = encode_volumes(grids, enc);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_bytes_atomically(opt.output, r.bytes);
+  std::printf("%s: %zu bytes, %.4f bpv, max error %.6g, PSNR %.3f dB, %zu outlier(s), %.3f s (%zu grid(s))\n",
+              opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds, grids.size());
+}
 
 // Turns the mutually exclusive rate flags into the library's mode (default: --psnr 40).
 void set_rate(const CompressOptions& opt, EncodeOptions& enc) {
@@ -46,6 +134,9 @@ void set_rate(const CompressOptions& opt, EncodeOptions& enc) {
 
 void run_compress(const CompressOptions& opt) {
   check_output_path(opt.output);
+  if (is_volume_input(opt)) return run_compress_volume(opt);
+  if (opt.bpv > 0.0 || opt.max_error > 0.0 || opt.max_error_rel > 0.0 || !opt.dtype.empty() || !opt.grid.empty())
+    throw std::invalid_argument("--bpv, --max-error, --max-error-rel, --dtype and --grid apply to volumes only");
   const Image image = read_image(opt.input);
   EncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
@@ -67,8 +158,11 @@ void run_compress(const CompressOptions& opt) {
 
 void add_compress_command(CLI::App& app) {
   auto opt = std::make_shared<CompressOptions>();
-  auto* cmd = app.add_subcommand("compress", "Compress an image to a .pw stream (default: cdf97, --psnr 40)");
-  cmd->add_option("IN", opt->input, "input image (PNG, TIFF, EXR, PNM, ...)")
+  auto* cmd = app.add_subcommand("compress",
+                                 "Compress an image (default: cdf97, --psnr 40) or a volume (.vdb, or raw with "
+                                 "--dims/--dtype; default: lossless for u8/u16, --max-error-rel 1e-3 for float) "
+                                 "to a .pw stream");
+  cmd->add_option("IN", opt->input, "input image (PNG, TIFF, EXR, PNM, ...) or volume (.vdb, raw)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("OUT", opt->output, "output .pw file")->required();
@@ -82,9 +176,25 @@ void add_compress_command(CLI::App& app) {
   auto* step = cmd->add_option("--step", opt->step, "fixed quantizer base step (sample units)")
                    ->check(CLI::PositiveNumber);
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
-  bpp->excludes(psnr, step, lossless);
-  psnr->excludes(step, lossless);
-  step->excludes(lossless);
+  auto* bpv = cmd->add_option("--bpv", opt->bpv, "volumes: target bits per voxel (whole file)")
+                  ->check(CLI::PositiveNumber);
+  auto* max_error = cmd->add_option("--max-error", opt->max_error,
+                                    "float volumes: absolute point-wise error bound E, guaranteed on every active voxel")
+                        ->check(CLI::PositiveNumber);
+  auto* max_error_rel =
+      cmd->add_option("--max-error-rel", opt->max_error_rel,
+                      "float volumes: the bound as a fraction R of the value range (E = R * (max - min))")
+          ->check(CLI::PositiveNumber);
+  bpp->excludes(psnr, step, lossless, bpv, max_error, max_error_rel);
+  psnr->excludes(step, lossless, bpv, max_error, max_error_rel);
+  step->excludes(lossless, bpv, max_error, max_error_rel);
+  lossless->excludes(bpv, max_error, max_error_rel);
+  bpv->excludes(max_error, max_error_rel);
+  max_error->excludes(max_error_rel);
+  cmd->add_option("--dims", opt->dims, "raw volume input: X,Y,Z (x fastest)");
+  cmd->add_option("--dtype", opt->dtype, "raw volume input: u8, u16, f32 or f64 (little endian)");
+  cmd->add_option("--grid", opt->grid, ".vdb input: compress only the grids of this name");
+  cmd->add_option("--brick", opt->brick, "volumes: brick edge (power of two, 8..256, default 64)");
   const std::map<std::string, EntropyCoder> coders{{"ebcot", EntropyCoder::ebcot},
                                                    {"zstd", EntropyCoder::zstd}};
   cmd->add_option("--entropy", opt->entropy, "entropy coder: ebcot (bit-plane, default) or zstd")

@@ -1,14 +1,18 @@
 // `pupwave decompress IN.pw OUT`: decode a stream (optionally at reduced resolution) and
-// write the image atomically in the format OUT's extension names.
+// write the image atomically in the format OUT's extension names; a volume stream is written
+// as .vdb (all grids) or as a dense raw file of its stored type.
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "codec/image_codec.h"
+#include "codec/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/volume_io.h"
 #include "transforms/separable.h"
 
 namespace pupwave::cli {
@@ -19,12 +23,38 @@ struct DecompressOptions {
   std::string output;
   int level = 0;
   unsigned threads = 0;
+  std::string grid;
 };
+
+// Grids of a volume stream to .vdb, or one grid (--grid, or the only one) to raw.
+void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions& opt) {
+  if (!opt.grid.empty()) {
+    std::erase_if(grids, [&](const VolumeGrid& g) { return g.name != opt.grid; });
+    if (grids.empty()) throw std::invalid_argument("the stream has no grid named '" + opt.grid + "'");
+  }
+  if (is_vdb_path(opt.output)) return write_vdb(grids, opt.output);
+  if (grids.size() != 1)
+    throw std::invalid_argument("the stream holds " + std::to_string(grids.size()) +
+                                " grids; choose one with --grid NAME for raw output, or write .vdb");
+  write_raw_volume(grids[0].volume, opt.output);
+}
+
+void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  auto grids = decode_volumes(bytes, opt.level, opt.threads);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_volume_output(grids, opt);
+  for (const VolumeGrid& g : grids)
+    std::printf("%s: grid '%s' %zux%zux%zu, %s, decoded in %.3f s\n", opt.output.c_str(), g.name.c_str(),
+                g.volume.dims[0], g.volume.dims[1], g.volume.dims[2], to_string(g.volume.type).c_str(), seconds);
+}
 
 void run_decompress(const DecompressOptions& opt) {
   check_output_path(opt.output);
   const auto bytes = read_file_bytes(opt.input);
   set_transform_threads(opt.threads);
+  if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
+  if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
   const auto start = std::chrono::steady_clock::now();
   const Image image = decode_image(bytes, opt.level, opt.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -38,12 +68,14 @@ void run_decompress(const DecompressOptions& opt) {
 
 void add_decompress_command(CLI::App& app) {
   auto opt = std::make_shared<DecompressOptions>();
-  auto* cmd = app.add_subcommand("decompress", "Decompress a .pw stream to an image file");
+  auto* cmd = app.add_subcommand("decompress", "Decompress a .pw stream to an image file, or a volume stream to "
+                                               ".vdb (all grids) or raw (dense, stored type)");
   cmd->add_option("IN", opt->input, "input .pw file")->required()->check(CLI::ExistingFile);
   cmd->add_option("OUT", opt->output, "output image; the format follows the extension")->required();
   cmd->add_option("--level", opt->level, "decode at 1/2^k resolution, reading only what it needs")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
+  cmd->add_option("--grid", opt->grid, "volume streams: only the grids of this name");
   cmd->callback([opt] { run_decompress(*opt); });
 }
 
