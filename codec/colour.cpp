@@ -32,6 +32,16 @@ void forward_ict(float* r, float* g, float* b, std::size_t n) {
   }
 }
 
+void forward_ict(const float rgb[3], std::size_t c, float* out) {
+  const double R = rgb[0], G = rgb[1], B = rgb[2];
+  if (c == 0)
+    *out = float(0.299 * R + 0.587 * G + 0.114 * B);
+  else if (c == 1)
+    *out = float(-0.168736 * R - 0.331264 * G + 0.5 * B);
+  else
+    *out = float(0.5 * R - 0.418688 * G - 0.081312 * B);
+}
+
 void inverse_ict(float* y, float* cb, float* cr, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     const double Y = y[i], Cb = cb[i], Cr = cr[i];
@@ -48,6 +58,16 @@ void forward_rct(std::int32_t* r, std::int32_t* g, std::int32_t* b, std::size_t 
     g[i] = B - G;
     b[i] = R - G;
   }
+}
+
+void forward_rct(const std::int32_t rgb[3], std::size_t c, std::int32_t* out) {
+  const std::int32_t R = rgb[0], G = rgb[1], B = rgb[2];
+  if (c == 0)
+    *out = floor_div4(R + 2 * G + B);
+  else if (c == 1)
+    *out = B - G;
+  else
+    *out = R - G;
 }
 
 void inverse_rct(std::int32_t* y, std::int32_t* u, std::int32_t* v, std::size_t n) {

@@ -91,6 +91,38 @@ std::vector<std::vector<std::int32_t>> integer_components(const Image& image, Co
   return planes;
 }
 
+std::vector<float> float_component(const Image& image, ColourTransform colour, std::size_t c) {
+  const std::size_t n = image.plane_size();
+  const auto shift = float(level_shift(image.type));
+  std::vector<float> out(n);
+  if (colour != ColourTransform::ict || c >= 3) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = image.plane(c)[i] - shift;
+    return out;
+  }
+  const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float rgb[3] = {r[i] - shift, g[i] - shift, b[i] - shift};
+    forward_ict(rgb, c, out.data() + i);
+  }
+  return out;
+}
+
+std::vector<std::int32_t> integer_component(const Image& image, ColourTransform colour, std::size_t c) {
+  const std::size_t n = image.plane_size();
+  const auto shift = std::int32_t(level_shift(image.type));
+  std::vector<std::int32_t> out(n);
+  if (colour != ColourTransform::rct || c >= 3) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = std::int32_t(image.plane(c)[i]) - shift;
+    return out;
+  }
+  const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t rgb[3] = {std::int32_t(r[i]) - shift, std::int32_t(g[i]) - shift, std::int32_t(b[i]) - shift};
+    forward_rct(rgb, c, out.data() + i);
+  }
+  return out;
+}
+
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour) {
   std::vector<double> w(channels, 1.0);
   if (colour == ColourTransform::ict) {

@@ -22,6 +22,10 @@ double level_shift(SampleType type);
 // Shifted, colour-transformed planes, one per channel.
 std::vector<std::vector<float>> float_components(const Image& image, ColourTransform colour);
 std::vector<std::vector<std::int32_t>> integer_components(const Image& image, ColourTransform colour);
+// Component c alone (the same values as element c of the functions above), so an encoder
+// can hold one transformed component at a time.
+std::vector<float> float_component(const Image& image, ColourTransform colour, std::size_t c);
+std::vector<std::int32_t> integer_component(const Image& image, ColourTransform colour, std::size_t c);
 
 // Squared output error per unit error of each component (ICT components weigh more).
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour);

@@ -29,18 +29,27 @@ struct CodedImage {
   double initial_distortion = 0.0;  // index units^2, nothing coded
 };
 
-CodedImage code_blocks(const ImagePlan& plan) {
+// Codes every block, one component at a time so only one transformed component is held.
+CodedImage code_blocks(ImagePlan& plan) {
   CodedImage out;
   out.blocks.resize(plan.blocks.size());
   out.hulls.resize(plan.blocks.size());
-  parallel_for(plan.blocks.size(), plan.threads, [&](std::size_t i) {
-    std::vector<float> magnitude;
-    std::vector<std::uint8_t> negative;
-    quantize_block(plan, i, magnitude, negative);
-    const CodeBlock& b = plan.blocks[i];
-    out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-    out.hulls[i] = rd_hull(out.blocks[i]);
-  });
+  for (std::size_t c = 0; c < plan.header.channels; ++c) {
+    std::vector<std::size_t> ids;
+    for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+      if (plan.blocks[i].component == c) ids.push_back(i);
+    transform_component(plan, c);
+    parallel_for(ids.size(), plan.threads, [&](std::size_t k) {
+      const std::size_t i = ids[k];
+      std::vector<float> magnitude;
+      std::vector<std::uint8_t> negative;
+      quantize_block(plan, i, magnitude, negative);
+      const CodeBlock& b = plan.blocks[i];
+      out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+      out.hulls[i] = rd_hull(out.blocks[i]);
+    });
+    release_coefficients(plan);
+  }
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
 }
@@ -122,15 +131,16 @@ EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
   double base = plan.peak / 512.0;
   for (int round = 0;; ++round, base /= 4.0) {
     set_base_step(plan, base);
-    const CodedImage coded = code_blocks(plan);
+    CodedImage coded = code_blocks(plan);
     const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
     if (fits_all && round < kMaxStepRefinements) continue;
-    release_coefficients(plan);  // no further coding round: free them before measuring PSNR
     auto passes = allocate_by_slope(coded.hulls, true, [&](const std::vector<int>& p) {
       return double(stream_size(plan, coded, p)) <= budget;
     });
     fill_budget(plan, coded, passes, budget);
-    return finish(image, plan, build(plan, coded, passes), base);
+    auto bytes = build(plan, coded, passes);
+    coded = CodedImage{};  // free the coded blocks before the PSNR check decodes the stream
+    return finish(image, plan, std::move(bytes), base);
   }
 }
 
@@ -172,13 +182,11 @@ EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
   switch (options.mode) {
     case RateMode::lossless: {
       const CodedImage coded = code_blocks(plan);
-      release_coefficients(plan);
       return finish(image, plan, build(plan, coded, all_passes(coded)), 1.0);
     }
     case RateMode::step: {
       set_base_step(plan, options.target);
       const CodedImage coded = code_blocks(plan);
-      release_coefficients(plan);
       return finish(image, plan, build(plan, coded, all_passes(coded)), options.target);
     }
     case RateMode::bpp: return encode_for_size(image, plan, options.target);

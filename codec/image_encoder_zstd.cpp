@@ -59,6 +59,7 @@ std::pair<std::vector<std::uint8_t>, double> bisect_step(ImagePlan& plan, bool a
 EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOptions& options) {
   std::vector<std::uint8_t> bytes;
   double base = 1.0;
+  transform_all_components(plan);  // the step search revisits every block many times
   if (options.mode == RateMode::lossless) {
     bytes = code_with_zstd(plan, 1.0);
   } else if (options.mode == RateMode::step) {
@@ -73,6 +74,7 @@ EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOption
       return measure_psnr(image, b, plan.threads) >= options.target;
     });
   }
+  release_coefficients(plan);
   EncodeResult r;
   r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
   r.psnr = measure_psnr(image, bytes, plan.threads);

@@ -54,7 +54,7 @@ Extent block_log2(const Extent& size) {
 ImagePlan plan_image(const Image& image, const EncodeOptions& o) {
   validate_image(image);
   validate_options(image, o);
-  const auto t = make_transform(o.transform);
+  auto t = make_transform(o.transform);
   const bool reversible = o.mode == RateMode::lossless;
   if (reversible && !t->is_reversible())
     throw std::invalid_argument("lossless coding needs a reversible transform (cdf53), not " + t->spec());
@@ -77,16 +77,30 @@ ImagePlan plan_image(const Image& image, const EncodeOptions& o) {
   plan.samples = plan.pixels * image.channels;
   plan.peak = psnr_peak(image);
   plan.threads = o.threads;
-  if (reversible) {
-    plan.icoef = integer_components(image, h.colour);
-    for (auto& c : plan.icoef) forward(*t, c.data(), h.dims, h.levels);
+  plan.source = &image;
+  if (reversible)
     h.steps.assign(plan.bands.size() * h.channels, 1.0f);
-  } else {
-    plan.coef = float_components(image, h.colour);
-    for (auto& c : plan.coef) forward(*t, c.data(), h.dims, h.levels);
+  else
     plan.norms = synthesis_norms(*t, h.dims, h.levels);
-  }
+  plan.transform = std::move(t);
   return plan;
+}
+
+void transform_component(ImagePlan& plan, std::size_t c) {
+  const StreamHeader& h = plan.header;
+  if (h.reversible) {
+    plan.icoef.resize(h.channels);
+    plan.icoef[c] = integer_component(*plan.source, h.colour, c);
+    forward(*plan.transform, plan.icoef[c].data(), h.dims, h.levels);
+  } else {
+    plan.coef.resize(h.channels);
+    plan.coef[c] = float_component(*plan.source, h.colour, c);
+    forward(*plan.transform, plan.coef[c].data(), h.dims, h.levels);
+  }
+}
+
+void transform_all_components(ImagePlan& plan) {
+  for (std::size_t c = 0; c < plan.header.channels; ++c) transform_component(plan, c);
 }
 
 void set_base_step(ImagePlan& plan, double base_step) {

@@ -10,6 +10,7 @@
 #include "codec/codeblocks.h"
 #include "codec/container.h"
 #include "codec/image_codec.h"
+#include "transforms/spec.h"
 
 namespace pupwave {
 
@@ -19,16 +20,25 @@ struct ImagePlan {
   std::vector<CodeBlock> blocks;
   std::vector<double> norms;                     // synthesis norm per band
   std::vector<double> weights;                   // output error per unit component error
-  std::vector<std::vector<float>> coef;          // irreversible: transformed components
-  std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components
+  std::vector<std::vector<float>> coef;          // irreversible: transformed components (or empty)
+  std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components (or empty)
+  const Image* source = nullptr;                 // the input, alive while the plan is used
+  Transform1DPtr transform;
   std::size_t pixels = 0;                        // width * height
   std::size_t samples = 0;                       // pixels * channels
   double peak = 1.0;                             // PSNR peak of the input
   unsigned threads = 0;
 };
 
-// Validates the image and options, applies colour and wavelet transforms.
+// Validates the image and options and lays out bands and blocks; no coefficients yet.
+// The plan refers to `image`, which must outlive it.
 ImagePlan plan_image(const Image& image, const EncodeOptions& options);
+
+// Fills coef[c] (or icoef[c]) with component c after colour and wavelet transform; the
+// encoder holds one component at a time to keep its memory small.
+void transform_component(ImagePlan& plan, std::size_t c);
+// Transforms every component (for coders that revisit all blocks many times).
+void transform_all_components(ImagePlan& plan);
 
 // Sets the quantizer steps of every (component, band) from a base step.
 void set_base_step(ImagePlan& plan, double base_step);
