@@ -1,0 +1,84 @@
+// Hostile volume streams: truncation at every chunk and many points inside, flipped bits,
+// random bytes, and crafted headers (absurd dims, bad fields) with valid checksums must all
+// give DecodeError, never a crash or an unbounded allocation.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "codec/error.h"
+#include "codec/volume_codec.h"
+#include "codec/volume_format.h"
+#include "volcodec/volcodec_test_util.h"
+
+namespace pupwave {
+namespace {
+
+std::vector<std::uint8_t> sample_stream() {
+  VolumeGrid g;
+  g.name = "s";
+  g.volume = test::sphere_level_set({20, 17, 11}, 6.0, 2.0, 0.3);
+  VolumeEncodeOptions o;
+  o.target = 1e-3;
+  o.brick = 8;
+  return encode_volumes({g}, o).bytes;
+}
+
+TEST(HostileVolumeStream, TruncationIsRejectedEverywhere) {
+  const auto bytes = sample_stream();
+  for (std::size_t n = 0; n < bytes.size(); n += 1 + n / 16) {
+    const std::span<const std::uint8_t> cut(bytes.data(), n);
+    EXPECT_THROW(decode_volumes(cut), DecodeError) << n << " of " << bytes.size();
+  }
+}
+
+TEST(HostileVolumeStream, FlippedBitsAreRejected) {
+  const auto bytes = sample_stream();
+  std::mt19937 rng(1);
+  for (int trial = 0; trial < 300; ++trial) {
+    auto bad = bytes;
+    const std::size_t at = std::uniform_int_distribution<std::size_t>(0, bad.size() - 1)(rng);
+    bad[at] ^= std::uint8_t(1u << (trial % 8));
+    EXPECT_THROW(decode_volumes(bad), DecodeError) << "byte " << at;
+  }
+}
+
+TEST(HostileVolumeStream, RandomBytesAfterTheSignatureAreRejected) {
+  std::mt19937 rng(2);
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<std::uint8_t> bad{'P', 'U', 'P', 'V', kVolumeStreamVersion};
+    for (int i = 0; i < 200; ++i) bad.push_back(std::uint8_t(rng()));
+    EXPECT_THROW(decode_volumes(bad), DecodeError);
+  }
+}
+
+// A stream whose header says `dims` (valid checksum), with no bricks.
+std::vector<std::uint8_t> crafted(const Extent& dims, int levels = 3, int brick_log2 = 6) {
+  VolumeStreamHeader h;
+  h.spec = "cdf97";
+  h.levels = levels;
+  h.brick_log2 = brick_log2;
+  VolumeGrid g;
+  g.volume.dims = dims;
+  h.grids.push_back(g);
+  std::vector<std::uint8_t> out;
+  write_volume_signature(out);
+  write_header_chunk(out, h);
+  return out;
+}
+
+TEST(HostileVolumeStream, CraftedHeadersAreRejected) {
+  EXPECT_THROW(decode_volumes(crafted({1u << 30, 1u << 30, 1u << 30})), DecodeError);
+  EXPECT_THROW(decode_volumes(crafted({65536, 65536, 2})), DecodeError);
+  EXPECT_THROW(decode_volumes(crafted({0, 4, 4})), DecodeError);
+  EXPECT_THROW(decode_volumes(crafted({4, 4, 4}, 9)), DecodeError);      // levels above log2(brick)
+  EXPECT_THROW(decode_volumes(crafted({4, 4, 4}, 3, 20)), DecodeError);  // absurd brick
+  EXPECT_THROW(decode_volumes(crafted({4, 4, 4})), DecodeError);         // a dense grid without bricks
+}
+
+TEST(HostileVolumeStream, ValidStreamDecodes) {
+  EXPECT_NO_THROW(decode_volumes(sample_stream()));
+  EXPECT_TRUE(is_volume_stream(sample_stream()));
+}
+
+}  // namespace
+}  // namespace pupwave
