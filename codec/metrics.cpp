@@ -47,8 +47,7 @@ double luma_at(const Image& img, std::size_t i) {
 }  // namespace
 
 ImageError compare_images(const Image& reference, const Image& test) {
-  if (reference.width != test.width || reference.height != test.height ||
-      reference.channels != test.channels)
+  if (reference.width != test.width || reference.height != test.height || reference.channels != test.channels)
     throw std::invalid_argument("images differ in shape: " + std::to_string(reference.width) + "x" +
                                 std::to_string(reference.height) + "x" + std::to_string(reference.channels) +
                                 " vs " + std::to_string(test.width) + "x" + std::to_string(test.height) +
@@ -74,7 +73,8 @@ ImageError compare_images(const Image& reference, const Image& test) {
   result.has_luma = reference.channels == 3 || reference.channels == 4;
   if (result.has_luma) {
     ErrorSum luma;
-    for (std::size_t i = 0; i < reference.plane_size(); ++i) luma.add(luma_at(reference, i) - luma_at(test, i));
+    for (std::size_t i = 0; i < reference.plane_size(); ++i)
+      luma.add(luma_at(reference, i) - luma_at(test, i));
     result.luma = luma.finish(result.peak);
   }
   return result;

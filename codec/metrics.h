@@ -15,11 +15,11 @@ struct ChannelError {
 };
 
 struct ImageError {
-  double peak = 0.0;                    // the peak signal value the PSNRs use
-  std::vector<ChannelError> channels;   // one per channel
-  ChannelError overall;                 // MSE over all samples of all channels
-  bool has_luma = false;                // true for RGB and RGBA
-  ChannelError luma;                    // Rec. 601 luma Y = 0.299 R + 0.587 G + 0.114 B
+  double peak = 0.0;                   // the peak signal value the PSNRs use
+  std::vector<ChannelError> channels;  // one per channel
+  ChannelError overall;                // MSE over all samples of all channels
+  bool has_luma = false;               // true for RGB and RGBA
+  ChannelError luma;                   // Rec. 601 luma Y = 0.299 R + 0.587 G + 0.114 B
 };
 
 // PSNR in dB of a mean squared error against a peak value (infinity for mse == 0).

@@ -12,8 +12,7 @@ namespace fs = std::filesystem;
 void check_output_path(const fs::path& target) {
   std::error_code ec;
   if (target.empty()) throw std::runtime_error("output path is empty");
-  if (fs::is_directory(target, ec))
-    throw std::runtime_error("output " + target.string() + " is a directory");
+  if (fs::is_directory(target, ec)) throw std::runtime_error("output " + target.string() + " is a directory");
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(parent, ec))
     throw std::runtime_error("cannot write " + target.string() + ": folder " + parent.string() +

@@ -32,8 +32,7 @@ TypeDesc oiio_type(SampleType type) {
 SampleType sample_type_of(const OIIO::ImageSpec& spec, const fs::path& path) {
   TypeDesc widest = spec.format;
   for (const TypeDesc& t : spec.channelformats)
-    if (t.size() > widest.size() || (t.is_floating_point() && !widest.is_floating_point()))
-      widest = t;
+    if (t.size() > widest.size() || (t.is_floating_point() && !widest.is_floating_point())) widest = t;
   switch (widest.basetype) {
     case TypeDesc::UINT8: return SampleType::u8;
     case TypeDesc::UINT16: return SampleType::u16;
@@ -41,8 +40,7 @@ SampleType sample_type_of(const OIIO::ImageSpec& spec, const fs::path& path) {
     case TypeDesc::FLOAT: return SampleType::f32;
     default:
       throw std::runtime_error("cannot read " + path.string() + ": unsupported sample type " +
-                               std::string(widest.c_str()) +
-                               " (supported: uint8, uint16, half, float)");
+                               std::string(widest.c_str()) + " (supported: uint8, uint16, half, float)");
   }
 }
 
@@ -64,8 +62,7 @@ std::unique_ptr<OIIO::ImageInput> open_input(const fs::path& path) {
 
 void check_image_spec(const OIIO::ImageSpec& spec, const fs::path& path) {
   const std::string name = path.string();
-  if (spec.width <= 0 || spec.height <= 0)
-    throw std::runtime_error("cannot read " + name + ": empty image");
+  if (spec.width <= 0 || spec.height <= 0) throw std::runtime_error("cannot read " + name + ": empty image");
   if (spec.depth > 1) throw std::runtime_error("cannot read " + name + ": 3-D images are not supported");
   if (spec.nchannels < 1 || spec.nchannels > 4)
     throw std::runtime_error("cannot read " + name + ": " + std::to_string(spec.nchannels) +
@@ -119,7 +116,7 @@ SampleType closest_type(SampleType type, const std::vector<SampleType>& allowed)
   if (allowed.empty() || std::find(allowed.begin(), allowed.end(), type) != allowed.end()) return type;
   const bool has_f32 = std::find(allowed.begin(), allowed.end(), SampleType::f32) != allowed.end();
   if (has_f32 && type != SampleType::u8) return SampleType::f32;  // u16 and half fit in float
-  if (type == SampleType::u8) return allowed.front();              // half holds 0..255 exactly
+  if (type == SampleType::u8) return allowed.front();             // half holds 0..255 exactly
   return allowed.back();
 }
 
@@ -150,7 +147,9 @@ void write_pixels(OIIO::ImageOutput& out, const Image& image, const fs::path& tm
   bool ok = false;
   switch (image.type) {
     case SampleType::u8: ok = out.write_image(TypeDesc::UINT8, interleave<std::uint8_t>(image).data()); break;
-    case SampleType::u16: ok = out.write_image(TypeDesc::UINT16, interleave<std::uint16_t>(image).data()); break;
+    case SampleType::u16:
+      ok = out.write_image(TypeDesc::UINT16, interleave<std::uint16_t>(image).data());
+      break;
     case SampleType::f16: ok = out.write_image(TypeDesc::HALF, interleave<Imath::half>(image).data()); break;
     case SampleType::f32: ok = out.write_image(TypeDesc::FLOAT, interleave<float>(image).data()); break;
   }
@@ -178,8 +177,8 @@ std::string describe_image_file(const fs::path& path) {
   auto in = open_input(path);
   const OIIO::ImageSpec& spec = in->spec();
   std::ostringstream s;
-  s << path.string() << ": " << in->format_name() << " image, " << spec.width << " x " << spec.height
-    << ", " << spec.nchannels << " channel" << (spec.nchannels == 1 ? "" : "s") << " (";
+  s << path.string() << ": " << in->format_name() << " image, " << spec.width << " x " << spec.height << ", "
+    << spec.nchannels << " channel" << (spec.nchannels == 1 ? "" : "s") << " (";
   for (int c = 0; c < spec.nchannels; ++c) s << (c ? "," : "") << spec.channel_name(c);
   s << "), " << spec.format.c_str();
   if (spec.depth > 1) s << ", depth " << spec.depth;

@@ -26,8 +26,7 @@ std::string describe_image_file(const std::filesystem::path& path);
 // sample type (float to PNG, 16-bit to JPEG...) samples are converted to the closest type it
 // can store, mapping the nominal range (integer max <-> 1.0) with rounding and clamping;
 // `stored_as`, if given, receives the type written. The file is written atomically.
-void write_image(const Image& image, const std::filesystem::path& path,
-                 SampleType* stored_as = nullptr);
+void write_image(const Image& image, const std::filesystem::path& path, SampleType* stored_as = nullptr);
 
 // The sample type `write_image` would store `type` as in a file with this path's extension.
 SampleType storable_type(const std::filesystem::path& path, SampleType type);

@@ -69,7 +69,8 @@ TEST_F(CliErrors, DirectoryAsOutput) {
 }
 
 TEST_F(CliErrors, UnwritablePath) {
-  expect_failure(test::run_cli({"convert", camera_, (dir_ / "missing" / "out.png").string()}), "does not exist");
+  expect_failure(test::run_cli({"convert", camera_, (dir_ / "missing" / "out.png").string()}),
+                 "does not exist");
   if (::geteuid() != 0) {  // root ignores permission bits; the missing-folder case covers it there
     fs::permissions(dir_, fs::perms::owner_write, fs::perm_options::remove);
     expect_failure(test::run_cli({"convert", camera_, (dir_ / "out.png").string()}), "cannot write");

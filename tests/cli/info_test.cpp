@@ -33,7 +33,8 @@ TEST(InfoCli, DescribesImagesAndStreams) {
   // Truncate the stream: info must report the damage, not crash or print a description.
   std::vector<char> bytes(fs::file_size(pw));
   std::ifstream(pw, std::ios::binary).read(bytes.data(), std::streamsize(bytes.size()));
-  std::ofstream(pw, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size() / 2));
+  std::ofstream(pw, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), std::streamsize(bytes.size() / 2));
   r = test::run_cli({"info", pw.string()});
   EXPECT_NE(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;

@@ -3,10 +3,10 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <regex>
-#include <unistd.h>
 
 #include "cli/run_cli.h"
 #include "codec/metrics.h"

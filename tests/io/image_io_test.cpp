@@ -2,11 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <Imath/half.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 #include <random>
 #include <string>
 #include <tuple>
@@ -46,7 +46,8 @@ class LosslessRoundTrip : public ::testing::TestWithParam<Case> {};
 TEST_P(LosslessRoundTrip, SamplesComeBackExactly) {
   const auto [ext, type, channels] = GetParam();
   const Image img = random_image(37, 23, channels, type, unsigned(channels * 7 + int(type)));
-  const fs::path path = temp_dir() / ("rt_" + std::to_string(int(type)) + "_" + std::to_string(channels) + ext);
+  const fs::path path =
+      temp_dir() / ("rt_" + std::to_string(int(type)) + "_" + std::to_string(channels) + ext);
   SampleType stored = SampleType::u8;
   write_image(img, path, &stored);
   EXPECT_EQ(stored, type);
@@ -102,8 +103,10 @@ TEST(ImageIo, JpegRoundTripIsCloseAndEightBit) {
 TEST(ImageIo, ReadsTheBundledPhotographs) {
   const fs::path dir(PUPWAVE_TESTIMAGES_DIR);
   const std::tuple<const char*, std::size_t, std::size_t, std::size_t> expected[] = {
-      {"camera.png", 512, 512, 1}, {"astronaut.png", 512, 512, 3},
-      {"coffee.png", 600, 400, 3}, {"chelsea.png", 451, 300, 3}};
+      {"camera.png", 512, 512, 1},
+      {"astronaut.png", 512, 512, 3},
+      {"coffee.png", 600, 400, 3},
+      {"chelsea.png", 451, 300, 3}};
   for (const auto& [name, w, h, c] : expected) {
     const Image img = read_image(dir / name);
     EXPECT_EQ(img.width, w) << name;
