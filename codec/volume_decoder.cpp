@@ -123,7 +123,15 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
   const auto t = stream_transform(h);
   const BrickCoding coding{t.get(), h.levels, std::size_t(1) << h.block_log2, h.delta, h.reversible};
   std::vector<std::vector<BrickBox>> boxes;
-  for (const VolumeGrid& g : h.grids) boxes.push_back(brick_boxes(g.volume.dims, std::size_t(1) << h.brick_log2));
+  for (const VolumeGrid& g : h.grids) {
+    // A dense grid needs a BRIK per brick, so its brick count is bounded by the chunks present;
+    // checked before the brick list is allocated.
+    const std::size_t edge = std::size_t(1) << h.brick_log2;
+    std::size_t count = 1;
+    for (std::size_t d : g.volume.dims) count *= (d + edge - 1) / edge;
+    require_stream(g.volume.is_sparse() || count <= s.bricks.size(), "volume stream truncated (missing bricks)");
+    boxes.push_back(brick_boxes(g.volume.dims, edge));
+  }
   check_brick_set(s, boxes);
   std::vector<VolumeGrid> grids = h.grids;
   for (VolumeGrid& g : grids) {
