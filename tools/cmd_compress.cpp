@@ -100,6 +100,7 @@ void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& 
 }
 
 void run_compress_volume(const CompressOptions& opt) {
+  if (opt.entropy != EntropyCoder::ebcot) throw std::invalid_argument("--entropy applies to images only");
   const auto grids = read_volume_input(opt);
   VolumeEncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
