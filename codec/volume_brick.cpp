@@ -88,14 +88,14 @@ std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::s
                                 std::span<const BlockEntry> entries,
                                 std::span<const std::span<const std::uint8_t>> codewords, int level) {
   const auto blocks = brick_blocks(c, size);
-  require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(),
-                 "brick block count");
+  require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(), "brick block count");
   std::vector<T> coef(size[0] * size[1] * size[2], T(0));
   std::vector<T> values;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const CodeBlock& b = blocks[i];
     if (b.resolution > c.levels - level || entries[i].passes == 0) continue;
-    const DecodedBlock d = decode_block(codewords[i], entries[i].planes, entries[i].passes, b.size, b.orientation);
+    const DecodedBlock d =
+        decode_block(codewords[i], entries[i].planes, entries[i].passes, b.size, b.orientation);
     values.assign(b.count(), T(0));
     for (std::size_t k = 0; k < values.size(); ++k) {
       const float v = reconstruct(d, k, c.delta, c.reversible);

@@ -29,10 +29,10 @@ struct VolumeEncodeOptions {
   std::string transform = "cdf97";  // spec for make_transform; lossless needs a reversible one
   int levels = -1;                  // per brick; -1: default_levels of a full brick
   VolumeRateMode mode = VolumeRateMode::max_error;
-  double target = 1e-3;          // step, bits per voxel, dB or absolute error bound, by mode
-  std::size_t brick = 64;        // brick edge (power of two, 8..256); edge bricks are smaller
-  std::size_t block = 32;        // code-block edge inside a brick (power of two, 16..64)
-  unsigned threads = 0;          // 0: all hardware threads
+  double target = 1e-3;    // step, bits per voxel, dB or absolute error bound, by mode
+  std::size_t brick = 64;  // brick edge (power of two, 8..256); edge bricks are smaller
+  std::size_t block = 32;  // code-block edge inside a brick (power of two, 16..64)
+  unsigned threads = 0;    // 0: all hardware threads
 };
 
 struct VolumeEncodeResult {

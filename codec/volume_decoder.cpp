@@ -20,7 +20,8 @@ namespace {
 Transform1DPtr stream_transform(const VolumeStreamHeader& h) {
   try {
     auto t = make_transform(h.spec);
-    require_stream(t->is_reversible() || !h.reversible, "volume stream: lossless with an irreversible transform");
+    require_stream(t->is_reversible() || !h.reversible,
+                   "volume stream: lossless with an irreversible transform");
     return t;
   } catch (const std::invalid_argument& e) {
     throw DecodeError(std::string("volume stream: bad transform spec: ") + e.what());
@@ -29,7 +30,8 @@ Transform1DPtr stream_transform(const VolumeStreamHeader& h) {
 
 // Bricks of each grid a valid stream codes: all for dense grids, those with an active voxel
 // for sparse grids (from the mask states).
-std::vector<std::uint8_t> expected_bricks(const Volume& v, const MaskChunk& mask, const std::vector<BrickBox>& boxes) {
+std::vector<std::uint8_t> expected_bricks(const Volume& v, const MaskChunk& mask,
+                                          const std::vector<BrickBox>& boxes) {
   std::vector<std::uint8_t> expected(boxes.size(), 1);
   if (!v.is_sparse()) return expected;
   for (std::size_t b = 0; b < boxes.size(); ++b) {
@@ -37,8 +39,10 @@ std::vector<std::uint8_t> expected_bricks(const Volume& v, const MaskChunk& mask
     bool any = false;
     for (std::size_t z = 0; z < box.size[2] && !any; ++z)
       for (std::size_t y = 0; y < box.size[1] && !any; ++y) {
-        const std::size_t row = box.offset[0] + v.dims[0] * ((box.offset[1] + y) + v.dims[1] * (box.offset[2] + z));
-        for (std::size_t x = 0; x < box.size[0]; ++x) any = any || mask.states[row + x] == std::uint8_t(VoxelState::active);
+        const std::size_t row =
+            box.offset[0] + v.dims[0] * ((box.offset[1] + y) + v.dims[1] * (box.offset[2] + z));
+        for (std::size_t x = 0; x < box.size[0]; ++x)
+          any = any || mask.states[row + x] == std::uint8_t(VoxelState::active);
       }
     expected[b] = any ? 1 : 0;
   }
@@ -129,7 +133,8 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
     const std::size_t edge = std::size_t(1) << h.brick_log2;
     std::size_t count = 1;
     for (std::size_t d : g.volume.dims) count *= (d + edge - 1) / edge;
-    require_stream(g.volume.is_sparse() || count <= s.bricks.size(), "volume stream truncated (missing bricks)");
+    require_stream(g.volume.is_sparse() || count <= s.bricks.size(),
+                   "volume stream truncated (missing bricks)");
     boxes.push_back(brick_boxes(g.volume.dims, edge));
   }
   check_brick_set(s, boxes);

@@ -23,8 +23,8 @@ constexpr double kBoundStepFactors[] = {1.25, 1.9, 2.8};
 
 int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) {
   if (v < lo || v > hi || (v & (v - 1)) != 0)
-    throw std::invalid_argument(std::string(what) + " must be a power of two in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "]");
+    throw std::invalid_argument(std::string(what) + " must be a power of two in [" + std::to_string(lo) +
+                                ", " + std::to_string(hi) + "]");
   int k = 0;
   while ((std::size_t(1) << k) < v) ++k;
   return k;
@@ -48,7 +48,8 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
     for (double s : v.samples)
       if (!std::isfinite(s)) throw EncodeError("volume has non-finite samples (NaN or infinity)");
     if (o.mode == VolumeRateMode::lossless && !is_integer(v.type))
-      throw std::invalid_argument("lossless coding needs integer volumes (u8, u16); use --max-error for float");
+      throw std::invalid_argument(
+          "lossless coding needs integer volumes (u8, u16); use --max-error for float");
   }
 }
 
@@ -100,7 +101,8 @@ std::vector<int> all_passes(const CodedBrick& c) {
 
 // A brick coded at one base step with every pass, corrected to the bound when there is one.
 BrickCode code_at_step(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
-                       const std::vector<double>& samples, const std::vector<std::uint8_t>& active, double base) {
+                       const std::vector<double>& samples, const std::vector<std::uint8_t>& active,
+                       double base) {
   BrickCode code;
   code.base_step = base;
   code.coded = code_brick(plan.coding, samples, job.box.size, base);
@@ -134,7 +136,8 @@ std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const Vo
     std::vector<std::uint8_t> active;
     brick_samples(grid, job.box, samples, active);
     if (o.mode != VolumeRateMode::max_error) {
-      codes[i] = code_at_step(plan, grid, job, samples, active, o.mode == VolumeRateMode::step ? o.target : 1.0);
+      codes[i] =
+          code_at_step(plan, grid, job, samples, active, o.mode == VolumeRateMode::step ? o.target : 1.0);
       return;
     }
     for (double f : kBoundStepFactors) {
@@ -153,7 +156,8 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncode
   plan.transform = make_transform(o.transform);
   const bool reversible = o.mode == VolumeRateMode::lossless;
   if (reversible && !plan.transform->is_reversible())
-    throw std::invalid_argument("lossless coding needs a reversible transform (cdf53), not " + plan.transform->spec());
+    throw std::invalid_argument("lossless coding needs a reversible transform (cdf53), not " +
+                                plan.transform->spec());
   VolumeStreamHeader& h = plan.header;
   h.spec = plan.transform->spec();
   h.reversible = reversible;
@@ -212,7 +216,8 @@ std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& jo
   return decode_brick(plan.coding, job.box.size, code.base_step, entries, spans, 0);
 }
 
-void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<double> reconstruction, BrickCode& code) {
+void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<double> reconstruction,
+                   BrickCode& code) {
   std::vector<double> samples;
   std::vector<std::uint8_t> active;
   brick_samples(grid, job.box, samples, active);
@@ -238,7 +243,8 @@ std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::ve
     std::vector<std::vector<std::uint8_t>> words(c.passes.size());
     for (std::size_t k = 0; k < c.passes.size(); ++k) {
       const EncodedBlock& b = c.coded.coded[k];
-      chunk.entries.push_back({c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
+      chunk.entries.push_back(
+          {c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
       words[k] = b.codeword(c.passes[k]);
       chunk.codewords.emplace_back(words[k]);
     }
@@ -265,14 +271,16 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
   r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
   double sse = 0.0;
   std::size_t counted = 0;
-  for (const VolumeGrid& g : grids) counted += g.volume.is_sparse() ? g.volume.active_count() : g.volume.count();
+  for (const VolumeGrid& g : grids)
+    counted += g.volume.is_sparse() ? g.volume.active_count() : g.volume.count();
   for (const BrickCode& c : codes) {
     r.max_error = std::max(r.max_error, c.max_error);
     r.outliers += c.outlier_count;
     sse += c.sse;
   }
   const double mse = counted > 0 ? sse / double(counted) : 0.0;
-  r.psnr = mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
+  r.psnr =
+      mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
   if (plan.header.max_error > 0.0 && r.max_error > plan.header.max_error)
     throw EncodeError("internal error: error bound exceeded after correction");  // never expected
   return r;

@@ -11,8 +11,7 @@
 
 namespace pupwave {
 
-// One brick to code: its grid, index and box, with its samples and which voxels must meet the
-// error bound (empty: all).
+// One brick to code: its grid, its index among the grid's bricks and its box.
 struct BrickJob {
   std::uint32_t grid = 0;
   std::uint32_t brick = 0;
@@ -25,8 +24,8 @@ struct VolumePlan {
   BrickCoding coding;
   std::vector<MaskChunk> masks;  // per grid (empty for dense)
   std::vector<BrickJob> jobs;
-  std::size_t voxels = 0;         // box voxels of all grids
-  double range = 0.0;             // largest value range (max - min of active voxels) over grids
+  std::size_t voxels = 0;  // box voxels of all grids
+  double range = 0.0;      // largest value range (max - min of active voxels) over grids
   unsigned threads = 0;
 };
 
@@ -51,7 +50,8 @@ void brick_samples(const VolumeGrid& grid, const BrickBox& box, std::vector<doub
 std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& job, const BrickCode& code);
 
 // Error statistics of a reconstruction (rounded to the stored type) against the original.
-void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<double> reconstruction, BrickCode& code);
+void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<double> reconstruction,
+                   BrickCode& code);
 
 // The complete stream.
 std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes);

@@ -19,9 +19,9 @@ constexpr double kIndexBytesPerBlock = 1.5;
 
 struct Coded {
   std::vector<BrickCode> codes;
-  std::vector<std::vector<HullPoint>> hulls;       // flat over (brick, block)
+  std::vector<std::vector<HullPoint>> hulls;               // flat over (brick, block)
   std::vector<std::pair<std::size_t, std::size_t>> where;  // flat index -> (brick, block)
-  double initial = 0.0;                            // index units^2 with nothing coded
+  double initial = 0.0;                                    // index units^2 with nothing coded
 };
 
 Coded code_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan, double base) {
@@ -45,13 +45,15 @@ Coded code_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan, dou
 
 void set_passes(Coded& c, const std::vector<int>& passes) {
   for (auto& code : c.codes) code.passes.assign(code.coded.coded.size(), 0);
-  for (std::size_t f = 0; f < passes.size(); ++f) c.codes[c.where[f].first].passes[c.where[f].second] = passes[f];
+  for (std::size_t f = 0; f < passes.size(); ++f)
+    c.codes[c.where[f].first].passes[c.where[f].second] = passes[f];
 }
 
 double estimated_bytes(const Coded& c, const std::vector<int>& passes) {
   double n = 0.0;
   for (std::size_t f = 0; f < passes.size(); ++f)
-    n += double(c.codes[c.where[f].first].coded.coded[c.where[f].second].size(passes[f])) + kIndexBytesPerBlock;
+    n += double(c.codes[c.where[f].first].coded.coded[c.where[f].second].size(passes[f])) +
+         kIndexBytesPerBlock;
   return n;
 }
 
@@ -94,9 +96,8 @@ std::vector<BrickCode> for_size(const std::vector<VolumeGrid>& grids, VolumePlan
     if (fits_all && round < kMaxStepRefinements) continue;
     double allowed = budget - overhead;
     for (int k = 0; k < kMaxRounds; ++k) {
-      const auto passes = allocate_by_slope(c.hulls, true, [&](const std::vector<int>& p) {
-        return estimated_bytes(c, p) <= allowed;
-      });
+      const auto passes = allocate_by_slope(
+          c.hulls, true, [&](const std::vector<int>& p) { return estimated_bytes(c, p) <= allowed; });
       set_passes(c, passes);
       const double size = double(assemble_volumes(plan, c.codes).size());
       if (size <= budget) break;
@@ -116,9 +117,8 @@ std::vector<BrickCode> for_psnr(const std::vector<VolumeGrid>& grids, VolumePlan
   double allowed = target_mse * voxels / (base * base);
   std::vector<int> best;
   for (int k = 0; k < kMaxRounds; ++k) {
-    const auto passes = allocate_by_slope(c.hulls, false, [&](const std::vector<int>& p) {
-      return remaining(c, p) <= allowed;
-    });
+    const auto passes = allocate_by_slope(
+        c.hulls, false, [&](const std::vector<int>& p) { return remaining(c, p) <= allowed; });
     set_passes(c, passes);
     const double mse = measure_all(grids, plan, c) / voxels;
     if (mse <= target_mse) {

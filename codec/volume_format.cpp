@@ -28,7 +28,8 @@ void put_text(ByteWriter& w, const std::string& s) {
   w.str16(s);
 }
 
-void write_chunk(std::vector<std::uint8_t>& out, const char (&tag)[5], const std::vector<std::uint8_t>& payload) {
+void write_chunk(std::vector<std::uint8_t>& out, const char (&tag)[5],
+                 const std::vector<std::uint8_t>& payload) {
   ByteWriter w(out);
   for (int i = 0; i < 4; ++i) w.u8(std::uint8_t(tag[i]));
   w.u32(std::uint32_t(payload.size()));

@@ -21,18 +21,24 @@ inline constexpr std::size_t kMaxVolumeVoxels = std::size_t(1) << 31;
 inline constexpr std::size_t kMaxVolumeGrids = 1024;
 
 // Voxel states of a sparse grid's MASK chunk (one byte per voxel, zstd-compressed).
-enum class VoxelState : std::uint8_t { inactive_background = 0, active = 1, inactive_negative = 2, inactive_other = 3 };
+enum class VoxelState : std::uint8_t {
+  inactive_background = 0,
+  active = 1,
+  inactive_negative = 2,
+  inactive_other = 3
+};
 
 struct VolumeStreamHeader {
   std::string spec;  // transform spec for make_transform
   bool reversible = false;
-  int levels = 0;              // per brick
-  int brick_log2 = 6;          // brick edge 2^k
-  int block_log2 = 5;          // code-block edge 2^k
-  double delta = 0.4375;       // reconstruction offset in a bin (index units)
-  double max_error = 0.0;      // bound the outlier corrections were quantized to (0: none)
+  int levels = 0;                  // per brick
+  int brick_log2 = 6;              // brick edge 2^k
+  int block_log2 = 5;              // code-block edge 2^k
+  double delta = 0.4375;           // reconstruction offset in a bin (index units)
+  double max_error = 0.0;          // bound the outlier corrections were quantized to (0: none)
   std::uint32_t brick_chunks = 0;  // BRIK chunks that follow (all grids)
-  std::vector<VolumeGrid> grids;   // descriptions: volume.dims/type/background, active non-empty when sparse (size 1)
+  std::vector<VolumeGrid>
+      grids;  // descriptions: volume.dims/type/background, active non-empty when sparse (size 1)
 };
 
 // Per sparse grid: the state of every box voxel and the values of inactive_other voxels.
@@ -47,7 +53,7 @@ struct BrickChunk {
   double base_step = 1.0;
   std::vector<BlockEntry> entries;
   std::vector<std::span<const std::uint8_t>> codewords;  // one per block (into the stream or owner)
-  std::vector<std::uint8_t> outliers;                     // volume_outliers.h encoding (may be empty)
+  std::vector<std::uint8_t> outliers;                    // volume_outliers.h encoding (may be empty)
 };
 
 // Writers append one framed chunk each.
@@ -58,8 +64,8 @@ void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& brick);
 
 struct ParsedVolumeStream {
   VolumeStreamHeader header;
-  std::vector<MaskChunk> masks;     // one per grid (empty for dense grids)
-  std::vector<BrickChunk> bricks;   // codewords point into the parsed bytes
+  std::vector<MaskChunk> masks;    // one per grid (empty for dense grids)
+  std::vector<BrickChunk> bricks;  // codewords point into the parsed bytes
 };
 
 // Parses and validates a whole stream. Throws DecodeError for any inconsistency.

@@ -41,12 +41,14 @@ bool is_volume_input(const CompressOptions& opt) { return !opt.dims.empty() || i
 
 std::vector<VolumeGrid> read_volume_input(const CompressOptions& opt) {
   if (is_vdb_path(opt.input)) {
-    if (!opt.dims.empty() || !opt.dtype.empty()) throw std::invalid_argument("--dims/--dtype apply to raw input only");
+    if (!opt.dims.empty() || !opt.dtype.empty())
+      throw std::invalid_argument("--dims/--dtype apply to raw input only");
     auto grids = read_vdb(opt.input, opt.grid);
     if (grids.empty()) throw std::runtime_error(opt.input + " holds no float or double grid");
     return grids;
   }
-  if (opt.dtype.empty()) throw std::invalid_argument("raw volume input needs --dtype u8|u16|f32|f64 with --dims");
+  if (opt.dtype.empty())
+    throw std::invalid_argument("raw volume input needs --dtype u8|u16|f32|f64 with --dims");
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to .vdb input only");
   VolumeGrid g;
   g.name = std::filesystem::path(opt.input).stem().string();
@@ -73,12 +75,13 @@ double largest_range(const std::vector<VolumeGrid>& grids) {
 
 // Volume rate flags to the library's mode. Default: lossless for integer volumes, otherwise
 // a point-wise bound of 1e-3 of the value range.
-void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& grids, VolumeEncodeOptions& enc) {
+void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& grids,
+                     VolumeEncodeOptions& enc) {
   if (opt.bpp > 0.0) throw std::invalid_argument("use --bpv (bits per voxel) for volumes, not --bpp");
   bool all_integer = true;
   for (const VolumeGrid& g : grids) all_integer = all_integer && is_integer(g.volume.type);
-  const bool none = !opt.lossless && opt.bpv <= 0.0 && opt.psnr <= 0.0 && opt.step <= 0.0 && opt.max_error <= 0.0 &&
-                    opt.max_error_rel <= 0.0;
+  const bool none = !opt.lossless && opt.bpv <= 0.0 && opt.psnr <= 0.0 && opt.step <= 0.0 &&
+                    opt.max_error <= 0.0 && opt.max_error_rel <= 0.0;
   if (opt.lossless || (none && all_integer)) {
     enc.mode = VolumeRateMode::lossless;
     if (opt.transform.empty()) enc.transform = "cdf53";
@@ -113,7 +116,8 @@ void run_compress_volume(const CompressOptions& opt) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_bytes_atomically(opt.output, r.bytes);
   std::printf("%s: %zu bytes, %.4f bpv, max error %.6g, PSNR %.3f dB, %zu outlier(s), %.3f s (%zu grid(s))\n",
-              opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds, grids.size());
+              opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds,
+              grids.size());
 }
 
 // Turns the mutually exclusive rate flags into the library's mode (default: --psnr 40).
@@ -136,8 +140,10 @@ void set_rate(const CompressOptions& opt, EncodeOptions& enc) {
 void run_compress(const CompressOptions& opt) {
   check_output_path(opt.output);
   if (is_volume_input(opt)) return run_compress_volume(opt);
-  if (opt.bpv > 0.0 || opt.max_error > 0.0 || opt.max_error_rel > 0.0 || !opt.dtype.empty() || !opt.grid.empty())
-    throw std::invalid_argument("--bpv, --max-error, --max-error-rel, --dtype and --grid apply to volumes only");
+  if (opt.bpv > 0.0 || opt.max_error > 0.0 || opt.max_error_rel > 0.0 || !opt.dtype.empty() ||
+      !opt.grid.empty())
+    throw std::invalid_argument(
+        "--bpv, --max-error, --max-error-rel, --dtype and --grid apply to volumes only");
   const Image image = read_image(opt.input);
   EncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
@@ -159,10 +165,11 @@ void run_compress(const CompressOptions& opt) {
 
 void add_compress_command(CLI::App& app) {
   auto opt = std::make_shared<CompressOptions>();
-  auto* cmd = app.add_subcommand("compress",
-                                 "Compress an image (default: cdf97, --psnr 40) or a volume (.vdb, or raw with "
-                                 "--dims/--dtype; default: lossless for u8/u16, --max-error-rel 1e-3 for float) "
-                                 "to a .pw stream");
+  auto* cmd =
+      app.add_subcommand("compress",
+                         "Compress an image (default: cdf97, --psnr 40) or a volume (.vdb, or raw with "
+                         "--dims/--dtype; default: lossless for u8/u16, --max-error-rel 1e-3 for float) "
+                         "to a .pw stream");
   cmd->add_option("IN", opt->input, "input image (PNG, TIFF, EXR, PNM, ...) or volume (.vdb, raw)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -179,9 +186,10 @@ void add_compress_command(CLI::App& app) {
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
   auto* bpv = cmd->add_option("--bpv", opt->bpv, "volumes: target bits per voxel (whole file)")
                   ->check(CLI::PositiveNumber);
-  auto* max_error = cmd->add_option("--max-error", opt->max_error,
-                                    "float volumes: absolute point-wise error bound E, guaranteed on every active voxel")
-                        ->check(CLI::PositiveNumber);
+  auto* max_error =
+      cmd->add_option("--max-error", opt->max_error,
+                      "float volumes: absolute point-wise error bound E, guaranteed on every active voxel")
+          ->check(CLI::PositiveNumber);
   auto* max_error_rel =
       cmd->add_option("--max-error-rel", opt->max_error_rel,
                       "float volumes: the bound as a fraction R of the value range (E = R * (max - min))")

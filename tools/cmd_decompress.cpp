@@ -46,7 +46,8 @@ void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const Decompr
   write_volume_output(grids, opt);
   for (const VolumeGrid& g : grids)
     std::printf("%s: grid '%s' %zux%zux%zu, %s, decoded in %.3f s\n", opt.output.c_str(), g.name.c_str(),
-                g.volume.dims[0], g.volume.dims[1], g.volume.dims[2], to_string(g.volume.type).c_str(), seconds);
+                g.volume.dims[0], g.volume.dims[1], g.volume.dims[2], to_string(g.volume.type).c_str(),
+                seconds);
 }
 
 void run_decompress(const DecompressOptions& opt) {
@@ -68,8 +69,9 @@ void run_decompress(const DecompressOptions& opt) {
 
 void add_decompress_command(CLI::App& app) {
   auto opt = std::make_shared<DecompressOptions>();
-  auto* cmd = app.add_subcommand("decompress", "Decompress a .pw stream to an image file, or a volume stream to "
-                                               ".vdb (all grids) or raw (dense, stored type)");
+  auto* cmd = app.add_subcommand("decompress",
+                                 "Decompress a .pw stream to an image file, or a volume stream to "
+                                 ".vdb (all grids) or raw (dense, stored type)");
   cmd->add_option("IN", opt->input, "input .pw file")->required()->check(CLI::ExistingFile);
   cmd->add_option("OUT", opt->output, "output image; the format follows the extension")->required();
   cmd->add_option("--level", opt->level, "decode at 1/2^k resolution, reading only what it needs")

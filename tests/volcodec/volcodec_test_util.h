@@ -18,11 +18,13 @@ inline Volume smooth_volume(const Extent& dims, VoxelType type, double scale, un
   for (std::size_t z = 0; z < dims[2]; ++z)
     for (std::size_t y = 0; y < dims[1]; ++y)
       for (std::size_t x = 0; x < dims[0]; ++x) {
-        const double s = std::sin(0.31 * double(x) + 0.2 * double(y)) * std::cos(0.17 * double(z) - 0.1 * double(x)) +
-                         0.5 * std::sin(0.05 * double(x * y + z)) + noise(rng);
+        const double s =
+            std::sin(0.31 * double(x) + 0.2 * double(y)) * std::cos(0.17 * double(z) - 0.1 * double(x)) +
+            0.5 * std::sin(0.05 * double(x * y + z)) + noise(rng);
         double value = scale * (1.2 + s) / 2.4;
         if (type == VoxelType::f32) value = double(float(value));
-        if (type == VoxelType::u8 || type == VoxelType::u16) value = std::round(std::clamp(value, 0.0, scale));
+        if (type == VoxelType::u8 || type == VoxelType::u16)
+          value = std::round(std::clamp(value, 0.0, scale));
         v.at(x, y, z) = value;
       }
   return v;

@@ -18,8 +18,9 @@ using test::run_cli;
 class VolumeCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pupwave_volcodec_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ =
+        fs::temp_directory_path() /
+        ("pupwave_volcodec_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -31,8 +32,8 @@ class VolumeCli : public ::testing::Test {
 TEST_F(VolumeCli, RawFloatRoundTripWithinTheBound) {
   const Volume v = test::smooth_volume({17, 23, 9}, VoxelType::f32, 50.0);
   cli::write_raw_volume(v, path("in.raw"));
-  auto r = run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "17,23,9", "--dtype", "f32", "--max-error",
-                    "0.01", "--brick", "8"});
+  auto r = run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "17,23,9", "--dtype", "f32",
+                    "--max-error", "0.01", "--brick", "8"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run_cli({"decompress", path("v.pw"), path("out.raw")});
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -43,7 +44,8 @@ TEST_F(VolumeCli, RawFloatRoundTripWithinTheBound) {
 TEST_F(VolumeCli, RawU16IsLosslessByDefault) {
   const Volume v = test::smooth_volume({9, 14, 5}, VoxelType::u16, 60000.0);
   cli::write_raw_volume(v, path("in.raw"));
-  ASSERT_EQ(run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "9,14,5", "--dtype", "u16"}).exit_code, 0);
+  ASSERT_EQ(
+      run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "9,14,5", "--dtype", "u16"}).exit_code, 0);
   ASSERT_EQ(run_cli({"decompress", path("v.pw"), path("out.raw")}).exit_code, 0);
   EXPECT_EQ(cli::read_raw_volume(path("out.raw"), v.dims, VoxelType::u16).samples, v.samples);
 }
@@ -72,8 +74,8 @@ TEST_F(VolumeCli, VdbRoundTripKeepsTopologyAndBackground) {
 TEST_F(VolumeCli, LevelGivesTheReducedDims) {
   const Volume v = test::smooth_volume({33, 20, 7}, VoxelType::f32, 1.0);
   cli::write_raw_volume(v, path("in.raw"));
-  ASSERT_EQ(run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "33,20,7", "--dtype", "f32", "--step", "0.001",
-                     "--brick", "16", "--levels", "2"})
+  ASSERT_EQ(run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "33,20,7", "--dtype", "f32",
+                     "--step", "0.001", "--brick", "16", "--levels", "2"})
                 .exit_code,
             0);
   ASSERT_EQ(run_cli({"decompress", path("v.pw"), path("l2.raw"), "--level", "2"}).exit_code, 0);
@@ -86,7 +88,9 @@ TEST_F(VolumeCli, LevelGivesTheReducedDims) {
 TEST_F(VolumeCli, DamagedStreamsAndBadInputsLeaveNoOutput) {
   const Volume v = test::smooth_volume({12, 10, 8}, VoxelType::f32, 1.0);
   cli::write_raw_volume(v, path("in.raw"));
-  ASSERT_EQ(run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "12,10,8", "--dtype", "f32"}).exit_code, 0);
+  ASSERT_EQ(
+      run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "12,10,8", "--dtype", "f32"}).exit_code,
+      0);
   std::ifstream f(path("v.pw"), std::ios::binary);
   std::vector<char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   for (std::size_t cut : {std::size_t(3), std::size_t(40), bytes.size() / 2, bytes.size() - 1}) {
@@ -100,10 +104,12 @@ TEST_F(VolumeCli, DamagedStreamsAndBadInputsLeaveNoOutput) {
   std::ofstream(path("flip.pw"), std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
   EXPECT_NE(run_cli({"decompress", path("flip.pw"), path("out.raw")}).exit_code, 0);
   EXPECT_FALSE(fs::exists(path("out.raw")));
-  auto r = run_cli({"compress", path("in.raw"), path("bad.pw"), "--dims", "100000,100000,100000", "--dtype", "f32"});
+  auto r = run_cli(
+      {"compress", path("in.raw"), path("bad.pw"), "--dims", "100000,100000,100000", "--dtype", "f32"});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_FALSE(fs::exists(path("bad.pw")));
-  r = run_cli({"compress", path("in.raw"), path("bad.pw"), "--dims", "12,10,8", "--dtype", "f32", "--lossless"});
+  r = run_cli(
+      {"compress", path("in.raw"), path("bad.pw"), "--dims", "12,10,8", "--dtype", "f32", "--lossless"});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_FALSE(fs::exists(path("bad.pw")));
 }

@@ -135,7 +135,8 @@ TEST(VolumeCodec, PsnrTargetIsMet) {
   o.brick = 32;
   const auto out = decode_volumes(encode_volumes({grid_of(v)}, o).bytes)[0].volume;
   double sse = 0.0;
-  for (std::size_t i = 0; i < v.count(); ++i) sse += (v.samples[i] - out.samples[i]) * (v.samples[i] - out.samples[i]);
+  for (std::size_t i = 0; i < v.count(); ++i)
+    sse += (v.samples[i] - out.samples[i]) * (v.samples[i] - out.samples[i]);
   const double range = range_of(v);
   EXPECT_GE(10.0 * std::log10(range * range * double(v.count()) / sse), 50.0);
 }
