@@ -112,6 +112,22 @@ void restore_coarse_mask(Volume& out, const Volume& fine, int level) {
     if (!out.active[c]) out.samples[c] = sum[c] / double(n[c]);
 }
 
+// Level-k placement (the lod convention of docs/volumes.md): voxel size x 2^k, coarse voxel c
+// where fine index origin + 2^k c lies; the part of the origin that 2^k does not divide goes
+// into the translation.
+void scale_placement(VolumeGrid& g, int level) {
+  const std::int64_t f = std::int64_t(1) << level;
+  auto& m = g.index_to_world;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const std::int64_t o = g.origin[a];
+    const std::int64_t c = o >= 0 ? o / f : -((-o + f - 1) / f);
+    g.origin[a] = c;
+    for (std::size_t j = 0; j < 3; ++j) m[12 + j] += double(o - c * f) * m[4 * a + j];
+  }
+  for (std::size_t a = 0; a < 3; ++a)
+    for (std::size_t j = 0; j < 3; ++j) m[4 * a + j] *= double(f);
+}
+
 }  // namespace
 
 bool is_volume_stream(std::span<const std::uint8_t> bytes) {
@@ -140,6 +156,7 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
   check_brick_set(s, boxes);
   std::vector<VolumeGrid> grids = h.grids;
   for (VolumeGrid& g : grids) {
+    if (level > 0) scale_placement(g, level);
     g.volume.dims = level_extent(g.volume.dims, level);
     g.volume.active.clear();
     g.volume.samples.assign(g.volume.count(), g.volume.background);

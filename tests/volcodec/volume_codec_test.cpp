@@ -198,6 +198,33 @@ TEST(VolumeCodec, ReducedLevelHasTheLevelExtentAndApproximatesTheVolume) {
   EXPECT_THROW(decode_volumes(bytes, 3), std::invalid_argument);
 }
 
+// World position of index-space voxel i of a grid (row-vector convention of VolumeGrid).
+std::array<double, 3> world(const VolumeGrid& g, const std::array<double, 3>& i) {
+  std::array<double, 3> w{};
+  for (std::size_t j = 0; j < 3; ++j) {
+    w[j] = g.index_to_world[12 + j];
+    for (std::size_t a = 0; a < 3; ++a) w[j] += (double(g.origin[a]) + i[a]) * g.index_to_world[4 * a + j];
+  }
+  return w;
+}
+
+TEST(VolumeCodec, ReducedLevelKeepsWorldPlacementWithDoubledVoxels) {
+  VolumeGrid g = grid_of(test::smooth_volume({20, 12, 9}, VoxelType::f32, 1.0));
+  g.origin = {-7, 5, 2};
+  g.index_to_world = {0.5, 0, 0, 0, 0, 0.25, 0, 0, 0, 0, 2.0, 0, 10, 20, 30, 1};
+  VolumeEncodeOptions o;
+  o.mode = VolumeRateMode::step;
+  o.target = 1e-2;
+  o.brick = 8;
+  o.levels = 2;
+  const VolumeGrid coarse = decode_volumes(encode_volumes({g}, o).bytes, 2)[0];
+  for (const std::array<double, 3>& c : {std::array<double, 3>{0, 0, 0}, std::array<double, 3>{2, 1, 3}}) {
+    const auto a = world(coarse, c), b = world(g, {4 * c[0], 4 * c[1], 4 * c[2]});
+    for (std::size_t j = 0; j < 3; ++j) EXPECT_NEAR(a[j], b[j], 1e-12);
+  }
+  EXPECT_EQ(coarse.voxel_size()[0], 4 * g.voxel_size()[0]);
+}
+
 TEST(VolumeCodec, BadOptionsAreRejected) {
   const VolumeGrid g = grid_of(test::smooth_volume({8, 8, 8}, VoxelType::f32, 1.0));
   VolumeEncodeOptions o;
