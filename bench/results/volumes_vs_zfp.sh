@@ -4,7 +4,8 @@
 # range) on wmag91 and a generated 128^3 turbulence field. Both run single-threaded; times are
 # whole-process wall clock (file I/O included), best of 3. Max errors are measured here from the
 # decompressed files, independently of either tool.
-# Usage: bench/results/volumes_vs_zfp.sh [path/to/pupwave] > bench/results/volumes_vs_zfp.md
+# Usage: bench/results/volumes_vs_zfp.sh [path/to/pupwave] > table.md (the Notes section of
+# volumes_vs_zfp.md is written by hand below the table).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 pupwave=${1:-$here/../../build/tools/pupwave}
