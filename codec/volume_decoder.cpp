@@ -128,6 +128,36 @@ void scale_placement(VolumeGrid& g, int level) {
     for (std::size_t j = 0; j < 3; ++j) m[4 * a + j] *= double(f);
 }
 
+// Bricks of every grid. A dense grid needs a BRIK per brick, so its brick count is bounded by
+// the chunks present; checked before the brick list is allocated.
+std::vector<std::vector<BrickBox>> grid_bricks(const ParsedVolumeStream& s) {
+  const std::size_t edge = std::size_t(1) << s.header.brick_log2;
+  std::vector<std::vector<BrickBox>> boxes;
+  for (const VolumeGrid& g : s.header.grids) {
+    std::size_t count = 1;
+    for (std::size_t d : g.volume.dims) count *= (d + edge - 1) / edge;
+    require_stream(g.volume.is_sparse() || count <= s.bricks.size(),
+                   "volume stream truncated (missing bricks)");
+    boxes.push_back(brick_boxes(g.volume.dims, edge));
+  }
+  return boxes;
+}
+
+// Active masks and exact inactive values of the sparse grids (coarsened at level > 0).
+void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s, int level) {
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    if (!s.header.grids[g].volume.is_sparse()) continue;
+    if (level == 0) {
+      restore_mask(grids[g].volume, s.masks[g]);
+      continue;
+    }
+    Volume fine = s.header.grids[g].volume;  // full-resolution topology and inactive values
+    fine.samples.assign(fine.count(), 0.0);
+    restore_mask(fine, s.masks[g]);
+    restore_coarse_mask(grids[g].volume, fine, level);
+  }
+}
+
 }  // namespace
 
 bool is_volume_stream(std::span<const std::uint8_t> bytes) {
@@ -142,17 +172,7 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
                                 std::to_string(h.levels) + " levels");
   const auto t = stream_transform(h);
   const BrickCoding coding{t.get(), h.levels, std::size_t(1) << h.block_log2, h.delta, h.reversible};
-  std::vector<std::vector<BrickBox>> boxes;
-  for (const VolumeGrid& g : h.grids) {
-    // A dense grid needs a BRIK per brick, so its brick count is bounded by the chunks present;
-    // checked before the brick list is allocated.
-    const std::size_t edge = std::size_t(1) << h.brick_log2;
-    std::size_t count = 1;
-    for (std::size_t d : g.volume.dims) count *= (d + edge - 1) / edge;
-    require_stream(g.volume.is_sparse() || count <= s.bricks.size(),
-                   "volume stream truncated (missing bricks)");
-    boxes.push_back(brick_boxes(g.volume.dims, edge));
-  }
+  const auto boxes = grid_bricks(s);
   check_brick_set(s, boxes);
   std::vector<VolumeGrid> grids = h.grids;
   for (VolumeGrid& g : grids) {
@@ -178,17 +198,7 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
     const Extent at{box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level};
     place(grids[b.grid].volume, at, level_extent(box.size, level), values);  // bricks never overlap
   });
-  for (std::size_t g = 0; g < grids.size(); ++g) {
-    if (!h.grids[g].volume.is_sparse()) continue;
-    if (level == 0) {
-      restore_mask(grids[g].volume, s.masks[g]);
-      continue;
-    }
-    Volume fine = h.grids[g].volume;  // full-resolution topology and inactive values
-    fine.samples.assign(fine.count(), 0.0);
-    restore_mask(fine, s.masks[g]);
-    restore_coarse_mask(grids[g].volume, fine, level);
-  }
+  restore_sparse(grids, s, level);
   return grids;
 }
 

@@ -38,6 +38,7 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
   std::size_t total = 0;
   for (const VolumeGrid& g : grids) {
     const Volume& v = g.volume;
+    if (v.count() == 0) throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
     for (std::size_t d : v.dims)
       if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
     total += v.count();
