@@ -107,14 +107,20 @@ class BlockState {
   static constexpr std::uint8_t kDiagonalUnit = 16;
 };
 
-// Calls visit(x, y, z, rows) for every stripe column: `rows` (1..4) coefficients starting at
-// (x, y, z) downwards, in scan order (slice, stripe, column).
+// Calls visit(f, i, rows) for every stripe column, in scan order (slice, stripe, column):
+// `rows` (1..4) coefficients downwards, the top one at padded flag position f (see
+// BlockState::at) and block index i; row r is at f + r * (size[0] + 2) and i + r * size[0].
+// Positions are stepped, not recomputed, because this loop runs for every coding pass.
 template <class Visit>
 void for_each_stripe_column(const Extent& size, Visit&& visit) {
+  const std::size_t flag_row = size[0] + 2;
+  const std::size_t flag_slice = flag_row * (size[1] + 2);
   for (std::size_t z = 0; z < size[2]; ++z)
     for (std::size_t y0 = 0; y0 < size[1]; y0 += kStripe) {
       const std::size_t rows = size[1] - y0 < kStripe ? size[1] - y0 : kStripe;
-      for (std::size_t x = 0; x < size[0]; ++x) visit(x, y0, z, rows);
+      const std::size_t f0 = 1 + (y0 + 1) * flag_row + (z + 1) * flag_slice;
+      const std::size_t i0 = size[0] * (y0 + size[1] * z);
+      for (std::size_t x = 0; x < size[0]; ++x) visit(f0 + x, i0 + x, rows);
     }
 }
 

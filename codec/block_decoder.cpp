@@ -13,7 +13,7 @@ namespace {
 class BitPlaneDecoder {
  public:
   BitPlaneDecoder(std::span<const std::uint8_t> codeword, const Extent& size, unsigned orientation)
-      : state_(size, orientation), rc_(codeword) {
+      : state_(size, orientation), size_(size), flag_row_(size[0] + 2), rc_(codeword) {
     const std::size_t n = size[0] * size[1] * size[2];
     out_.known.assign(n, 0);
     out_.low_plane.assign(n, 255);
@@ -35,10 +35,6 @@ class BitPlaneDecoder {
   }
 
  private:
-  std::size_t index(std::size_t x, std::size_t y, std::size_t z) const {
-    const Extent& s = state_.size();
-    return x + s[0] * (y + s[1] * z);
-  }
 
   void decode_significance(std::size_t f, std::size_t i, int p, int ctx) {
     if (rc_.decode(state_.models[std::size_t(ctx)])) become_significant(f, i, p);
@@ -53,64 +49,67 @@ class BitPlaneDecoder {
   }
 
   void significance_pass(int p) {
-    for_each_stripe_column(state_.size(),
-                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-                             for (std::size_t y = y0; y < y0 + rows; ++y) {
-                               const std::size_t f = state_.at(x, y, z);
-                               if (state_.flags(f) & kSignificant) continue;
-                               const int ctx = state_.significance_context(f);
-                               if (ctx == 0) continue;
-                               decode_significance(f, index(x, y, z), p, ctx);
-                               state_.flags(f) |= kVisited;
-                             }
-                           });
+    const std::size_t fs = flag_row_, is = size_[0];
+    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t f = f0 + r * fs;
+        if (state_.flags(f) & kSignificant) continue;
+        const int ctx = state_.significance_context(f);
+        if (ctx == 0) continue;
+        decode_significance(f, i0 + r * is, p, ctx);
+        state_.flags(f) |= kVisited;
+      }
+    });
   }
 
   void refinement_pass(int p) {
-    for_each_stripe_column(
-        state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-          for (std::size_t y = y0; y < y0 + rows; ++y) {
-            const std::size_t f = state_.at(x, y, z);
-            if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
-            const std::size_t i = index(x, y, z);
-            const int bit = rc_.decode(state_.models[std::size_t(state_.refinement_context(f))]);
-            state_.flags(f) |= kRefined;
-            const std::int32_t add = bit ? std::int32_t(1u << p) : 0;
-            out_.known[i] += out_.known[i] < 0 ? -add : add;
-            out_.low_plane[i] = std::uint8_t(p);
-          }
-        });
+    const std::size_t fs = flag_row_, is = size_[0];
+    const std::int32_t bit_value = std::int32_t(1u << p);
+    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t f = f0 + r * fs;
+        if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
+        const std::size_t i = i0 + r * is;
+        const int bit = rc_.decode(state_.models[std::size_t(state_.refinement_context(f))]);
+        state_.flags(f) |= kRefined;
+        const std::int32_t add = bit ? bit_value : 0;
+        out_.known[i] += out_.known[i] < 0 ? -add : add;
+        out_.low_plane[i] = std::uint8_t(p);
+      }
+    });
   }
 
   void cleanup_pass(int p) {
-    for_each_stripe_column(state_.size(),
-                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-                             std::size_t y = y0;
-                             if (rows == kStripe && run_eligible(x, y0, z)) {
-                               if (!rc_.decode(state_.models[kRunContext])) return;
-                               std::size_t first = std::size_t(rc_.decode_equiprobable()) << 1;
-                               first |= std::size_t(rc_.decode_equiprobable());
-                               become_significant(state_.at(x, y0 + first, z), index(x, y0 + first, z), p);
-                               y = y0 + first + 1;
-                             }
-                             for (; y < y0 + rows; ++y) {
-                               const std::size_t f = state_.at(x, y, z);
-                               if (state_.flags(f) & (kSignificant | kVisited)) continue;
-                               decode_significance(f, index(x, y, z), p, state_.significance_context(f));
-                             }
-                           });
+    const std::size_t fs = flag_row_, is = size_[0];
+    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
+      std::size_t r = 0;
+      if (rows == kStripe && run_eligible(f0)) {
+        if (!rc_.decode(state_.models[kRunContext])) return;
+        std::size_t first = std::size_t(rc_.decode_equiprobable()) << 1;
+        first |= std::size_t(rc_.decode_equiprobable());
+        become_significant(f0 + first * fs, i0 + first * is, p);
+        r = first + 1;
+      }
+      for (; r < rows; ++r) {
+        const std::size_t f = f0 + r * fs;
+        if (state_.flags(f) & (kSignificant | kVisited)) continue;
+        decode_significance(f, i0 + r * is, p, state_.significance_context(f));
+      }
+    });
     state_.clear_visited();
   }
 
-  bool run_eligible(std::size_t x, std::size_t y0, std::size_t z) const {
+  bool run_eligible(std::size_t f0) const {
     for (std::size_t r = 0; r < kStripe; ++r) {
-      const std::size_t f = state_.at(x, y0 + r, z);
+      const std::size_t f = f0 + r * flag_row_;
       if ((state_.flags(f) & (kSignificant | kVisited)) || !state_.isolated(f)) return false;
     }
     return true;
   }
 
   BlockState state_;
+  Extent size_;           // block extent (a copy: flag writes would force reloads of state_'s)
+  std::size_t flag_row_;  // flag positions between vertically adjacent coefficients
   RangeDecoder rc_;
   DecodedBlock out_;
 };

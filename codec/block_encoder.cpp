@@ -13,7 +13,13 @@ class BitPlaneEncoder {
  public:
   BitPlaneEncoder(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
                   const Extent& size, unsigned orientation, double delta)
-      : m_(magnitude), negative_(negative), state_(size, orientation), delta_(delta), q_(magnitude.size()) {
+      : m_(magnitude),
+        negative_(negative),
+        state_(size, orientation),
+        size_(size),
+        flag_row_(size[0] + 2),
+        delta_(delta),
+        q_(magnitude.size()) {
     for (std::size_t i = 0; i < q_.size(); ++i) {
       if (!(m_[i] < float(1u << kMaxBitPlanes)))
         throw std::invalid_argument("quantization index too large for the block coder");
@@ -43,10 +49,6 @@ class BitPlaneEncoder {
   }
 
  private:
-  std::size_t index(std::size_t x, std::size_t y, std::size_t z) const {
-    const Extent& s = state_.size();
-    return x + s[0] * (y + s[1] * z);
-  }
   // Reconstruction (index units) of magnitude q known down to bit-plane p.
   double reconstruction(std::uint32_t q, int p) const {
     const std::uint32_t known = (q >> p) << p;
@@ -77,61 +79,61 @@ class BitPlaneEncoder {
   }
 
   void significance_pass(int p) {
-    for_each_stripe_column(state_.size(),
-                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-                             for (std::size_t y = y0; y < y0 + rows; ++y) {
-                               const std::size_t f = state_.at(x, y, z);
-                               if (state_.flags(f) & kSignificant) continue;
-                               const int ctx = state_.significance_context(f);
-                               if (ctx == 0) continue;
-                               code_significance(f, index(x, y, z), p, ctx);
-                               state_.flags(f) |= kVisited;
-                             }
-                           });
+    const std::size_t fs = flag_row_, is = size_[0];
+    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t f = f0 + r * fs;
+        if (state_.flags(f) & kSignificant) continue;
+        const int ctx = state_.significance_context(f);
+        if (ctx == 0) continue;
+        code_significance(f, i0 + r * is, p, ctx);
+        state_.flags(f) |= kVisited;
+      }
+    });
   }
 
   void refinement_pass(int p) {
-    for_each_stripe_column(
-        state_.size(), [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-          for (std::size_t y = y0; y < y0 + rows; ++y) {
-            const std::size_t f = state_.at(x, y, z);
-            if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
-            const std::size_t i = index(x, y, z);
-            rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
-            state_.flags(f) |= kRefined;
-            add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
-          }
-        });
+    const std::size_t fs = flag_row_, is = size_[0];
+    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t f = f0 + r * fs;
+        if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
+        const std::size_t i = i0 + r * is;
+        rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
+        state_.flags(f) |= kRefined;
+        add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
+      }
+    });
   }
 
   void cleanup_pass(int p) {
-    for_each_stripe_column(state_.size(),
-                           [&](std::size_t x, std::size_t y0, std::size_t z, std::size_t rows) {
-                             std::size_t y = y0;
-                             if (rows == kStripe && run_eligible(x, y0, z)) {
-                               std::size_t first = kStripe;  // first coefficient of the column with bit p set
-                               for (std::size_t r = 0; r < kStripe && first == kStripe; ++r)
-                                 if ((q_[index(x, y0 + r, z)] >> p) & 1u) first = r;
-                               rc_.encode(first != kStripe, state_.models[kRunContext]);
-                               if (first == kStripe) return;
-                               rc_.encode_equiprobable(int(first >> 1));
-                               rc_.encode_equiprobable(int(first & 1));
-                               become_significant(state_.at(x, y0 + first, z), index(x, y0 + first, z), p);
-                               y = y0 + first + 1;
-                             }
-                             for (; y < y0 + rows; ++y) {
-                               const std::size_t f = state_.at(x, y, z);
-                               if (state_.flags(f) & (kSignificant | kVisited)) continue;
-                               code_significance(f, index(x, y, z), p, state_.significance_context(f));
-                             }
-                           });
+    const std::size_t fs = flag_row_, is = size_[0];
+    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
+      std::size_t r = 0;
+      if (rows == kStripe && run_eligible(f0)) {
+        std::size_t first = kStripe;  // first coefficient of the column with bit p set
+        for (std::size_t k = 0; k < kStripe && first == kStripe; ++k)
+          if ((q_[i0 + k * is] >> p) & 1u) first = k;
+        rc_.encode(first != kStripe, state_.models[kRunContext]);
+        if (first == kStripe) return;
+        rc_.encode_equiprobable(int(first >> 1));
+        rc_.encode_equiprobable(int(first & 1));
+        become_significant(f0 + first * fs, i0 + first * is, p);
+        r = first + 1;
+      }
+      for (; r < rows; ++r) {
+        const std::size_t f = f0 + r * fs;
+        if (state_.flags(f) & (kSignificant | kVisited)) continue;
+        code_significance(f, i0 + r * is, p, state_.significance_context(f));
+      }
+    });
     state_.clear_visited();
   }
 
   // The run mode codes a whole column with one bit when it is quiet and uncoded.
-  bool run_eligible(std::size_t x, std::size_t y0, std::size_t z) const {
+  bool run_eligible(std::size_t f0) const {
     for (std::size_t r = 0; r < kStripe; ++r) {
-      const std::size_t f = state_.at(x, y0 + r, z);
+      const std::size_t f = f0 + r * flag_row_;
       if ((state_.flags(f) & (kSignificant | kVisited)) || !state_.isolated(f)) return false;
     }
     return true;
@@ -140,6 +142,8 @@ class BitPlaneEncoder {
   std::span<const float> m_;
   std::span<const std::uint8_t> negative_;
   BlockState state_;
+  Extent size_;            // block extent (a copy: flag writes would force reloads of state_'s)
+  std::size_t flag_row_;   // flag positions between vertically adjacent coefficients
   double delta_;
   std::vector<std::uint32_t> q_;
   RangeEncoder rc_;
