@@ -59,6 +59,10 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
 // True when bytes start with the volume stream signature (cheap; validates nothing else).
 bool is_volume_stream(std::span<const std::uint8_t> bytes);
 
+// Human-readable description of a volume stream (grids, transform, mode, chunk sizes), after
+// validating the whole stream. Throws DecodeError for a corrupt or truncated stream.
+std::string describe_volume_stream(std::span<const std::uint8_t> bytes);
+
 // Largest |a - b| over the voxels active in `a` (both of the same dims; throws otherwise).
 double max_abs_error(const Volume& a, const Volume& b);
 

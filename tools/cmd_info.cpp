@@ -1,11 +1,11 @@
 // `pupwave info FILE`: describe a compressed pupwave file or an image file.
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "codec/container.h"
+#include "codec/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
@@ -13,16 +13,19 @@
 namespace pupwave::cli {
 namespace {
 
-// True when the file starts with the .pw signature "PUPW" (docs/bitstream.md).
-bool is_pupwave_stream(const std::string& path) {
+// The signature a file starts with ("PUPW" images, "PUPV" volumes: docs/bitstream.md).
+std::string signature(const std::string& path) {
   char sig[4] = {};
   std::ifstream in(path, std::ios::binary);
-  return in.read(sig, 4) && std::memcmp(sig, "PUPW", 4) == 0;
+  return in.read(sig, 4) ? std::string(sig, 4) : std::string();
 }
 
 void run_info(const std::string& path) {
-  if (is_pupwave_stream(path)) {
+  const std::string sig = signature(path);
+  if (sig == "PUPW") {
     std::cout << path << ": " << describe_stream(read_file_bytes(path)) << '\n';
+  } else if (sig == "PUPV") {
+    std::cout << path << ": " << describe_volume_stream(read_file_bytes(path));
   } else {
     std::cout << describe_image_file(path) << '\n';
   }

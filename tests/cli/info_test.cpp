@@ -41,5 +41,24 @@ TEST(InfoCli, DescribesImagesAndStreams) {
   fs::remove_all(dir);
 }
 
+TEST(InfoCli, DescribesVolumeStreams) {
+  const fs::path dir = fs::temp_directory_path() / ("pupwave_vinfo_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path pw = dir / "sphere.pw";
+  auto r = test::run_cli({"compress", std::string(PUPWAVE_TESTIMAGES_DIR) + "/sphere_ls.vdb", pw.string(),
+                          "--max-error", "0.002"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = test::run_cli({"info", pw.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("volume stream"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("level set"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("max error   0.002"), std::string::npos) << r.output;
+  fs::resize_file(pw, fs::file_size(pw) - 7);
+  r = test::run_cli({"info", pw.string()});
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("pupwave: error:"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace pupwave
