@@ -44,6 +44,33 @@ constexpr SigTable make_sig_table() {
 
 constexpr SigTable kSigTable = make_sig_table();
 
+// Sign context (0..4) and XOR bit from the clamped horizontal and vertical contributions
+// (JPEG 2000 Table D.3: contexts are symmetric under negating both contributions).
+constexpr std::pair<int, int> sign_context_of(int h, int v) {
+  const int flip = (h < 0 || (h == 0 && v < 0)) ? 1 : 0;
+  const int hh = flip ? -h : h;
+  const int vv = flip ? -v : v;
+  return {hh == 0 ? (vv == 0 ? 0 : 1) : 3 + vv, flip};  // (0,0) (0,1) (1,-1) (1,0) (1,1)
+}
+
+// +1 / -1 / 0 of a 2-bit sign state (bit 0: significant, bit 1: negative).
+constexpr int sign_of_state(std::size_t s) { return (s & 1) ? ((s & 2) ? -1 : 1) : 0; }
+
+// Context * 2 + XOR bit for every combination of the four direct neighbours' sign states
+// (left, right, up, down; 2 bits each, as BlockState::sign_state gives them).
+constexpr std::array<std::uint8_t, 256> make_sign_table() {
+  std::array<std::uint8_t, 256> t{};
+  for (std::size_t key = 0; key < 256; ++key) {
+    const int h = std::clamp(sign_of_state(key & 3) + sign_of_state((key >> 2) & 3), -1, 1);
+    const int v = std::clamp(sign_of_state((key >> 4) & 3) + sign_of_state((key >> 6) & 3), -1, 1);
+    const auto [ctx, flip] = sign_context_of(h, v);
+    t[key] = std::uint8_t(ctx * 2 + flip);
+  }
+  return t;
+}
+
+constexpr std::array<std::uint8_t, 256> kSignTable = make_sign_table();
+
 }  // namespace
 
 BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
@@ -62,15 +89,15 @@ BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
 }
 
 std::pair<int, int> BlockState::sign_context(std::size_t p) const {
+  if (!volume_) {  // 2-D: one look-up on the four direct neighbours' sign states
+    const std::size_t key = sign_state(p - 1) | sign_state(p + 1) << 2 | sign_state(p - stride_y_) << 4 |
+                            sign_state(p + stride_y_) << 6;
+    const std::uint8_t e = kSignTable[key];
+    return {kSignContext0 + (e >> 1), e & 1};
+  }
   const int h = std::clamp(sign_of(p - 1) + sign_of(p + 1), -1, 1);
-  int v = sign_of(p - stride_y_) + sign_of(p + stride_y_);
-  if (volume_) v += sign_of(p - stride_z_) + sign_of(p + stride_z_);
-  v = std::clamp(v, -1, 1);
-  // JPEG 2000 Table D.3: contexts are symmetric under negating both contributions.
-  const int flip = (h < 0 || (h == 0 && v < 0)) ? 1 : 0;
-  const int hh = flip ? -h : h;
-  const int vv = flip ? -v : v;
-  const int ctx = hh == 0 ? (vv == 0 ? 0 : 1) : 3 + vv;  // (0,0) (0,1) (1,-1) (1,0) (1,1)
+  const int v = sign_of(p - stride_y_) + sign_of(p + stride_y_) + sign_of(p - stride_z_) + sign_of(p + stride_z_);
+  const auto [ctx, flip] = sign_context_of(h, std::clamp(v, -1, 1));
   return {kSignContext0 + ctx, flip};
 }
 

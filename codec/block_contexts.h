@@ -90,6 +90,10 @@ class BlockState {
   bool sig(std::size_t p) const { return flags_[p] & kSignificant; }
   // +1 / -1 for a significant positive / negative neighbour, 0 otherwise.
   int sign_of(std::size_t p) const { return sig(p) ? ((flags_[p] & kNegative) ? -1 : 1) : 0; }
+  // Significance and sign of p as 2 bits (bit 0: significant, bit 1: negative).
+  std::size_t sign_state(std::size_t p) const {
+    return std::size_t(flags_[p] & kSignificant) | std::size_t((flags_[p] & kNegative) >> 2);
+  }
 
   Extent size_;
   int table_ = 0;  // 0: LL and high-in-y bands, 1: high-in-x bands, 2: high in both
