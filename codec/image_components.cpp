@@ -69,28 +69,6 @@ ColourTransform colour_for(std::size_t channels, bool reversible) {
 
 double level_shift(SampleType type) { return is_integer(type) ? (nominal_max(type) + 1.0) / 2.0 : 0.0; }
 
-std::vector<std::vector<float>> float_components(const Image& image, ColourTransform colour) {
-  const std::size_t n = image.plane_size();
-  const auto shift = float(level_shift(image.type));
-  std::vector<std::vector<float>> planes(image.channels);
-  for (std::size_t c = 0; c < image.channels; ++c) {
-    planes[c].assign(image.plane(c), image.plane(c) + n);
-    for (float& v : planes[c]) v -= shift;
-  }
-  if (colour == ColourTransform::ict) forward_ict(planes[0].data(), planes[1].data(), planes[2].data(), n);
-  return planes;
-}
-
-std::vector<std::vector<std::int32_t>> integer_components(const Image& image, ColourTransform colour) {
-  const std::size_t n = image.plane_size();
-  const auto shift = std::int32_t(level_shift(image.type));
-  std::vector<std::vector<std::int32_t>> planes(image.channels, std::vector<std::int32_t>(n));
-  for (std::size_t c = 0; c < image.channels; ++c)
-    for (std::size_t i = 0; i < n; ++i) planes[c][i] = std::int32_t(image.plane(c)[i]) - shift;
-  if (colour == ColourTransform::rct) forward_rct(planes[0].data(), planes[1].data(), planes[2].data(), n);
-  return planes;
-}
-
 std::vector<float> float_component(const Image& image, ColourTransform colour, std::size_t c) {
   const std::size_t n = image.plane_size();
   const auto shift = float(level_shift(image.type));

@@ -19,11 +19,8 @@ ColourTransform colour_for(std::size_t channels, bool reversible);
 // Level shift that centres integer samples on zero (2^(bits-1)); 0 for float samples.
 double level_shift(SampleType type);
 
-// Shifted, colour-transformed planes, one per channel.
-std::vector<std::vector<float>> float_components(const Image& image, ColourTransform colour);
-std::vector<std::vector<std::int32_t>> integer_components(const Image& image, ColourTransform colour);
-// Component c alone (the same values as element c of the functions above), so an encoder
-// can hold one transformed component at a time.
+// Component c after level shift and colour transform (forward_ict / forward_rct), one at a
+// time so an encoder holds a single transformed component.
 std::vector<float> float_component(const Image& image, ColourTransform colour, std::size_t c);
 std::vector<std::int32_t> integer_component(const Image& image, ColourTransform colour, std::size_t c);
 
