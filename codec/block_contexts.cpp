@@ -96,7 +96,8 @@ std::pair<int, int> BlockState::sign_context(std::size_t p) const {
     return {kSignContext0 + (e >> 1), e & 1};
   }
   const int h = std::clamp(sign_of(p - 1) + sign_of(p + 1), -1, 1);
-  const int v = sign_of(p - stride_y_) + sign_of(p + stride_y_) + sign_of(p - stride_z_) + sign_of(p + stride_z_);
+  const int v =
+      sign_of(p - stride_y_) + sign_of(p + stride_y_) + sign_of(p - stride_z_) + sign_of(p + stride_z_);
   const auto [ctx, flip] = sign_context_of(h, std::clamp(v, -1, 1));
   return {kSignContext0 + ctx, flip};
 }

@@ -35,7 +35,6 @@ class BitPlaneDecoder {
   }
 
  private:
-
   void decode_significance(std::size_t f, std::size_t i, int p, int ctx) {
     if (rc_.decode(state_.models[std::size_t(ctx)])) become_significant(f, i, p);
   }

@@ -142,8 +142,8 @@ class BitPlaneEncoder {
   std::span<const float> m_;
   std::span<const std::uint8_t> negative_;
   BlockState state_;
-  Extent size_;            // block extent (a copy: flag writes would force reloads of state_'s)
-  std::size_t flag_row_;   // flag positions between vertically adjacent coefficients
+  Extent size_;           // block extent (a copy: flag writes would force reloads of state_'s)
+  std::size_t flag_row_;  // flag positions between vertically adjacent coefficients
   double delta_;
   std::vector<std::uint32_t> q_;
   RangeEncoder rc_;

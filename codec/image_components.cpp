@@ -15,7 +15,8 @@ template <class T>
 void crop_in_place(std::vector<T>& plane, const Extent& dims, const Extent& size) {
   if (size == dims) return;
   for (std::size_t y = 0; y < size[1]; ++y)
-    std::copy_n(plane.begin() + std::ptrdiff_t(y * dims[0]), size[0], plane.begin() + std::ptrdiff_t(y * size[0]));
+    std::copy_n(plane.begin() + std::ptrdiff_t(y * dims[0]), size[0],
+                plane.begin() + std::ptrdiff_t(y * size[0]));
   plane.resize(size[0] * size[1]);
   plane.shrink_to_fit();
 }
@@ -95,7 +96,8 @@ std::vector<std::int32_t> integer_component(const Image& image, ColourTransform 
   }
   const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t rgb[3] = {std::int32_t(r[i]) - shift, std::int32_t(g[i]) - shift, std::int32_t(b[i]) - shift};
+    const std::int32_t rgb[3] = {std::int32_t(r[i]) - shift, std::int32_t(g[i]) - shift,
+                                 std::int32_t(b[i]) - shift};
     forward_rct(rgb, c, out.data() + i);
   }
   return out;
@@ -133,7 +135,8 @@ Image image_from_components(std::vector<std::vector<float>>& planes, const Exten
       for (float& v : p) v = float(double(v) / gain);
   }
   Image out(size[0], size[1], planes.size(), type);
-  if (colour == ColourTransform::ict) inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
+  if (colour == ColourTransform::ict)
+    inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
   write_planes(planes, out);
   return out;
 }
@@ -142,12 +145,14 @@ Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, cons
                             const Extent& size, SampleType type, ColourTransform colour) {
   for (auto& p : planes) crop_in_place(p, dims, size);
   Image out(size[0], size[1], planes.size(), type);
-  if (colour == ColourTransform::rct) inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
+  if (colour == ColourTransform::rct)
+    inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
   write_planes(planes, out);
   return out;
 }
 
-double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes, ColourTransform colour) {
+double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes,
+                       ColourTransform colour) {
   if (colour == ColourTransform::ict)
     inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
   return components_psnr_after_colour(reference, planes);

@@ -43,7 +43,8 @@ Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, cons
 // component planes laid out over the reference's extent, without building the decoded
 // image: undoes colour and level shift, rounds and clamps like image_from_components.
 // Consumes `planes` (the colour transform is undone in place).
-double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes, ColourTransform colour);
+double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes,
+                       ColourTransform colour);
 double components_psnr(const Image& reference, std::vector<std::vector<std::int32_t>>& planes,
                        ColourTransform colour);
 

@@ -82,7 +82,8 @@ double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, uns
   const ParsedStream s = parse_container(bytes, 0);
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
-  if (h.dims[0] != image.width || h.dims[1] != image.height || h.channels != image.channels || h.type != image.type)
+  if (h.dims[0] != image.width || h.dims[1] != image.height || h.channels != image.channels ||
+      h.type != image.type)
     throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
   const auto t = make_transform(h.spec);
   if (h.reversible) {

@@ -24,9 +24,9 @@ struct ImagePlan {
   std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components (or empty)
   const Image* source = nullptr;                 // the input, alive while the plan is used
   Transform1DPtr transform;
-  std::size_t pixels = 0;                        // width * height
-  std::size_t samples = 0;                       // pixels * channels
-  double peak = 1.0;                             // PSNR peak of the input
+  std::size_t pixels = 0;   // width * height
+  std::size_t samples = 0;  // pixels * channels
+  double peak = 1.0;        // PSNR peak of the input
   unsigned threads = 0;
 };
 
