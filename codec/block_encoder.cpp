@@ -22,7 +22,7 @@ class BitPlaneEncoder {
         q_(magnitude.size()) {
     for (std::size_t i = 0; i < q_.size(); ++i) {
       if (!(m_[i] < float(1u << kMaxBitPlanes)))
-        throw std::invalid_argument("quantization index too large for the block coder");
+        throw IndexRangeError("quantization index too large for the block coder");
       q_[i] = std::uint32_t(m_[i]);
     }
   }

@@ -5,12 +5,20 @@
 
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "codec/range_encoder.h"
 #include "transforms/subband.h"
 
 namespace pupwave {
+
+// A quantization index beyond the coder's 2^kMaxBitPlanes range: coefficients too large for the
+// step, as unstable filter banks produce after many levels. Callers may retry with fewer levels.
+class IndexRangeError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 // The coded form of one block at every truncation point.
 struct EncodedBlock {
@@ -32,7 +40,7 @@ struct EncodedBlock {
 // in block order (x fastest, then y, then z) over `size`. `orientation` is the subband's
 // (bit a = high-pass along axis a). `delta` (0..1) is the reconstruction offset inside a
 // quantization bin the decoder will use; the distortion estimates assume it.
-// Throws std::invalid_argument if an index reaches 2^kMaxBitPlanes.
+// Throws IndexRangeError (a std::invalid_argument) if an index reaches 2^kMaxBitPlanes.
 EncodedBlock encode_block(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
                           const Extent& size, unsigned orientation, double delta);
 

@@ -10,6 +10,7 @@
 #include "codec/image_plan.h"
 #include "codec/parallel.h"
 #include "codec/pcrd.h"
+#include "transforms/separable.h"
 
 namespace pupwave {
 namespace {
@@ -174,9 +175,7 @@ EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
   }
 }
 
-}  // namespace
-
-EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
+EncodeResult encode_with_levels(const Image& image, const EncodeOptions& options) {
   ImagePlan plan = plan_image(image, options);
   if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
   switch (options.mode) {
@@ -193,6 +192,24 @@ EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
     case RateMode::psnr: return encode_for_psnr(image, plan, options.target);
   }
   throw std::invalid_argument("unknown rate mode");
+}
+
+}  // namespace
+
+EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
+  if (options.levels >= 0 || options.entropy == EntropyCoder::zstd) return encode_with_levels(image, options);
+  // Unstable banks (pups:cinpact-c3) amplify the coarse band at every level until quantization
+  // indices leave the block coder's range; with default levels, use fewer instead of failing.
+  EncodeOptions fewer = options;
+  fewer.levels = default_levels({image.width, image.height, 1});
+  for (;;) {
+    try {
+      return encode_with_levels(image, fewer);
+    } catch (const IndexRangeError&) {
+      if (fewer.levels <= 1) throw;
+      --fewer.levels;
+    }
+  }
 }
 
 }  // namespace pupwave

@@ -1,0 +1,36 @@
+// Filter banks whose coarse band grows at every level (pups:cinpact-c3) overflow the block
+// coder's index range at the default level count; the encoder then uses fewer levels.
+#include <gtest/gtest.h>
+
+#include "codec/block_encoder.h"
+#include "codec/container.h"
+#include "codec/image_codec.h"
+#include "codec/test_images.h"
+#include "transforms/separable.h"
+
+namespace pupwave {
+namespace {
+
+TEST(UnstableBank, DefaultLevelsFallBackInsteadOfFailing) {
+  const Image img = testing::synthetic_image(256, 256, 1, SampleType::u8);
+  EncodeOptions o;
+  o.transform = "pups:cinpact-c3";
+  o.mode = RateMode::bpp;
+  o.target = 2.0;
+  const int full = default_levels({256, 256, 1});
+  o.levels = full;
+  EXPECT_THROW(encode_image(img, o), IndexRangeError);  // the bank really overflows at full depth
+
+  o.levels = -1;
+  const EncodeResult r = encode_image(img, o);
+  const int used = parse_container(r.bytes).header.levels;
+  EXPECT_LT(used, full);
+  EXPECT_GE(used, 1);
+  const Image back = decode_image(r.bytes);
+  EXPECT_EQ(back.width, img.width);
+  EXPECT_EQ(back.height, img.height);
+  EXPECT_LE(r.bpp, 2.0);
+}
+
+}  // namespace
+}  // namespace pupwave
