@@ -4,11 +4,15 @@
 # Usage: scripts/demo.sh [IMAGE] [BPP]   (default: testimages/astronaut.png at 1 bpp)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh >/dev/null
+mkdir -p out
+# The build's chatter goes to a log; it is shown only when the build fails.
+if ! bash scripts/build.sh >out/build.log 2>&1; then
+  cat out/build.log
+  exit 1
+fi
 image=${1:-testimages/astronaut.png}
 bpp=${2:-1}
 pw=build/tools/pupwave
-mkdir -p out
 name=$(basename "${image%.*}")
 
 start=$(date +%s.%N)
