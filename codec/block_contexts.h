@@ -60,6 +60,15 @@ class BlockState {
   }
   // True when no neighbour is significant (the run mode and the first refinement ask this).
   bool isolated(std::size_t p) const { return neighbours_[p] == 0; }
+  // The run mode codes a whole stripe column (top at f0) with one bit when it is quiet and
+  // uncoded: no coefficient significant or visited, none with a significant neighbour.
+  bool run_eligible(std::size_t f0) const {
+    for (std::size_t r = 0; r < kStripe; ++r) {
+      const std::size_t f = f0 + r * stride_y_;
+      if ((flags_[f] & (kSignificant | kVisited)) || !isolated(f)) return false;
+    }
+    return true;
+  }
 
   // Marks coefficient p significant with the given sign and counts it in its neighbours'
   // packed words, so contexts are one table look-up instead of 8 (or 10) flag reads.

@@ -82,7 +82,7 @@ class BitPlaneDecoder {
     const std::size_t fs = flag_row_, is = size_[0];
     for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
       std::size_t r = 0;
-      if (rows == kStripe && run_eligible(f0)) {
+      if (rows == kStripe && state_.run_eligible(f0)) {
         if (!rc_.decode(state_.models[kRunContext])) return;
         std::size_t first = std::size_t(rc_.decode_equiprobable()) << 1;
         first |= std::size_t(rc_.decode_equiprobable());
@@ -96,14 +96,6 @@ class BitPlaneDecoder {
       }
     });
     state_.clear_visited();
-  }
-
-  bool run_eligible(std::size_t f0) const {
-    for (std::size_t r = 0; r < kStripe; ++r) {
-      const std::size_t f = f0 + r * flag_row_;
-      if ((state_.flags(f) & (kSignificant | kVisited)) || !state_.isolated(f)) return false;
-    }
-    return true;
   }
 
   BlockState state_;

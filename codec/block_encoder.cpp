@@ -110,7 +110,7 @@ class BitPlaneEncoder {
     const std::size_t fs = flag_row_, is = size_[0];
     for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
       std::size_t r = 0;
-      if (rows == kStripe && run_eligible(f0)) {
+      if (rows == kStripe && state_.run_eligible(f0)) {
         std::size_t first = kStripe;  // first coefficient of the column with bit p set
         for (std::size_t k = 0; k < kStripe && first == kStripe; ++k)
           if ((q_[i0 + k * is] >> p) & 1u) first = k;
@@ -128,15 +128,6 @@ class BitPlaneEncoder {
       }
     });
     state_.clear_visited();
-  }
-
-  // The run mode codes a whole column with one bit when it is quiet and uncoded.
-  bool run_eligible(std::size_t f0) const {
-    for (std::size_t r = 0; r < kStripe; ++r) {
-      const std::size_t f = f0 + r * flag_row_;
-      if ((state_.flags(f) & (kSignificant | kVisited)) || !state_.isolated(f)) return false;
-    }
-    return true;
   }
 
   std::span<const float> m_;

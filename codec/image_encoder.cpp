@@ -92,15 +92,6 @@ std::vector<int> all_passes(const CodedImage& coded) {
   return passes;
 }
 
-EncodeResult finish(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes, double base) {
-  EncodeResult r;
-  r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
-  r.psnr = measure_psnr(image, bytes, plan.threads);
-  r.base_step = base;
-  r.bytes = std::move(bytes);
-  return r;
-}
-
 // Bisection leaves a little of the budget unused where the next hull points of blocks are
 // large; try the best few of them one by one and keep each that still fits.
 void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int>& passes, double budget) {
@@ -141,7 +132,7 @@ EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
     fill_budget(plan, coded, passes, budget);
     auto bytes = build(plan, coded, passes);
     coded = CodedImage{};  // free the coded blocks before the PSNR check decodes the stream
-    return finish(image, plan, std::move(bytes), base);
+    return make_encode_result(image, plan, std::move(bytes), base);
   }
 }
 
@@ -170,7 +161,7 @@ EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
     }
     if (!best.empty() || round >= kMaxStepRefinements) {
       if (best.empty()) best = build(plan, coded, all_passes(coded));
-      return finish(image, plan, std::move(best), base);
+      return make_encode_result(image, plan, std::move(best), base);
     }
   }
 }
@@ -181,12 +172,12 @@ EncodeResult encode_with_levels(const Image& image, const EncodeOptions& options
   switch (options.mode) {
     case RateMode::lossless: {
       const CodedImage coded = code_blocks(plan);
-      return finish(image, plan, build(plan, coded, all_passes(coded)), 1.0);
+      return make_encode_result(image, plan, build(plan, coded, all_passes(coded)), 1.0);
     }
     case RateMode::step: {
       set_base_step(plan, options.target);
       const CodedImage coded = code_blocks(plan);
-      return finish(image, plan, build(plan, coded, all_passes(coded)), options.target);
+      return make_encode_result(image, plan, build(plan, coded, all_passes(coded)), options.target);
     }
     case RateMode::bpp: return encode_for_size(image, plan, options.target);
     case RateMode::psnr: return encode_for_psnr(image, plan, options.target);

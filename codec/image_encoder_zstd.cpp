@@ -75,12 +75,7 @@ EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOption
     });
   }
   release_coefficients(plan);
-  EncodeResult r;
-  r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
-  r.psnr = measure_psnr(image, bytes, plan.threads);
-  r.base_step = base;
-  r.bytes = std::move(bytes);
-  return r;
+  return make_encode_result(image, plan, std::move(bytes), base);
 }
 
 }  // namespace pupwave

@@ -141,4 +141,14 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
   return write_container(plan.header, entries, data);
 }
 
+EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
+                                double base_step) {
+  EncodeResult r;
+  r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
+  r.psnr = measure_psnr(image, bytes, plan.threads);
+  r.base_step = base_step;
+  r.bytes = std::move(bytes);
+  return r;
+}
+
 }  // namespace pupwave

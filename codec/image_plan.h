@@ -57,6 +57,10 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
 // Decodes `bytes` and returns its PSNR (all channels) against `image`.
 double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads);
 
+// The result of an encode: the bytes with their bpp and measured PSNR and the base step used.
+EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
+                                double base_step);
+
 // Encodes with the zstd back end (rate control by the base step only).
 EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOptions& options);
 
