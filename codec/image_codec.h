@@ -28,12 +28,15 @@ struct EncodeOptions {
   EntropyCoder entropy = EntropyCoder::ebcot;
   unsigned threads = 0;          // 0: all hardware threads
   Extent block_size{64, 64, 1};  // code-block extent (powers of two, >= 1024 samples)
+  // Decode the result to report its PSNR. Costs about a full decode and a decoded image's
+  // memory; PSNR targets measure it anyway.
+  bool measure_psnr = true;
 };
 
 struct EncodeResult {
   std::vector<std::uint8_t> bytes;  // the complete .pw file
   double bpp = 0.0;                 // bits per pixel of the whole file
-  double psnr = 0.0;                // of the decoded image against the input, all channels (dB)
+  double psnr = 0.0;  // of the decoded image against the input, all channels (dB); NaN if not measured
   double base_step = 0.0;           // quantizer base step used (1 for lossless)
 };
 

@@ -70,29 +70,29 @@ ColourTransform colour_for(std::size_t channels, bool reversible) {
 
 double level_shift(SampleType type) { return is_integer(type) ? (nominal_max(type) + 1.0) / 2.0 : 0.0; }
 
-std::vector<float> float_component(const Image& image, ColourTransform colour, std::size_t c) {
+void float_component(const Image& image, ColourTransform colour, std::size_t c, std::vector<float>& out) {
   const std::size_t n = image.plane_size();
   const auto shift = float(level_shift(image.type));
-  std::vector<float> out(n);
+  out.resize(n);
   if (colour != ColourTransform::ict || c >= 3) {
     for (std::size_t i = 0; i < n; ++i) out[i] = image.plane(c)[i] - shift;
-    return out;
+    return;
   }
   const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
   for (std::size_t i = 0; i < n; ++i) {
     const float rgb[3] = {r[i] - shift, g[i] - shift, b[i] - shift};
     forward_ict(rgb, c, out.data() + i);
   }
-  return out;
 }
 
-std::vector<std::int32_t> integer_component(const Image& image, ColourTransform colour, std::size_t c) {
+void integer_component(const Image& image, ColourTransform colour, std::size_t c,
+                       std::vector<std::int32_t>& out) {
   const std::size_t n = image.plane_size();
   const auto shift = std::int32_t(level_shift(image.type));
-  std::vector<std::int32_t> out(n);
+  out.resize(n);
   if (colour != ColourTransform::rct || c >= 3) {
     for (std::size_t i = 0; i < n; ++i) out[i] = std::int32_t(image.plane(c)[i]) - shift;
-    return out;
+    return;
   }
   const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
   for (std::size_t i = 0; i < n; ++i) {
@@ -100,7 +100,6 @@ std::vector<std::int32_t> integer_component(const Image& image, ColourTransform 
                                  std::int32_t(b[i]) - shift};
     forward_rct(rgb, c, out.data() + i);
   }
-  return out;
 }
 
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour) {

@@ -20,9 +20,11 @@ ColourTransform colour_for(std::size_t channels, bool reversible);
 double level_shift(SampleType type);
 
 // Component c after level shift and colour transform (forward_ict / forward_rct), one at a
-// time so an encoder holds a single transformed component.
-std::vector<float> float_component(const Image& image, ColourTransform colour, std::size_t c);
-std::vector<std::int32_t> integer_component(const Image& image, ColourTransform colour, std::size_t c);
+// time so an encoder holds a single transformed component. `out` is resized to the plane size
+// (its capacity is reused).
+void float_component(const Image& image, ColourTransform colour, std::size_t c, std::vector<float>& out);
+void integer_component(const Image& image, ColourTransform colour, std::size_t c,
+                       std::vector<std::int32_t>& out);
 
 // Squared output error per unit error of each component (ICT components weigh more).
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour);

@@ -10,6 +10,7 @@
 #include "codec/image_plan.h"
 #include "codec/parallel.h"
 #include "codec/pcrd.h"
+#include "codec/rate_guess.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -22,6 +23,14 @@ constexpr double kPsnrTolerance = 0.05;
 constexpr int kMaxPsnrRounds = 6;
 // Blocks offered leftover budget after the slope bisection.
 constexpr std::size_t kMaxFillCandidates = 64;
+// How much finer than the rate model's step to code, so PCRD has truncation points to choose
+// from below the target. The model (fitted to the first component) is close to the coded size of
+// that component alone; with colour, the chroma components it leaves out are margin enough,
+// a grey image gets one bit-plane more. A guess that turns out too coarse is refined below.
+double guess_margin(const ImagePlan& plan) { return plan.header.channels >= 3 ? 1.0 : 2.0; }
+// Never finer than the old fixed start refined kMaxStepRefinements times (peak / 2^17):
+// finer indices would overflow the block coder without improving the result.
+constexpr double kFinestBaseStep = 1.0 / 131072.0;
 
 // All blocks coded with every pass; the PCRD inputs.
 struct CodedImage {
@@ -39,7 +48,7 @@ CodedImage code_blocks(ImagePlan& plan) {
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
       if (plan.blocks[i].component == c) ids.push_back(i);
-    transform_component(plan, c);
+    if (plan.coef.size() <= c || plan.coef[c].empty()) transform_component(plan, c);
     parallel_for(ids.size(), plan.threads, [&](std::size_t k) {
       const std::size_t i = ids[k];
       std::vector<float> magnitude;
@@ -49,8 +58,9 @@ CodedImage code_blocks(ImagePlan& plan) {
       out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
       out.hulls[i] = rd_hull(out.blocks[i]);
     });
-    release_coefficients(plan);
+    release_component(plan, c);
   }
+  release_coefficients(plan);
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
 }
@@ -118,9 +128,15 @@ void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int
 }
 
 // Best quality within a byte budget; the base step is refined while every pass still fits.
+// The first step comes from the rate model of component 0 (coded right after, so it is
+// transformed once); the refinement loop catches a guess that was too coarse.
 EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
   const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
   double base = plan.peak / 512.0;
+  if (!plan.header.reversible) {
+    transform_component(plan, 0);
+    base = std::max(guess_base_step(plan, 0, budget, guess_margin(plan)), kFinestBaseStep * plan.peak);
+  }
   for (int round = 0;; ++round, base /= 4.0) {
     set_base_step(plan, base);
     CodedImage coded = code_blocks(plan);
@@ -146,6 +162,7 @@ EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
     const CodedImage coded = code_blocks(plan);
     double allowed = target_mse * double(plan.samples) / (base * base);
     std::vector<std::uint8_t> best;
+    double best_psnr = 0.0;
     for (int k = 0; k < kMaxPsnrRounds; ++k) {
       const auto passes = allocate_by_slope(coded.hulls, false, [&](const std::vector<int>& p) {
         return remaining_distortion(coded, p) <= allowed;
@@ -154,14 +171,15 @@ EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
       const double got = measure_psnr(image, bytes, plan.threads);
       if (got >= psnr && (best.empty() || bytes.size() < best.size())) {
         best = bytes;
+        best_psnr = got;
       }
       if (got >= psnr && got <= psnr + kPsnrTolerance) break;
       const double got_mse = target_mse * std::pow(10.0, (psnr - got) / 10.0);
       allowed *= std::isfinite(got) ? target_mse / got_mse : 2.0;
     }
     if (!best.empty() || round >= kMaxStepRefinements) {
-      if (best.empty()) best = build(plan, coded, all_passes(coded));
-      return make_encode_result(image, plan, std::move(best), base);
+      if (best.empty()) return make_encode_result(image, plan, build(plan, coded, all_passes(coded)), base);
+      return make_encode_result(image, plan, std::move(best), base, best_psnr);
     }
   }
 }

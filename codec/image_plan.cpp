@@ -77,6 +77,7 @@ ImagePlan plan_image(const Image& image, const EncodeOptions& o) {
   plan.samples = plan.pixels * image.channels;
   plan.peak = psnr_peak(image);
   plan.threads = o.threads;
+  plan.measure_psnr = o.measure_psnr;
   plan.source = &image;
   if (reversible)
     h.steps.assign(plan.bands.size() * h.channels, 1.0f);
@@ -90,11 +91,13 @@ void transform_component(ImagePlan& plan, std::size_t c) {
   const StreamHeader& h = plan.header;
   if (h.reversible) {
     plan.icoef.resize(h.channels);
-    plan.icoef[c] = integer_component(*plan.source, h.colour, c);
+    plan.icoef[c].swap(plan.ispare);
+    integer_component(*plan.source, h.colour, c, plan.icoef[c]);
     forward(*plan.transform, plan.icoef[c].data(), h.dims, h.levels);
   } else {
     plan.coef.resize(h.channels);
-    plan.coef[c] = float_component(*plan.source, h.colour, c);
+    plan.coef[c].swap(plan.spare);
+    float_component(*plan.source, h.colour, c, plan.coef[c]);
     forward(*plan.transform, plan.coef[c].data(), h.dims, h.levels);
   }
 }
@@ -107,7 +110,20 @@ void set_base_step(ImagePlan& plan, double base_step) {
   plan.header.steps = subband_steps(base_step, plan.norms, plan.weights);
 }
 
+void release_component(ImagePlan& plan, std::size_t c) {
+  if (c < plan.coef.size() && !plan.coef[c].empty()) {
+    plan.spare.swap(plan.coef[c]);
+    std::vector<float>().swap(plan.coef[c]);
+  }
+  if (c < plan.icoef.size() && !plan.icoef[c].empty()) {
+    plan.ispare.swap(plan.icoef[c]);
+    std::vector<std::int32_t>().swap(plan.icoef[c]);
+  }
+}
+
 void release_coefficients(ImagePlan& plan) {
+  std::vector<float>().swap(plan.spare);
+  std::vector<std::int32_t>().swap(plan.ispare);
   std::vector<std::vector<float>>().swap(plan.coef);
   std::vector<std::vector<std::int32_t>>().swap(plan.icoef);
 }
@@ -142,10 +158,13 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
 }
 
 EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
-                                double base_step) {
+                                double base_step, std::optional<double> known_psnr) {
   EncodeResult r;
   r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
-  r.psnr = measure_psnr(image, bytes, plan.threads);
+  if (known_psnr)
+    r.psnr = *known_psnr;
+  else
+    r.psnr = plan.measure_psnr ? measure_psnr(image, bytes, plan.threads) : std::nan("");
   r.base_step = base_step;
   r.bytes = std::move(bytes);
   return r;

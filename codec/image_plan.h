@@ -4,6 +4,7 @@
 // zstd encoding paths (image_encoder.cpp, image_encoder_zstd.cpp).
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -22,12 +23,17 @@ struct ImagePlan {
   std::vector<double> weights;                   // output error per unit component error
   std::vector<std::vector<float>> coef;          // irreversible: transformed components (or empty)
   std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components (or empty)
+  // A released component's buffer, reused by the next: first touches of fresh pages cost more
+  // than the transform on some machines (about 0.6 ms per MiB here).
+  std::vector<float> spare;
+  std::vector<std::int32_t> ispare;
   const Image* source = nullptr;                 // the input, alive while the plan is used
   Transform1DPtr transform;
   std::size_t pixels = 0;   // width * height
   std::size_t samples = 0;  // pixels * channels
   double peak = 1.0;        // PSNR peak of the input
   unsigned threads = 0;
+  bool measure_psnr = true;  // EncodeOptions::measure_psnr
 };
 
 // Validates the image and options and lays out bands and blocks; no coefficients yet.
@@ -43,7 +49,9 @@ void transform_all_components(ImagePlan& plan);
 // Sets the quantizer steps of every (component, band) from a base step.
 void set_base_step(ImagePlan& plan, double base_step);
 
-// Frees the transformed components once every block has been coded for the last time.
+// Done with component c for now: its buffer becomes the spare the next component fills.
+void release_component(ImagePlan& plan, std::size_t c);
+// Frees the transformed components and the spare once every block has been coded for the last time.
 void release_coefficients(ImagePlan& plan);
 
 // Index-unit magnitudes and signs of block i under the plan's steps.
@@ -57,9 +65,10 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
 // Decodes `bytes` and returns its PSNR (all channels) against `image`.
 double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads);
 
-// The result of an encode: the bytes with their bpp and measured PSNR and the base step used.
+// The result of an encode: the bytes with their bpp and PSNR and the base step used. The PSNR
+// is `known_psnr` if given, else measured when the plan asks for it, else NaN.
 EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
-                                double base_step);
+                                double base_step, std::optional<double> known_psnr = std::nullopt);
 
 // Encodes with the zstd back end (rate control by the base step only).
 EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOptions& options);

@@ -3,6 +3,7 @@
 // against the input and time.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -31,6 +32,7 @@ struct CompressOptions {
   bool lossless = false;
   EntropyCoder entropy = EntropyCoder::ebcot;
   unsigned threads = 0;
+  bool report_psnr = false;
   // volumes
   std::string dims, dtype, grid;
   double bpv = 0.0, max_error = 0.0, max_error_rel = 0.0;
@@ -150,15 +152,18 @@ void run_compress(const CompressOptions& opt) {
   enc.levels = opt.levels;
   enc.entropy = opt.entropy;
   enc.threads = opt.threads;
+  enc.measure_psnr = opt.report_psnr;
   set_rate(opt, enc);
   set_transform_threads(opt.threads);
   const auto start = std::chrono::steady_clock::now();
   const EncodeResult r = encode_image(image, enc);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_bytes_atomically(opt.output, r.bytes);
-  std::printf("%s: %zu bytes, %.4f bpp, PSNR %.3f dB, %.3f s (%zux%zu, %zu channel(s), %s)\n",
-              opt.output.c_str(), r.bytes.size(), r.bpp, r.psnr, seconds, image.width, image.height,
-              image.channels, to_string(image.type).c_str());
+  char psnr[48] = "";  // only when measured
+  if (!std::isnan(r.psnr)) std::snprintf(psnr, sizeof psnr, ", PSNR %.3f dB", r.psnr);
+  std::printf("%s: %zu bytes, %.4f bpp%s, %.3f s (%zux%zu, %zu channel(s), %s)\n", opt.output.c_str(),
+              r.bytes.size(), r.bpp, psnr, seconds, image.width, image.height, image.channels,
+              to_string(image.type).c_str());
 }
 
 }  // namespace
@@ -209,6 +214,9 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--entropy", opt->entropy, "entropy coder: ebcot (bit-plane, default) or zstd")
       ->transform(CLI::CheckedTransformer(coders, CLI::ignore_case));
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
+  cmd->add_flag("--report-psnr", opt->report_psnr,
+                "images: decode the stream in memory and report its PSNR against the input (costs about "
+                "a decode; --psnr targets always report it)");
   cmd->callback([opt] { run_compress(*opt); });
 }
 

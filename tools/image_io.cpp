@@ -4,6 +4,7 @@
 
 #include <Imath/half.h>
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -212,7 +213,10 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
       image.samples.size() != image.plane_size() * image.channels)
     throw std::invalid_argument("write_image: malformed image");
   check_output_path(path);
-  const Image stored = convert_sample_type(image, storable_type(path, image.type));
+  const SampleType target = storable_type(path, image.type);
+  std::optional<Image> converted;  // only when the type changes: a copy is 4 bytes per sample
+  if (target != image.type) converted = convert_sample_type(image, target);
+  const Image& stored = converted ? *converted : image;
   write_atomically(path, [&](const fs::path& tmp) {
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw std::runtime_error("cannot write " + path.string() + ": " + OIIO::geterror());
