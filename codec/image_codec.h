@@ -36,8 +36,8 @@ struct EncodeOptions {
 struct EncodeResult {
   std::vector<std::uint8_t> bytes;  // the complete .pw file
   double bpp = 0.0;                 // bits per pixel of the whole file
-  double psnr = 0.0;  // of the decoded image against the input, all channels (dB); NaN if not measured
-  double base_step = 0.0;           // quantizer base step used (1 for lossless)
+  double psnr = 0.0;       // of the decoded image against the input, all channels (dB); NaN if not measured
+  double base_step = 0.0;  // quantizer base step used (1 for lossless)
 };
 
 // Compresses an image. Throws std::invalid_argument for bad options (unknown transform, a

@@ -27,7 +27,7 @@ struct ImagePlan {
   // than the transform on some machines (about 0.6 ms per MiB here).
   std::vector<float> spare;
   std::vector<std::int32_t> ispare;
-  const Image* source = nullptr;                 // the input, alive while the plan is used
+  const Image* source = nullptr;  // the input, alive while the plan is used
   Transform1DPtr transform;
   std::size_t pixels = 0;   // width * height
   std::size_t samples = 0;  // pixels * channels

@@ -4,9 +4,9 @@
 
 #include <Imath/half.h>
 #include <algorithm>
-#include <optional>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
