@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tools/atomic_file.h"
+#include "tools/pnm_io.h"
 
 namespace pupwave::cli {
 namespace fs = std::filesystem;
@@ -106,8 +107,9 @@ std::vector<SampleType> format_types(const std::string& format) {
   using S = SampleType;
   if (format == "png") return {S::u8, S::u16};
   if (format == "tiff") return {S::u8, S::u16, S::f32};  // OpenImageIO stores TIFF half as float
-  // OpenImageIO 2.4 writes PNM with 8 bits only (it reads 16-bit PNM).
-  if (format == "jpeg" || format == "bmp" || format == "targa" || format == "pnm") return {S::u8};
+  // 16-bit PGM/PPM are written by tools/pnm_io.cpp (OpenImageIO 2.4 writes PNM with 8 bits only).
+  if (format == "pnm") return {S::u8, S::u16};
+  if (format == "jpeg" || format == "bmp" || format == "targa") return {S::u8};
   if (format == "openexr") return {S::f16, S::f32};
   return {};
 }
@@ -160,6 +162,7 @@ void write_pixels(OIIO::ImageOutput& out, const Image& image, const fs::path& tm
 }  // namespace
 
 Image read_image(const fs::path& path) {
+  if (auto pnm = read_binary_pnm(path)) return std::move(*pnm);
   auto in = open_input(path);
   const OIIO::ImageSpec spec = in->spec();
   check_image_spec(spec, path);
@@ -213,6 +216,11 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
       image.samples.size() != image.plane_size() * image.channels)
     throw std::invalid_argument("write_image: malformed image");
   check_output_path(path);
+  if (binary_pnm_writable(path, image)) {
+    write_atomically(path, [&](const fs::path& tmp) { write_binary_pnm(image, tmp); });
+    if (stored_as) *stored_as = image.type;
+    return;
+  }
   const SampleType target = storable_type(path, image.type);
   std::optional<Image> converted;  // only when the type changes: a copy is 4 bytes per sample
   if (target != image.type) converted = convert_sample_type(image, target);

@@ -67,8 +67,10 @@ std::vector<Case> lossless_cases() {
     for (SampleType t : {SampleType::u8, SampleType::u16, SampleType::f32}) cases.emplace_back(".tif", t, c);
     for (SampleType t : {SampleType::f16, SampleType::f32}) cases.emplace_back(".exr", t, c);
   }
-  cases.emplace_back(".pgm", SampleType::u8, 1);
-  cases.emplace_back(".ppm", SampleType::u8, 3);
+  for (SampleType t : {SampleType::u8, SampleType::u16}) {  // binary PGM/PPM: tools/pnm_io.cpp
+    cases.emplace_back(".pgm", t, 1);
+    cases.emplace_back(".ppm", t, 3);
+  }
   return cases;
 }
 
@@ -158,6 +160,30 @@ TEST(ImageIo, ClearErrorsForBadInput) {
   EXPECT_THROW(write_image(img, dir), std::runtime_error);
   EXPECT_THROW(write_image(img, dir / "no_such_folder" / "x.png"), std::runtime_error);
   EXPECT_FALSE(fs::exists(dir / "out.unknownext"));
+}
+
+// Binary PPM: the header is plain text, 16-bit samples big-endian; truncated or absurd headers
+// are refused before any raster is allocated.
+TEST(ImageIo, BinaryPnmLayoutAndBadHeaders) {
+  const fs::path dir = temp_dir();
+  Image img(2, 1, 3, SampleType::u16);
+  img.at(0, 0, 0) = 258;  // 0x0102
+  img.at(2, 1, 0) = 65535;
+  write_image(img, dir / "two.ppm");
+  std::ifstream in(dir / "two.ppm", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), std::string("P6\n2 1\n65535\n").size() + 12);
+  EXPECT_EQ(bytes.substr(0, 13), "P6\n2 1\n65535\n");
+  EXPECT_EQ(bytes[13], 1);  // first sample, high byte first
+  EXPECT_EQ(bytes[14], 2);
+  EXPECT_EQ(std::uint8_t(bytes[23]), 255);  // blue of the second pixel
+
+  std::ofstream(dir / "short.ppm", std::ios::binary) << "P6\n4 4\n255\n" << std::string(40, 'x');
+  EXPECT_THROW(read_image(dir / "short.ppm"), std::runtime_error);
+  std::ofstream(dir / "huge.pgm", std::ios::binary) << "P5\n4000000000 4000000000\n255\n";
+  EXPECT_THROW(read_image(dir / "huge.pgm"), std::runtime_error);
+  std::ofstream(dir / "bad.pgm", std::ios::binary) << "P5\n12 x\n255\n";
+  EXPECT_THROW(read_image(dir / "bad.pgm"), std::runtime_error);
 }
 
 }  // namespace

@@ -1,0 +1,176 @@
+#include "tools/pnm_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tools/image_io.h"
+
+namespace pupwave::cli {
+namespace fs = std::filesystem;
+namespace {
+
+// Rows are converted through a buffer of about this many bytes, not a whole-image copy.
+constexpr std::size_t kChunkBytes = std::size_t(1) << 20;
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+struct PnmHeader {
+  std::size_t width = 0, height = 0, channels = 0;
+  SampleType type = SampleType::u8;
+};
+
+// Next header integer, skipping whitespace and '#' comments; -1 if there is none.
+long long next_number(std::FILE* f) {
+  int ch = std::fgetc(f);
+  while (ch == '#' || std::isspace(ch)) {
+    if (ch == '#')
+      while (ch != '\n' && ch != EOF) ch = std::fgetc(f);
+    ch = std::fgetc(f);
+  }
+  if (!std::isdigit(ch)) return -1;
+  long long v = 0;
+  while (std::isdigit(ch)) {
+    v = v * 10 + (ch - '0');
+    if (v > (1ll << 40)) return -1;
+    ch = std::fgetc(f);
+  }
+  // One whitespace character ends the number (after maxval it is the last header byte).
+  return std::isspace(ch) ? v : -1;
+}
+
+std::runtime_error read_error(const fs::path& path, const std::string& why) {
+  return std::runtime_error("cannot read " + path.string() + ": " + why);
+}
+
+// Parses a P5/P6 header; nullopt for anything else (the file is left to OpenImageIO).
+std::optional<PnmHeader> read_header(std::FILE* f, const fs::path& path) {
+  char magic[2] = {};
+  if (std::fread(magic, 1, 2, f) != 2 || magic[0] != 'P' || (magic[1] != '5' && magic[1] != '6'))
+    return std::nullopt;
+  const long long w = next_number(f), h = next_number(f), maxval = next_number(f);
+  if (w < 0 || h < 0 || maxval < 0) throw read_error(path, "malformed PNM header");
+  if (maxval != 255 && maxval != 65535) return std::nullopt;
+  PnmHeader hd;
+  hd.width = std::size_t(w);
+  hd.height = std::size_t(h);
+  hd.channels = magic[1] == '5' ? 1 : 3;
+  hd.type = maxval == 255 ? SampleType::u8 : SampleType::u16;
+  if (hd.width == 0 || hd.height == 0) throw read_error(path, "empty image");
+  if (hd.width > kMaxImageSamples || hd.height > kMaxImageSamples ||
+      hd.width * hd.height > kMaxImageSamples / hd.channels)
+    throw read_error(path, "image too large");
+  return hd;
+}
+
+// Decodes n interleaved samples (whole pixels) from raster bytes into the planes, from sample `first`.
+void unpack(const std::uint8_t* bytes, std::size_t n, std::size_t first, Image& image) {
+  const std::size_t c = image.channels, pixel0 = first / c, pixels = n / c;
+  const bool wide = image.type == SampleType::u16;
+  for (std::size_t ch = 0; ch < c; ++ch) {
+    float* dst = image.plane(ch) + pixel0;
+    if (wide)
+      for (std::size_t i = 0; i < pixels; ++i) {
+        const std::uint8_t* b = bytes + 2 * (i * c + ch);
+        dst[i] = float((unsigned(b[0]) << 8) | b[1]);
+      }
+    else
+      for (std::size_t i = 0; i < pixels; ++i) dst[i] = float(bytes[i * c + ch]);
+  }
+}
+
+// Encodes n interleaved samples (whole pixels) from sample `first`, rounded and clamped.
+void pack(const Image& image, std::size_t first, std::size_t n, std::uint8_t* bytes) {
+  const std::size_t c = image.channels, pixel0 = first / c, pixels = n / c;
+  const bool wide = image.type == SampleType::u16;
+  const float top = wide ? 65535.0f : 255.0f;
+  for (std::size_t ch = 0; ch < c; ++ch) {
+    const float* src = image.plane(ch) + pixel0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const auto v = unsigned(std::clamp(src[i], 0.0f, top) + 0.5f);
+      if (wide) {
+        bytes[2 * (i * c + ch)] = std::uint8_t(v >> 8);
+        bytes[2 * (i * c + ch) + 1] = std::uint8_t(v);
+      } else {
+        bytes[i * c + ch] = std::uint8_t(v);
+      }
+    }
+  }
+}
+
+// A conversion buffer holding whole pixels.
+std::vector<std::uint8_t> chunk_for(std::size_t bytes_per_pixel) {
+  return std::vector<std::uint8_t>(kChunkBytes - kChunkBytes % bytes_per_pixel);
+}
+
+bool has_pnm_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return char(std::tolower(ch)); });
+  return ext == ".pgm" || ext == ".ppm" || ext == ".pnm";
+}
+
+}  // namespace
+
+std::optional<Image> read_binary_pnm(const fs::path& path) {
+  if (!has_pnm_extension(path)) return std::nullopt;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return std::nullopt;  // OpenImageIO's path reports why
+  File f(std::fopen(path.c_str(), "rb"));
+  if (!f) return std::nullopt;
+  const auto header = read_header(f.get(), path);
+  if (!header) return std::nullopt;
+  const std::size_t bytes_per_sample = header->type == SampleType::u16 ? 2 : 1;
+  const std::size_t samples = header->width * header->height * header->channels;
+  const long offset = std::ftell(f.get());
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec || offset < 0 || size < std::uintmax_t(offset) + samples * bytes_per_sample)
+    throw read_error(path, "truncated PNM raster (" + std::to_string(samples * bytes_per_sample) +
+                               " bytes expected after the header)");
+  Image image(header->width, header->height, header->channels, header->type);
+  std::vector<std::uint8_t> chunk = chunk_for(bytes_per_sample * header->channels);
+  for (std::size_t done = 0; done < samples;) {
+    const std::size_t n = std::min(samples - done, chunk.size() / bytes_per_sample);
+    if (std::fread(chunk.data(), bytes_per_sample, n, f.get()) != n) throw read_error(path, "short read");
+    unpack(chunk.data(), n, done, image);
+    done += n;
+  }
+  return image;
+}
+
+bool binary_pnm_writable(const fs::path& path, const Image& image) {
+  return has_pnm_extension(path) && (image.channels == 1 || image.channels == 3) &&
+         (image.type == SampleType::u8 || image.type == SampleType::u16);
+}
+
+void write_binary_pnm(const Image& image, const fs::path& file) {
+  if ((image.channels != 1 && image.channels != 3) || !is_integer(image.type))
+    throw std::invalid_argument("write_binary_pnm: needs 1 or 3 channels of 8- or 16-bit samples");
+  File f(std::fopen(file.c_str(), "wb"));
+  if (!f) throw std::runtime_error("cannot write " + file.string());
+  const bool wide = image.type == SampleType::u16;
+  const std::string header = std::string(image.channels == 1 ? "P5" : "P6") + "\n" +
+                             std::to_string(image.width) + " " + std::to_string(image.height) + "\n" +
+                             (wide ? "65535" : "255") + "\n";
+  const std::size_t bytes_per_sample = wide ? 2 : 1;
+  const std::size_t samples = image.plane_size() * image.channels;
+  std::vector<std::uint8_t> chunk = chunk_for(bytes_per_sample * image.channels);
+  bool ok = std::fwrite(header.data(), 1, header.size(), f.get()) == header.size();
+  for (std::size_t done = 0; ok && done < samples;) {
+    const std::size_t n = std::min(samples - done, chunk.size() / bytes_per_sample);
+    pack(image, done, n, chunk.data());
+    ok = std::fwrite(chunk.data(), bytes_per_sample, n, f.get()) == n;
+    done += n;
+  }
+  if (!ok || std::fclose(f.release()) != 0) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace pupwave::cli
