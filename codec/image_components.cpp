@@ -5,6 +5,7 @@
 #include <span>
 
 #include "codec/metrics.h"
+#include "codec/parallel.h"
 
 namespace pupwave {
 namespace {
@@ -148,6 +149,21 @@ Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, cons
     inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
   write_planes(planes, out);
   return out;
+}
+
+void finish_image_in_place(Image& image, ColourTransform colour, unsigned threads) {
+  constexpr std::size_t kRun = std::size_t(1) << 16;  // samples per task
+  const std::size_t n = image.plane_size();
+  const double shift = level_shift(image.type);
+  parallel_for((n + kRun - 1) / kRun, threads, [&](std::size_t k) {
+    const std::size_t first = k * kRun, count = std::min(kRun, n - first);
+    if (colour == ColourTransform::ict)
+      inverse_ict(image.plane(0) + first, image.plane(1) + first, image.plane(2) + first, count);
+    for (std::size_t c = 0; c < image.channels; ++c) {
+      float* p = image.plane(c) + first;
+      for (std::size_t i = 0; i < count; ++i) p[i] = finish_sample(double(p[i]) + shift, image.type);
+    }
+  });
 }
 
 double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes,

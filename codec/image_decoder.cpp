@@ -38,12 +38,11 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   return values;
 }
 
-// Decodes every block of the read resolutions into component planes of type T.
+// Decodes every block of the read resolutions into the component planes at planes[c] (each
+// dims-sized and zeroed).
 template <class T>
-std::vector<std::vector<T>> decode_planes(const ParsedStream& s, unsigned threads) {
+void decode_into(const ParsedStream& s, unsigned threads, const std::vector<T*>& planes) {
   const StreamHeader& h = s.header;
-  const std::size_t n = h.dims[0] * h.dims[1] * h.dims[2];
-  std::vector<std::vector<T>> planes(h.channels, std::vector<T>(n, T(0)));
   const int last = int(s.resolution_data.size()) - 1;
   parallel_for(s.blocks.size(), threads, [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
@@ -53,9 +52,32 @@ std::vector<std::vector<T>> decode_planes(const ParsedStream& s, unsigned thread
       const float step = h.steps[b.component * s.bands.size() + b.band];
       for (T& v : values) v *= step;
     }
-    copy_block_in(values.data(), h.dims, b, planes[b.component].data());  // blocks never overlap
+    copy_block_in(values.data(), h.dims, b, planes[b.component]);  // blocks never overlap
   });
+}
+
+// Decodes every block of the read resolutions into component planes of type T.
+template <class T>
+std::vector<std::vector<T>> decode_planes(const ParsedStream& s, unsigned threads) {
+  const StreamHeader& h = s.header;
+  std::vector<std::vector<T>> planes(h.channels, std::vector<T>(h.dims[0] * h.dims[1] * h.dims[2], T(0)));
+  std::vector<T*> pointers;
+  for (auto& p : planes) pointers.push_back(p.data());
+  decode_into(s, threads, pointers);
   return planes;
+}
+
+// Full-resolution lossy decode straight into the output image's samples: the component
+// planes are the image's planes, so no second full-size copy is made.
+Image decode_full_float(const ParsedStream& s, const Transform1D& t, unsigned threads) {
+  const StreamHeader& h = s.header;
+  Image out(h.dims[0], h.dims[1], h.channels, h.type);
+  std::vector<float*> planes;
+  for (std::size_t c = 0; c < h.channels; ++c) planes.push_back(out.plane(c));
+  decode_into(s, threads, planes);
+  for (float* p : planes) inverse(t, p, h.dims, h.levels, 0);
+  finish_image_in_place(out, h.colour, threads);
+  return out;
 }
 
 }  // namespace
@@ -71,6 +93,7 @@ Image decode_image(std::span<const std::uint8_t> bytes, int level, unsigned thre
     for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level);
     return image_from_components(planes, h.dims, size, h.type, h.colour);
   }
+  if (level == 0) return decode_full_float(s, *t, threads);
   auto planes = decode_planes<float>(s, threads);
   for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level);
   return image_from_components(planes, h.dims, size, h.type, h.colour, coarse_gain(*t, h.dims, level));
