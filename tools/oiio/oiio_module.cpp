@@ -1,0 +1,180 @@
+// The OpenImageIO plugin (see tools/oiio_module.h): reading, describing and writing image
+// files through OpenImageIO. Built as a shared module; the CLI loads it on first use.
+#include <OpenImageIO/imageio.h>
+
+#include <Imath/half.h>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "tools/image_io.h"
+#include "tools/oiio_module.h"
+
+namespace pupwave::cli {
+namespace fs = std::filesystem;
+using OIIO::TypeDesc;
+
+namespace {
+
+TypeDesc oiio_type(SampleType type) {
+  switch (type) {
+    case SampleType::u8: return TypeDesc::UINT8;
+    case SampleType::u16: return TypeDesc::UINT16;
+    case SampleType::f16: return TypeDesc::HALF;
+    case SampleType::f32: return TypeDesc::FLOAT;
+  }
+  return TypeDesc::UNKNOWN;
+}
+
+// Maps a file's sample format to ours; formats we cannot hold exactly are refused.
+SampleType sample_type_of(const OIIO::ImageSpec& spec, const fs::path& path) {
+  TypeDesc widest = spec.format;
+  for (const TypeDesc& t : spec.channelformats)
+    if (t.size() > widest.size() || (t.is_floating_point() && !widest.is_floating_point())) widest = t;
+  switch (widest.basetype) {
+    case TypeDesc::UINT8: return SampleType::u8;
+    case TypeDesc::UINT16: return SampleType::u16;
+    case TypeDesc::HALF: return SampleType::f16;
+    case TypeDesc::FLOAT: return SampleType::f32;
+    default:
+      throw std::runtime_error("cannot read " + path.string() + ": unsupported sample type " +
+                               std::string(widest.c_str()) + " (supported: uint8, uint16, half, float)");
+  }
+}
+
+std::unique_ptr<OIIO::ImageInput> open_input(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw std::runtime_error("cannot read " + path.string() + ": no such file");
+  if (fs::is_directory(path, ec))
+    throw std::runtime_error("cannot read " + path.string() + ": it is a directory");
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // keep alpha as stored: no premultiplication
+  auto in = OIIO::ImageInput::open(path.string(), &config);
+  if (!in) {
+    std::string why = OIIO::geterror();
+    if (why.empty()) why = "not an image file in a supported format";
+    throw std::runtime_error("cannot read " + path.string() + ": " + why);
+  }
+  return in;
+}
+
+void check_image_spec(const OIIO::ImageSpec& spec, const fs::path& path) {
+  const std::string name = path.string();
+  if (spec.width <= 0 || spec.height <= 0) throw std::runtime_error("cannot read " + name + ": empty image");
+  if (spec.depth > 1) throw std::runtime_error("cannot read " + name + ": 3-D images are not supported");
+  if (spec.nchannels < 1 || spec.nchannels > 4)
+    throw std::runtime_error("cannot read " + name + ": " + std::to_string(spec.nchannels) +
+                             " channels (1 to 4 supported)");
+  const auto samples = std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels);
+  if (samples > kMaxImageSamples) throw std::runtime_error("cannot read " + name + ": image too large");
+}
+
+// Copies interleaved samples of type T into the image's planes.
+template <class T>
+void deinterleave(const std::vector<T>& src, Image& image) {
+  const std::size_t n = image.plane_size(), c = image.channels;
+  for (std::size_t ch = 0; ch < c; ++ch) {
+    float* dst = image.plane(ch);
+    for (std::size_t i = 0; i < n; ++i) dst[i] = static_cast<float>(src[i * c + ch]);
+  }
+}
+
+template <class T>
+void read_pixels(OIIO::ImageInput& in, Image& image, const fs::path& path) {
+  std::vector<T> buffer(image.samples.size());
+  if (!in.read_image(0, 0, 0, int(image.channels), oiio_type(image.type), buffer.data()))
+    throw std::runtime_error("cannot read " + path.string() + ": " + in.geterror());
+  deinterleave(buffer, image);
+}
+
+template <class T>
+std::vector<T> interleave(const Image& image) {
+  const std::size_t n = image.plane_size(), c = image.channels;
+  std::vector<T> out(n * c);
+  for (std::size_t ch = 0; ch < c; ++ch) {
+    const float* src = image.plane(ch);
+    for (std::size_t i = 0; i < n; ++i) out[i * c + ch] = static_cast<T>(src[i]);
+  }
+  return out;
+}
+
+std::string format_name_for(const fs::path& path) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) {
+    (void)OIIO::geterror();
+    throw std::runtime_error("cannot write " + path.string() + ": unsupported image format '" +
+                             path.extension().string() + "'");
+  }
+  return out->format_name();
+}
+
+OIIO::ImageSpec output_spec(const Image& image, const std::string& format) {
+  OIIO::ImageSpec spec(int(image.width), int(image.height), int(image.channels), oiio_type(image.type));
+  static const char* grey[] = {"Y", "A"};
+  static const char* rgba[] = {"R", "G", "B", "A"};
+  spec.channelnames.clear();
+  for (std::size_t c = 0; c < image.channels; ++c)
+    spec.channelnames.emplace_back(image.channels <= 2 ? grey[c] : rgba[c]);
+  if (image.channels == 2 || image.channels == 4) spec.alpha_channel = int(image.channels) - 1;
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: the writer must not divide
+  if (format == "jpeg") spec.attribute("Compression", "jpeg:95");  // TIFF would read it too
+  return spec;
+}
+
+void write_pixels(OIIO::ImageOutput& out, const Image& image, const fs::path& tmp) {
+  bool ok = false;
+  switch (image.type) {
+    case SampleType::u8: ok = out.write_image(TypeDesc::UINT8, interleave<std::uint8_t>(image).data()); break;
+    case SampleType::u16:
+      ok = out.write_image(TypeDesc::UINT16, interleave<std::uint16_t>(image).data());
+      break;
+    case SampleType::f16: ok = out.write_image(TypeDesc::HALF, interleave<Imath::half>(image).data()); break;
+    case SampleType::f32: ok = out.write_image(TypeDesc::FLOAT, interleave<float>(image).data()); break;
+  }
+  if (!ok) throw std::runtime_error("cannot write " + tmp.string() + ": " + out.geterror());
+}
+
+Image read(const fs::path& path) {
+  auto in = open_input(path);
+  const OIIO::ImageSpec spec = in->spec();
+  check_image_spec(spec, path);
+  Image image(std::size_t(spec.width), std::size_t(spec.height), std::size_t(spec.nchannels),
+              sample_type_of(spec, path));
+  switch (image.type) {
+    case SampleType::u8: read_pixels<std::uint8_t>(*in, image, path); break;
+    case SampleType::u16: read_pixels<std::uint16_t>(*in, image, path); break;
+    case SampleType::f16: read_pixels<Imath::half>(*in, image, path); break;
+    case SampleType::f32: read_pixels<float>(*in, image, path); break;
+  }
+  return image;
+}
+
+std::string describe(const fs::path& path) {
+  auto in = open_input(path);
+  const OIIO::ImageSpec& spec = in->spec();
+  std::ostringstream s;
+  s << path.string() << ": " << in->format_name() << " image, " << spec.width << " x " << spec.height << ", "
+    << spec.nchannels << " channel" << (spec.nchannels == 1 ? "" : "s") << " (";
+  for (int c = 0; c < spec.nchannels; ++c) s << (c ? "," : "") << spec.channel_name(c);
+  s << "), " << spec.format.c_str();
+  if (spec.depth > 1) s << ", depth " << spec.depth;
+  if (spec.alpha_channel >= 0) s << ", alpha in channel " << spec.alpha_channel;
+  return s.str();
+}
+
+void write(const Image& stored, const fs::path& path, const fs::path& tmp) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) throw std::runtime_error("cannot write " + path.string() + ": " + OIIO::geterror());
+  if (!out->open(tmp.string(), output_spec(stored, out->format_name())))
+    throw std::runtime_error("cannot write " + path.string() + ": " + out->geterror());
+  write_pixels(*out, stored, tmp);
+  if (!out->close()) throw std::runtime_error("cannot write " + path.string() + ": " + out->geterror());
+}
+
+const OiioModule kModule{read, describe, format_name_for, write};
+
+}  // namespace
+}  // namespace pupwave::cli
+
+extern "C" const pupwave::cli::OiioModule* pupwave_oiio_module() { return &pupwave::cli::kModule; }
