@@ -111,6 +111,11 @@ std::vector<std::uint8_t> chunk_for(std::size_t bytes_per_pixel) {
   return std::vector<std::uint8_t>(kChunkBytes - kChunkBytes % bytes_per_pixel);
 }
 
+// Grey (P5) or RGB (P6) with 8- or 16-bit samples.
+bool pnm_holds(const Image& image) {
+  return (image.channels == 1 || image.channels == 3) && is_integer(image.type);
+}
+
 bool has_pnm_extension(const fs::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -147,12 +152,11 @@ std::optional<Image> read_binary_pnm(const fs::path& path) {
 }
 
 bool binary_pnm_writable(const fs::path& path, const Image& image) {
-  return has_pnm_extension(path) && (image.channels == 1 || image.channels == 3) &&
-         (image.type == SampleType::u8 || image.type == SampleType::u16);
+  return has_pnm_extension(path) && pnm_holds(image);
 }
 
 void write_binary_pnm(const Image& image, const fs::path& file) {
-  if ((image.channels != 1 && image.channels != 3) || !is_integer(image.type))
+  if (!pnm_holds(image))
     throw std::invalid_argument("write_binary_pnm: needs 1 or 3 channels of 8- or 16-bit samples");
   File f(std::fopen(file.c_str(), "wb"));
   if (!f) throw std::runtime_error("cannot write " + file.string());
