@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "codec/image_codec.h"
+#include "codec/image/image_codec.h"
 #include "tools/image_io.h"
 
 namespace {

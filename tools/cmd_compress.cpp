@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "codec/image_codec.h"
-#include "codec/volume_codec.h"
+#include "codec/image/image_codec.h"
+#include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"

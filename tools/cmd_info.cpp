@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 
-#include "codec/container.h"
-#include "codec/volume_codec.h"
+#include "codec/format/container.h"
+#include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "codec/metrics.h"
+#include "codec/rate/metrics.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 

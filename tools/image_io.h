@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "codec/image.h"
+#include "codec/image/image.h"
 
 namespace pupwave::cli {
 

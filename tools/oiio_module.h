@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "codec/image.h"
+#include "codec/image/image.h"
 
 namespace pupwave::cli {
 

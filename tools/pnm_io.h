@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "codec/image.h"
+#include "codec/image/image.h"
 
 namespace pupwave::cli {
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "codec/volume.h"
+#include "codec/volume/volume.h"
 
 namespace pupwave::cli {
 

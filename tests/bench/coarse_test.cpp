@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "codec/metrics.h"
+#include "codec/rate/metrics.h"
 #include "tools/bench/coarse.h"
 #include "tools/image_io.h"
 

@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include "codec/crc32.h"
-#include "codec/metrics.h"
+#include "codec/format/crc32.h"
+#include "codec/rate/metrics.h"
 #include "tools/atomic_file.h"
 #include "tools/image_io.h"
 

@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "codec/block_contexts.h"
-#include "codec/block_decoder.h"
-#include "codec/block_encoder.h"
+#include "codec/entropy/block_contexts.h"
+#include "codec/entropy/block_decoder.h"
+#include "codec/entropy/block_encoder.h"
 
 namespace pupwave {
 namespace {

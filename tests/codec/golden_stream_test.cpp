@@ -5,8 +5,8 @@
 // picks): an encoder-only change there updates its value without a version bump.
 #include <gtest/gtest.h>
 
-#include "codec/crc32.h"
-#include "codec/image_codec.h"
+#include "codec/format/crc32.h"
+#include "codec/image/image_codec.h"
 #include "test_images.h"
 
 namespace pupwave {

@@ -4,11 +4,11 @@
 
 #include <random>
 
-#include "codec/byte_io.h"
-#include "codec/container.h"
-#include "codec/crc32.h"
 #include "codec/error.h"
-#include "codec/image_codec.h"
+#include "codec/format/byte_io.h"
+#include "codec/format/container.h"
+#include "codec/format/crc32.h"
+#include "codec/image/image_codec.h"
 #include "test_images.h"
 
 namespace pupwave {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <tuple>
 
-#include "codec/container.h"
 #include "codec/error.h"
-#include "codec/image_codec.h"
-#include "codec/metrics.h"
+#include "codec/format/container.h"
+#include "codec/image/image_codec.h"
+#include "codec/rate/metrics.h"
 #include "test_images.h"
 #include "transforms/separable.h"
 

@@ -4,8 +4,8 @@
 #include <random>
 #include <vector>
 
-#include "codec/range_decoder.h"
-#include "codec/range_encoder.h"
+#include "codec/entropy/range_decoder.h"
+#include "codec/entropy/range_encoder.h"
 
 namespace pupwave {
 namespace {

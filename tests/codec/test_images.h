@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <random>
 
-#include "codec/image.h"
+#include "codec/image/image.h"
 
 namespace pupwave::testing {
 

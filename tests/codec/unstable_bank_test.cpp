@@ -2,9 +2,9 @@
 // coder's index range at the default level count; the encoder then uses fewer levels.
 #include <gtest/gtest.h>
 
-#include "codec/block_encoder.h"
-#include "codec/container.h"
-#include "codec/image_codec.h"
+#include "codec/entropy/block_encoder.h"
+#include "codec/format/container.h"
+#include "codec/image/image_codec.h"
 #include "codec/test_images.h"
 #include "transforms/separable.h"
 

@@ -6,8 +6,8 @@
 #include <random>
 
 #include "codec/error.h"
-#include "codec/volume_codec.h"
-#include "codec/volume_format.h"
+#include "codec/volume/volume_codec.h"
+#include "codec/volume/volume_format.h"
 #include "volcodec/volcodec_test_util.h"
 
 namespace pupwave {

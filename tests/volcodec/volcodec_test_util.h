@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <random>
 
-#include "codec/volume.h"
+#include "codec/volume/volume.h"
 
 namespace pupwave::test {
 

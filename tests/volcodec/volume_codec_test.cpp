@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "codec/error.h"
-#include "codec/volume_codec.h"
+#include "codec/volume/volume_codec.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 #include "volcodec/volcodec_test_util.h"

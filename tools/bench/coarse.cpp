@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "codec/metrics.h"
+#include "codec/rate/metrics.h"
 #include "tools/bench/progress.h"
 #include "tools/bench/rd_report.h"
 #include "transforms/separable.h"

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "codec/metrics.h"
+#include "codec/rate/metrics.h"
 #include "tools/bench/progress.h"
 #include "tools/image_io.h"
 

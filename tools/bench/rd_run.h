@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "codec/image.h"
+#include "codec/image/image.h"
 #include "tools/bench/codecs.h"
 
 namespace pupwave::bench {

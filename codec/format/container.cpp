@@ -1,0 +1,201 @@
+#include "codec/format/container.h"
+
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+#include "codec/error.h"
+#include "codec/format/byte_io.h"
+#include "codec/format/crc32.h"
+#include "transforms/separable.h"
+#include "transforms/spec.h"
+
+namespace pupwave {
+namespace {
+
+constexpr std::uint8_t kSignature[4] = {'P', 'U', 'P', 'W'};
+constexpr std::size_t kSignatureBytes = 5;  // signature + version
+constexpr std::size_t kChunkOverhead = 12;  // tag, length, CRC
+constexpr int kMaxStreamLevels = 32;
+
+void write_chunk(std::vector<std::uint8_t>& out, const char* tag, std::span<const std::uint8_t> payload) {
+  if (payload.size() > 0xFFFFFFFFu) throw EncodeError("chunk " + std::string(tag, 4) + " exceeds 4 GiB");
+  const std::size_t start = out.size();
+  ByteWriter w(out);
+  w.bytes({reinterpret_cast<const std::uint8_t*>(tag), 4});
+  w.u32(std::uint32_t(payload.size()));
+  w.bytes(payload);
+  w.u32(crc32(std::span<const std::uint8_t>(out).subspan(start)));
+}
+
+std::vector<std::uint8_t> header_payload(const StreamHeader& h) {
+  std::vector<std::uint8_t> p;
+  ByteWriter w(p);
+  for (std::size_t d : h.dims) w.u32(std::uint32_t(d));
+  w.u8(h.channels);
+  w.u8(std::uint8_t(h.type));
+  w.u8(std::uint8_t(h.colour));
+  w.u8(std::uint8_t(h.entropy));
+  w.u8(h.reversible ? 1 : 0);
+  w.u8(std::uint32_t(h.levels));
+  for (std::size_t k : h.block_log2) w.u8(std::uint32_t(k));
+  w.u16(std::uint32_t(std::lround(h.delta * 65536.0)));
+  w.str16(h.spec);
+  w.u32(std::uint32_t(h.steps.size()));
+  for (float s : h.steps) w.f32(s);
+  return p;
+}
+
+// A chunk located in the stream; its CRC is checked when it is read.
+struct Chunk {
+  std::string tag;
+  std::span<const std::uint8_t> payload;
+};
+
+Chunk read_chunk(std::span<const std::uint8_t> bytes, std::size_t& pos, const char* expected) {
+  ByteReader r(bytes.subspan(pos), std::string("chunk ") + expected);
+  const auto tag = r.bytes(4);
+  const std::uint32_t length = r.u32();
+  require_stream(std::memcmp(tag.data(), expected, 4) == 0, std::string("expected chunk ") + expected);
+  const auto payload = r.bytes(length);
+  const std::uint32_t stored = r.u32();
+  const std::uint32_t actual = crc32(bytes.subspan(pos, 8 + std::size_t(length)));
+  require_stream(stored == actual, std::string("checksum mismatch in chunk ") + expected);
+  pos += r.position();
+  return {std::string(expected), payload};
+}
+
+void validate_shape(const StreamHeader& h) {
+  for (std::size_t d : h.dims)
+    require_stream(d >= 1 && d <= kMaxAxisExtent, "dimension " + std::to_string(d) + " outside [1, 65536]");
+  require_stream(h.channels >= 1 && h.channels <= 4, "channel count " + std::to_string(h.channels));
+  require_stream(h.dims[0] * h.dims[1] * h.dims[2] * h.channels <= kMaxTotalSamples,
+                 "image too large (over 2^31 samples)");
+}
+
+void validate_coding(const StreamHeader& h) {
+  require_stream(h.colour == ColourTransform::none || h.channels >= 3, "colour transform needs 3 channels");
+  require_stream(h.colour != ColourTransform::ict || !h.reversible, "ICT in a reversible stream");
+  require_stream(h.colour != ColourTransform::rct || h.reversible, "RCT in an irreversible stream");
+  require_stream(!h.reversible || is_integer(h.type), "reversible coding of float samples");
+  require_stream(h.levels >= 0 && h.levels <= kMaxStreamLevels, "level count " + std::to_string(h.levels));
+  std::size_t block = 1;
+  for (int a = 0; a < 3; ++a) {
+    require_stream(h.block_log2[a] <= 10, "code-block extent");
+    block <<= h.block_log2[a];
+  }
+  // Blocks of at least 1024 samples bound the index size by the image size.
+  require_stream(block >= 1024 && block <= (std::size_t(1) << 20),
+                 "code-block size " + std::to_string(block));
+  require_stream(h.delta >= 0.0 && h.delta < 1.0, "reconstruction offset");
+  for (float s : h.steps)
+    require_stream(std::isfinite(s) && s > 0.0f && s < 1e30f && (!h.reversible || s == 1.0f),
+                   "quantizer step");
+}
+
+StreamHeader parse_header(std::span<const std::uint8_t> payload) {
+  ByteReader r(payload, "HEAD chunk");
+  StreamHeader h;
+  for (auto& d : h.dims) d = r.u32();
+  h.channels = r.u8();
+  validate_shape(h);
+  const std::uint32_t type = r.u8(), colour = r.u8(), entropy = r.u8(), reversible = r.u8();
+  require_stream(type <= 3 && colour <= 2 && entropy <= 1 && reversible <= 1,
+                 "sample type, colour or coder field");
+  h.type = SampleType(type);
+  h.colour = ColourTransform(colour);
+  h.entropy = EntropyCoder(entropy);
+  h.reversible = reversible != 0;
+  h.levels = int(r.u8());
+  for (auto& k : h.block_log2) k = r.u8();
+  h.delta = double(r.u16()) / 65536.0;
+  h.spec = r.str16(kMaxSpecLength);
+  const std::uint32_t step_count = r.u32();
+  require_stream(step_count <= h.channels * (7u * kMaxStreamLevels + 1u), "step count");
+  h.steps.resize(step_count);
+  for (auto& s : h.steps) s = r.f32();
+  require_stream(r.remaining() == 0, "HEAD chunk has trailing bytes");
+  validate_coding(h);
+  return h;
+}
+
+// Checks the transform spec and returns the subbands it implies.
+std::vector<Subband> header_bands(const StreamHeader& h) {
+  try {
+    const auto t = make_transform(h.spec);
+    require_stream(!h.reversible || t->is_reversible(), "transform " + h.spec + " is not reversible");
+  } catch (const std::invalid_argument& e) {
+    throw DecodeError(std::string("corrupt or unsupported stream: transform spec: ") + e.what());
+  }
+  auto bands = subbands(h.dims, h.levels);
+  require_stream(h.steps.size() == bands.size() * h.channels, "step count does not match the subbands");
+  return bands;
+}
+
+// Offsets of every codeword in its DATA payload; the lengths of a resolution must add up to
+// exactly its payload size.
+void locate_codewords(ParsedStream& s) {
+  std::vector<std::size_t> used(std::size_t(s.header.levels) + 1, 0);
+  s.offsets.resize(s.blocks.size());
+  for (std::size_t i = 0; i < s.blocks.size(); ++i) {
+    const auto r = std::size_t(s.blocks[i].resolution);
+    s.offsets[i] = used[r];
+    used[r] += s.index[i].length;
+  }
+  for (std::size_t r = 0; r < s.resolution_data.size(); ++r)
+    require_stream(used[r] == s.resolution_data[r].size(),
+                   "DATA chunk " + std::to_string(r) + " size does not match its code-block lengths");
+}
+
+}  // namespace
+
+const char* to_string(EntropyCoder coder) { return coder == EntropyCoder::ebcot ? "ebcot" : "zstd"; }
+
+std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
+                                          const std::vector<std::vector<std::uint8_t>>& resolution_data) {
+  std::vector<std::uint8_t> out(kSignature, kSignature + 4);
+  out.push_back(kStreamVersion);
+  write_chunk(out, "HEAD", header_payload(header));
+  const auto coded = encode_index(index);
+  std::vector<std::uint8_t> index_payload;
+  index_payload.reserve(4 + coded.size());
+  ByteWriter iw(index_payload);
+  iw.u32(std::uint32_t(index.size()));
+  iw.bytes(coded);
+  write_chunk(out, "INDX", index_payload);
+  for (const auto& data : resolution_data) write_chunk(out, "DATA", data);
+  return out;
+}
+
+std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, std::size_t data_bytes) {
+  const std::size_t chunks = 2 + std::size_t(header.levels) + 1;
+  return kSignatureBytes + chunks * kChunkOverhead + header_payload(header).size() + 4 + index_bytes +
+         data_bytes;
+}
+
+ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels) {
+  require_stream(bytes.size() >= kSignatureBytes && std::memcmp(bytes.data(), kSignature, 4) == 0,
+                 "not a pupwave stream (bad signature)");
+  require_stream(bytes[4] == kStreamVersion, "unsupported stream version " + std::to_string(bytes[4]));
+  std::size_t pos = kSignatureBytes;
+  ParsedStream s;
+  s.header = parse_header(read_chunk(bytes, pos, "HEAD").payload);
+  s.bands = header_bands(s.header);
+  s.blocks = partition_blocks(s.bands, s.header.levels, s.header.channels, s.header.block_size());
+  const auto index_chunk = read_chunk(bytes, pos, "INDX").payload;
+  ByteReader ir(index_chunk, "INDX chunk");
+  require_stream(ir.u32() == s.blocks.size(), "block count does not match the image geometry");
+  s.index = decode_index(index_chunk.subspan(4), s.blocks.size());
+  if (drop_levels < 0 || drop_levels > s.header.levels)
+    throw std::invalid_argument("level " + std::to_string(drop_levels) + " outside [0, " +
+                                std::to_string(s.header.levels) + "] (the stream's levels)");
+  const int resolutions = s.header.levels + 1;
+  const int last = resolutions - 1 - drop_levels;
+  for (int r = 0; r <= last; ++r) s.resolution_data.push_back(read_chunk(bytes, pos, "DATA").payload);
+  if (last == resolutions - 1) require_stream(pos == bytes.size(), "trailing bytes after the last chunk");
+  locate_codewords(s);
+  return s;
+}
+
+}  // namespace pupwave

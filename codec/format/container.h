@@ -1,0 +1,79 @@
+#pragma once
+// The .pw container (docs/bitstream.md): a signature, then chunks
+//   HEAD (image and coding parameters), INDX (code-block index), DATA x (levels + 1)
+// each framed as tag, length, payload, CRC-32. DATA chunk r holds the code-blocks of
+// resolution r, so a reduced-resolution decode reads (and checks) only a prefix.
+// The parser treats its input as hostile: every field and length is validated before use.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "codec/entropy/block_index.h"
+#include "codec/entropy/codeblocks.h"
+#include "codec/image/colour.h"
+#include "codec/image/image.h"
+#include "transforms/subband.h"
+
+namespace pupwave {
+
+inline constexpr std::uint8_t kStreamVersion = 1;
+// Caps that keep a hostile header from demanding unbounded memory.
+inline constexpr std::size_t kMaxAxisExtent = std::size_t(1) << 16;
+inline constexpr std::size_t kMaxTotalSamples = std::size_t(1) << 31;
+inline constexpr std::size_t kMaxSpecLength = 4096;
+
+enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1 };
+const char* to_string(EntropyCoder coder);
+
+struct StreamHeader {
+  Extent dims{1, 1, 1};        // width, height, depth (depth 1 for images)
+  std::uint32_t channels = 1;  // 1..4
+  SampleType type = SampleType::u8;
+  ColourTransform colour = ColourTransform::none;
+  EntropyCoder entropy = EntropyCoder::ebcot;
+  bool reversible = false;  // integer transform, no quantization: lossless
+  int levels = 0;
+  Extent block_log2{6, 6, 0};  // code-block extent 2^k per axis
+  double delta = 0.375;        // reconstruction offset in a bin (index units), [0, 1)
+  std::string spec;            // transform spec for make_transform
+  std::vector<float> steps;    // quantizer step per (component, band): c * bands + b
+
+  Extent block_size() const {
+    return {std::size_t(1) << block_log2[0], std::size_t(1) << block_log2[1],
+            std::size_t(1) << block_log2[2]};
+  }
+};
+
+// Assembles a file: header, index of all blocks, and one data payload per resolution.
+std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
+                                          const std::vector<std::vector<std::uint8_t>>& resolution_data);
+
+// Size in bytes write_container would produce for these parts (without building it).
+std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, std::size_t data_bytes);
+
+struct ParsedStream {
+  StreamHeader header;
+  std::vector<Subband> bands;                                  // subbands(dims, levels)
+  std::vector<CodeBlock> blocks;                               // partition_blocks order
+  std::vector<BlockEntry> index;                               // one per block
+  std::vector<std::size_t> offsets;                            // codeword start in its DATA payload
+  std::vector<std::span<const std::uint8_t>> resolution_data;  // DATA payloads read (0..max)
+
+  // Codeword of block i (whose resolution must have been read).
+  std::span<const std::uint8_t> codeword(std::size_t i) const {
+    return resolution_data[std::size_t(blocks[i].resolution)].subspan(offsets[i], index[i].length);
+  }
+};
+
+// Parses and validates a stream, reading the DATA chunks of all but the `drop_levels` finest
+// resolutions (those a decode at 1/2^drop_levels size needs). Throws DecodeError with the
+// reason for any inconsistency, std::invalid_argument when drop_levels exceeds the levels.
+ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels = 0);
+
+// Human-readable description of a stream's header fields and chunk sizes (for `pupwave info`).
+// Throws DecodeError for a stream it cannot parse.
+std::string describe_stream(std::span<const std::uint8_t> bytes);
+
+}  // namespace pupwave

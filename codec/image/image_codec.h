@@ -1,0 +1,54 @@
+#pragma once
+// Image compression and decompression: colour transform, separable wavelet transform,
+// dead-zone quantization, code-blocks coded by the bit-plane coder (or zstd), rate control
+// by PCRD, and the .pw container. The CLI (tools/cmd_compress.cpp) is a thin layer over this.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "codec/format/container.h"
+#include "codec/image/image.h"
+
+namespace pupwave {
+
+enum class RateMode : std::uint8_t {
+  psnr,      // smallest file whose PSNR (all channels, against the input) reaches target dB
+  bpp,       // best quality within target bits per pixel (whole file, all channels)
+  step,      // fixed quantizer base step `target` (sample units), every bit-plane coded
+  lossless,  // reversible integer transform and colour transform, bit-exact (integer samples)
+};
+
+struct EncodeOptions {
+  std::string transform = "cdf97";  // spec for make_transform; lossless needs a reversible one
+  int levels = -1;                  // -1: default_levels(dims)
+  RateMode mode = RateMode::psnr;
+  double target = 40.0;  // dB, bits per pixel or base step, by mode
+  EntropyCoder entropy = EntropyCoder::ebcot;
+  unsigned threads = 0;          // 0: all hardware threads
+  Extent block_size{64, 64, 1};  // code-block extent (powers of two, >= 1024 samples)
+  // Decode the result to report its PSNR. Costs about a full decode and a decoded image's
+  // memory; PSNR targets measure it anyway.
+  bool measure_psnr = true;
+};
+
+struct EncodeResult {
+  std::vector<std::uint8_t> bytes;  // the complete .pw file
+  double bpp = 0.0;                 // bits per pixel of the whole file
+  double psnr = 0.0;       // of the decoded image against the input, all channels (dB); NaN if not measured
+  double base_step = 0.0;  // quantizer base step used (1 for lossless)
+};
+
+// Compresses an image. Throws std::invalid_argument for bad options (unknown transform, a
+// non-reversible transform for lossless, lossless float samples, a non-positive target) and
+// EncodeError for images the format cannot hold (empty, over 2^16 per axis or 2^31 samples,
+// more than 4 channels, non-finite samples).
+EncodeResult encode_image(const Image& image, const EncodeOptions& options);
+
+// Decodes a stream, at full resolution (level 0) or at 1/2^level resolution, reading only
+// the data that resolution needs. Throws DecodeError for a corrupt or truncated stream and
+// std::invalid_argument when level exceeds the stream's level count.
+Image decode_image(std::span<const std::uint8_t> bytes, int level = 0, unsigned threads = 0);
+
+}  // namespace pupwave

@@ -1,0 +1,183 @@
+#include "codec/image/image_components.h"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+#include "codec/parallel.h"
+#include "codec/rate/metrics.h"
+
+namespace pupwave {
+namespace {
+
+// Compacts the low-corner region of a plane in place (rows of size[0]); each row moves to
+// an earlier position, so a forward copy never overwrites rows not yet moved.
+template <class T>
+void crop_in_place(std::vector<T>& plane, const Extent& dims, const Extent& size) {
+  if (size == dims) return;
+  for (std::size_t y = 0; y < size[1]; ++y)
+    std::copy_n(plane.begin() + std::ptrdiff_t(y * dims[0]), size[0],
+                plane.begin() + std::ptrdiff_t(y * size[0]));
+  plane.resize(size[0] * size[1]);
+  plane.shrink_to_fit();
+}
+
+// Rounds and clamps decoded values to what the sample type can hold.
+float finish_sample(double v, SampleType type) {
+  if (is_integer(type)) return float(std::clamp(std::nearbyint(v), 0.0, nominal_max(type)));
+  if (type == SampleType::f16) return float(std::clamp(v, -65504.0, 65504.0));
+  return float(v);
+}
+
+// Writes component planes to the output image, freeing each plane once written so the
+// decoder never holds more than one full copy of the image besides the output.
+template <class T>
+void write_planes(std::vector<std::vector<T>>& planes, Image& out) {
+  const double shift = level_shift(out.type);
+  const std::size_t n = out.plane_size();
+  for (std::size_t c = 0; c < planes.size(); ++c) {
+    float* dst = out.plane(c);
+    const T* src = planes[c].data();
+    for (std::size_t i = 0; i < n; ++i) dst[i] = finish_sample(double(src[i]) + shift, out.type);
+    std::vector<T>().swap(planes[c]);
+  }
+}
+
+// Squared error of every sample against the reference, summed in compare_images' order
+// (channel by channel, sample by sample) so the PSNR is the same to the last bit.
+template <class T>
+double components_psnr_after_colour(const Image& reference, const std::vector<std::vector<T>>& planes) {
+  const double shift = level_shift(reference.type);
+  const std::size_t n = reference.plane_size();
+  double sum_sq = 0.0;
+  for (std::size_t c = 0; c < planes.size(); ++c) {
+    const float* a = reference.plane(c);
+    const T* b = planes[c].data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double d = double(a[i]) - double(finish_sample(double(b[i]) + shift, reference.type));
+      sum_sq += d * d;
+    }
+  }
+  const std::size_t count = n * planes.size();
+  return psnr_from_mse(count ? sum_sq / double(count) : 0.0, psnr_peak(reference));
+}
+
+}  // namespace
+
+ColourTransform colour_for(std::size_t channels, bool reversible) {
+  if (channels < 3) return ColourTransform::none;
+  return reversible ? ColourTransform::rct : ColourTransform::ict;
+}
+
+double level_shift(SampleType type) { return is_integer(type) ? (nominal_max(type) + 1.0) / 2.0 : 0.0; }
+
+void float_component(const Image& image, ColourTransform colour, std::size_t c, std::vector<float>& out) {
+  const std::size_t n = image.plane_size();
+  const auto shift = float(level_shift(image.type));
+  out.resize(n);
+  if (colour != ColourTransform::ict || c >= 3) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = image.plane(c)[i] - shift;
+    return;
+  }
+  const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float rgb[3] = {r[i] - shift, g[i] - shift, b[i] - shift};
+    forward_ict(rgb, c, out.data() + i);
+  }
+}
+
+void integer_component(const Image& image, ColourTransform colour, std::size_t c,
+                       std::vector<std::int32_t>& out) {
+  const std::size_t n = image.plane_size();
+  const auto shift = std::int32_t(level_shift(image.type));
+  out.resize(n);
+  if (colour != ColourTransform::rct || c >= 3) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = std::int32_t(image.plane(c)[i]) - shift;
+    return;
+  }
+  const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t rgb[3] = {std::int32_t(r[i]) - shift, std::int32_t(g[i]) - shift,
+                                 std::int32_t(b[i]) - shift};
+    forward_rct(rgb, c, out.data() + i);
+  }
+}
+
+std::vector<double> component_weights(std::size_t channels, ColourTransform colour) {
+  std::vector<double> w(channels, 1.0);
+  if (colour == ColourTransform::ict) {
+    const auto ict = ict_error_weights();
+    std::copy(ict.begin(), ict.end(), w.begin());
+  }
+  return w;
+}
+
+double coarse_gain(const Transform1D& t, const Extent& dims, int level) {
+  double gain = 1.0;
+  for (std::size_t n : dims) {
+    if (n <= 1) continue;
+    std::vector<double> line(n, 1.0);
+    std::size_t len = n;
+    for (int l = 0; l < level && len > 1; ++l) {
+      t.analyze(std::span<double>(line.data(), len));
+      len = coarse_size(len);
+    }
+    gain *= line[len / 2];  // a constant line has a constant coarse band
+  }
+  return gain;
+}
+
+Image image_from_components(std::vector<std::vector<float>>& planes, const Extent& dims, const Extent& size,
+                            SampleType type, ColourTransform colour, double gain) {
+  for (auto& p : planes) {
+    crop_in_place(p, dims, size);
+    if (gain != 1.0)  // dividing by exactly 1 would change no value
+      for (float& v : p) v = float(double(v) / gain);
+  }
+  Image out(size[0], size[1], planes.size(), type);
+  if (colour == ColourTransform::ict)
+    inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
+  write_planes(planes, out);
+  return out;
+}
+
+Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims,
+                            const Extent& size, SampleType type, ColourTransform colour) {
+  for (auto& p : planes) crop_in_place(p, dims, size);
+  Image out(size[0], size[1], planes.size(), type);
+  if (colour == ColourTransform::rct)
+    inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), out.plane_size());
+  write_planes(planes, out);
+  return out;
+}
+
+void finish_image_in_place(Image& image, ColourTransform colour, unsigned threads) {
+  constexpr std::size_t kRun = std::size_t(1) << 16;  // samples per task
+  const std::size_t n = image.plane_size();
+  const double shift = level_shift(image.type);
+  parallel_for((n + kRun - 1) / kRun, threads, [&](std::size_t k) {
+    const std::size_t first = k * kRun, count = std::min(kRun, n - first);
+    if (colour == ColourTransform::ict)
+      inverse_ict(image.plane(0) + first, image.plane(1) + first, image.plane(2) + first, count);
+    for (std::size_t c = 0; c < image.channels; ++c) {
+      float* p = image.plane(c) + first;
+      for (std::size_t i = 0; i < count; ++i) p[i] = finish_sample(double(p[i]) + shift, image.type);
+    }
+  });
+}
+
+double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes,
+                       ColourTransform colour) {
+  if (colour == ColourTransform::ict)
+    inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
+  return components_psnr_after_colour(reference, planes);
+}
+
+double components_psnr(const Image& reference, std::vector<std::vector<std::int32_t>>& planes,
+                       ColourTransform colour) {
+  if (colour == ColourTransform::rct)
+    inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
+  return components_psnr_after_colour(reference, planes);
+}
+
+}  // namespace pupwave

@@ -1,0 +1,58 @@
+#pragma once
+// Between an Image and the planes the wavelet transform codes: level shift of integer
+// samples to signed, colour transform, per-component error weights, and the way back
+// (including the reduced-resolution rescaling and the rounding and clamping of samples).
+
+#include <cstdint>
+#include <vector>
+
+#include "codec/image/colour.h"
+#include "codec/image/image.h"
+#include "transforms/subband.h"
+#include "transforms/transform1d.h"
+
+namespace pupwave {
+
+// Colour transform used for an image of `channels` channels.
+ColourTransform colour_for(std::size_t channels, bool reversible);
+
+// Level shift that centres integer samples on zero (2^(bits-1)); 0 for float samples.
+double level_shift(SampleType type);
+
+// Component c after level shift and colour transform (forward_ict / forward_rct), one at a
+// time so an encoder holds a single transformed component. `out` is resized to the plane size
+// (its capacity is reused).
+void float_component(const Image& image, ColourTransform colour, std::size_t c, std::vector<float>& out);
+void integer_component(const Image& image, ColourTransform colour, std::size_t c,
+                       std::vector<std::int32_t>& out);
+
+// Squared output error per unit error of each component (ICT components weigh more).
+std::vector<double> component_weights(std::size_t channels, ColourTransform colour);
+
+// DC gain of the level-`level` coarse band of transform t over dims (1 for level 0), so a
+// reduced-resolution band can be brought back to sample units.
+double coarse_gain(const Transform1D& t, const Extent& dims, int level);
+
+// Builds the output image from the low-corner `size` region of component planes laid out
+// over `dims`: divide by `gain`, undo colour and level shift, round and clamp to the type.
+// Consumes `planes` (they are transformed in place and freed as the image is written).
+Image image_from_components(std::vector<std::vector<float>>& planes, const Extent& dims, const Extent& size,
+                            SampleType type, ColourTransform colour, double gain);
+Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, const Extent& dims,
+                            const Extent& size, SampleType type, ColourTransform colour);
+
+// The same for full-resolution float planes that already are the image's own planes (decoded
+// into image.samples, gain 1): undoes colour and level shift, rounds and clamps in place, on
+// up to `threads` threads (0: all), so a decoder never holds a second full-size copy.
+void finish_image_in_place(Image& image, ColourTransform colour, unsigned threads);
+
+// PSNR (all channels, as compare_images(reference, decoded).overall) of full-resolution
+// component planes laid out over the reference's extent, without building the decoded
+// image: undoes colour and level shift, rounds and clamps like image_from_components.
+// Consumes `planes` (the colour transform is undone in place).
+double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes,
+                       ColourTransform colour);
+double components_psnr(const Image& reference, std::vector<std::vector<std::int32_t>>& planes,
+                       ColourTransform colour);
+
+}  // namespace pupwave

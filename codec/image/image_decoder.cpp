@@ -1,0 +1,122 @@
+// decode_image: parse and validate the container, decode the code-blocks a resolution needs
+// in parallel, dequantize, inverse wavelet transform (stopping early for reduced
+// resolution), inverse colour transform.
+#include <stdexcept>
+
+#include "codec/entropy/block_decoder.h"
+#include "codec/entropy/zstd_blocks.h"
+#include "codec/error.h"
+#include "codec/format/container.h"
+#include "codec/image/image_codec.h"
+#include "codec/image/image_components.h"
+#include "codec/image/image_plan.h"
+#include "codec/parallel.h"
+#include "transforms/separable.h"
+#include "transforms/spec.h"
+
+namespace pupwave {
+namespace {
+
+// Signed index-unit values of block i (reconstruction points inside their bins).
+template <class T>
+std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
+  const CodeBlock& b = s.blocks[i];
+  const BlockEntry& e = s.index[i];
+  const StreamHeader& h = s.header;
+  std::vector<T> values(b.count(), T(0));
+  if (e.passes == 0) return values;
+  if (h.entropy == EntropyCoder::zstd) {
+    const auto q = zstd_decode_block(s.codeword(i), b.count());
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const double offset = (h.reversible || q[k] == 0) ? 0.0 : (q[k] < 0 ? -h.delta : h.delta);
+      values[k] = T(double(q[k]) + offset);
+    }
+    return values;
+  }
+  const DecodedBlock d = decode_block(s.codeword(i), e.planes, e.passes, b.size, b.orientation);
+  for (std::size_t k = 0; k < values.size(); ++k) values[k] = T(reconstruct(d, k, h.delta, h.reversible));
+  return values;
+}
+
+// Decodes every block of the read resolutions into the component planes at planes[c] (each
+// dims-sized and zeroed).
+template <class T>
+void decode_into(const ParsedStream& s, unsigned threads, const std::vector<T*>& planes) {
+  const StreamHeader& h = s.header;
+  const int last = int(s.resolution_data.size()) - 1;
+  parallel_for(s.blocks.size(), threads, [&](std::size_t i) {
+    const CodeBlock& b = s.blocks[i];
+    if (b.resolution > last) return;
+    std::vector<T> values = block_values<T>(s, i);
+    if constexpr (std::is_floating_point_v<T>) {
+      const float step = h.steps[b.component * s.bands.size() + b.band];
+      for (T& v : values) v *= step;
+    }
+    copy_block_in(values.data(), h.dims, b, planes[b.component]);  // blocks never overlap
+  });
+}
+
+// Decodes every block of the read resolutions into component planes of type T.
+template <class T>
+std::vector<std::vector<T>> decode_planes(const ParsedStream& s, unsigned threads) {
+  const StreamHeader& h = s.header;
+  std::vector<std::vector<T>> planes(h.channels, std::vector<T>(h.dims[0] * h.dims[1] * h.dims[2], T(0)));
+  std::vector<T*> pointers;
+  for (auto& p : planes) pointers.push_back(p.data());
+  decode_into(s, threads, pointers);
+  return planes;
+}
+
+// Full-resolution lossy decode straight into the output image's samples: the component
+// planes are the image's planes, so no second full-size copy is made.
+Image decode_full_float(const ParsedStream& s, const Transform1D& t, unsigned threads) {
+  const StreamHeader& h = s.header;
+  Image out(h.dims[0], h.dims[1], h.channels, h.type);
+  std::vector<float*> planes;
+  for (std::size_t c = 0; c < h.channels; ++c) planes.push_back(out.plane(c));
+  decode_into(s, threads, planes);
+  for (float* p : planes) inverse(t, p, h.dims, h.levels, 0);
+  finish_image_in_place(out, h.colour, threads);
+  return out;
+}
+
+}  // namespace
+
+Image decode_image(std::span<const std::uint8_t> bytes, int level, unsigned threads) {
+  const ParsedStream s = parse_container(bytes, level);
+  const StreamHeader& h = s.header;
+  require_stream(h.dims[2] == 1, "a volume stream, not an image");
+  const auto t = make_transform(h.spec);
+  const Extent size = level_extent(h.dims, level);
+  if (h.reversible) {
+    auto planes = decode_planes<std::int32_t>(s, threads);
+    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level);
+    return image_from_components(planes, h.dims, size, h.type, h.colour);
+  }
+  if (level == 0) return decode_full_float(s, *t, threads);
+  auto planes = decode_planes<float>(s, threads);
+  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level);
+  return image_from_components(planes, h.dims, size, h.type, h.colour, coarse_gain(*t, h.dims, level));
+}
+
+// The encoder's check of a stream: decodes it at full resolution and compares it with the
+// input without building the decoded image.
+double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads) {
+  const ParsedStream s = parse_container(bytes, 0);
+  const StreamHeader& h = s.header;
+  require_stream(h.dims[2] == 1, "a volume stream, not an image");
+  if (h.dims[0] != image.width || h.dims[1] != image.height || h.channels != image.channels ||
+      h.type != image.type)
+    throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
+  const auto t = make_transform(h.spec);
+  if (h.reversible) {
+    auto planes = decode_planes<std::int32_t>(s, threads);
+    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0);
+    return components_psnr(image, planes, h.colour);
+  }
+  auto planes = decode_planes<float>(s, threads);
+  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0);
+  return components_psnr(image, planes, h.colour);
+}
+
+}  // namespace pupwave

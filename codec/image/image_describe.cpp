@@ -1,0 +1,54 @@
+// describe_stream: a readable summary of a .pw file for `pupwave info`.
+#include <sstream>
+
+#include "codec/error.h"
+#include "codec/format/container.h"
+
+namespace pupwave {
+namespace {
+
+// Per-resolution totals of the coded blocks.
+struct ResolutionSummary {
+  std::size_t blocks = 0;
+  std::size_t coded = 0;
+  std::size_t bytes = 0;
+};
+
+}  // namespace
+
+std::string describe_stream(std::span<const std::uint8_t> bytes) {
+  const ParsedStream s = parse_container(bytes);
+  const StreamHeader& h = s.header;
+  std::ostringstream out;
+  out << "pupwave stream, version " << int(bytes[4]) << ", " << bytes.size() << " bytes\n";
+  out << "  size        " << h.dims[0] << " x " << h.dims[1];
+  if (h.dims[2] > 1) out << " x " << h.dims[2];
+  out << ", " << h.channels << " channel(s), " << to_string(h.type) << "\n";
+  out << "  colour      " << to_string(h.colour) << "\n";
+  out << "  transform   " << h.spec << ", " << h.levels << " level(s), " << s.bands.size() << " subbands\n";
+  out << "  coding      " << (h.reversible ? "reversible (lossless)" : "irreversible (lossy)") << ", entropy "
+      << to_string(h.entropy) << ", code-blocks " << h.block_size()[0] << "x" << h.block_size()[1];
+  if (h.block_size()[2] > 1) out << "x" << h.block_size()[2];
+  out << ", reconstruction offset " << h.delta << "\n";
+  if (!h.reversible && !h.steps.empty()) {
+    out << "  steps       coarse band";
+    for (std::uint32_t c = 0; c < h.channels; ++c) out << " " << h.steps[c * s.bands.size()];
+    out << "; finest details";
+    for (std::uint32_t c = 0; c < h.channels; ++c) out << " " << h.steps[(c + 1) * s.bands.size() - 1];
+    out << "\n";
+  }
+  std::vector<ResolutionSummary> res(s.resolution_data.size());
+  for (std::size_t i = 0; i < s.blocks.size(); ++i) {
+    auto& r = res[std::size_t(s.blocks[i].resolution)];
+    ++r.blocks;
+    r.coded += s.index[i].passes > 0;
+    r.bytes += s.index[i].length;
+  }
+  out << "  chunks      HEAD, INDX (" << s.blocks.size() << " code-blocks), DATA x " << res.size() << "\n";
+  for (std::size_t r = 0; r < res.size(); ++r)
+    out << "    DATA " << r << (r == 0 ? " (coarse band)" : "") << ": " << res[r].bytes << " bytes, "
+        << res[r].coded << " of " << res[r].blocks << " blocks coded\n";
+  return out.str();
+}
+
+}  // namespace pupwave

@@ -1,0 +1,173 @@
+#include "codec/image/image_plan.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "codec/error.h"
+#include "codec/image/image_components.h"
+#include "codec/rate/metrics.h"
+#include "codec/rate/quantizer.h"
+#include "transforms/norms.h"
+#include "transforms/separable.h"
+#include "transforms/spec.h"
+
+namespace pupwave {
+namespace {
+
+void validate_image(const Image& image) {
+  if (image.width == 0 || image.height == 0) throw EncodeError("cannot encode an empty image");
+  if (image.width > kMaxAxisExtent || image.height > kMaxAxisExtent)
+    throw EncodeError("image dimensions exceed 65536 per axis");
+  if (image.channels < 1 || image.channels > 4) throw EncodeError("images must have 1 to 4 channels");
+  if (image.plane_size() * image.channels > kMaxTotalSamples) throw EncodeError("image exceeds 2^31 samples");
+  if (image.samples.size() != image.plane_size() * image.channels)
+    throw std::invalid_argument("image sample count does not match its dimensions");
+  for (float v : image.samples)
+    if (!std::isfinite(v)) throw EncodeError("image has non-finite samples (NaN or infinity)");
+}
+
+void validate_options(const Image& image, const EncodeOptions& o) {
+  if (o.mode == RateMode::lossless && !is_integer(image.type))
+    throw std::invalid_argument(
+        "lossless coding needs integer samples (8 or 16 bit); float images are lossy");
+  if (o.mode != RateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
+    throw std::invalid_argument("rate target must be positive and finite");
+  if (o.levels < -1 || o.levels > 32) throw std::invalid_argument("levels must be in [0, 32]");
+}
+
+Extent block_log2(const Extent& size) {
+  Extent k{};
+  for (int a = 0; a < 3; ++a) {
+    if (size[a] == 0 || (size[a] & (size[a] - 1)) != 0 || size[a] > 1024)
+      throw std::invalid_argument("code-block extents must be powers of two up to 1024");
+    while ((std::size_t(1) << k[a]) < size[a]) ++k[a];
+  }
+  const std::size_t count = size[0] * size[1] * size[2];
+  if (count < 1024 || count > (std::size_t(1) << 20))
+    throw std::invalid_argument("code-blocks must hold 1024 to 2^20 samples");
+  return k;
+}
+
+}  // namespace
+
+ImagePlan plan_image(const Image& image, const EncodeOptions& o) {
+  validate_image(image);
+  validate_options(image, o);
+  auto t = make_transform(o.transform);
+  const bool reversible = o.mode == RateMode::lossless;
+  if (reversible && !t->is_reversible())
+    throw std::invalid_argument("lossless coding needs a reversible transform (cdf53), not " + t->spec());
+  ImagePlan plan;
+  StreamHeader& h = plan.header;
+  h.dims = {image.width, image.height, 1};
+  h.channels = std::uint32_t(image.channels);
+  h.type = image.type;
+  h.colour = colour_for(image.channels, reversible);
+  h.entropy = o.entropy;
+  h.reversible = reversible;
+  h.levels = o.levels < 0 ? default_levels(h.dims) : o.levels;
+  h.block_log2 = block_log2(o.block_size);
+  h.delta = reversible ? 0.0 : kDefaultReconstructionDelta;
+  h.spec = t->spec();
+  plan.bands = subbands(h.dims, h.levels);
+  plan.blocks = partition_blocks(plan.bands, h.levels, h.channels, o.block_size);
+  plan.weights = component_weights(image.channels, h.colour);
+  plan.pixels = image.plane_size();
+  plan.samples = plan.pixels * image.channels;
+  plan.peak = psnr_peak(image);
+  plan.threads = o.threads;
+  plan.measure_psnr = o.measure_psnr;
+  plan.source = &image;
+  if (reversible)
+    h.steps.assign(plan.bands.size() * h.channels, 1.0f);
+  else
+    plan.norms = synthesis_norms(*t, h.dims, h.levels);
+  plan.transform = std::move(t);
+  return plan;
+}
+
+void transform_component(ImagePlan& plan, std::size_t c) {
+  const StreamHeader& h = plan.header;
+  if (h.reversible) {
+    plan.icoef.resize(h.channels);
+    plan.icoef[c].swap(plan.ispare);
+    integer_component(*plan.source, h.colour, c, plan.icoef[c]);
+    forward(*plan.transform, plan.icoef[c].data(), h.dims, h.levels);
+  } else {
+    plan.coef.resize(h.channels);
+    plan.coef[c].swap(plan.spare);
+    float_component(*plan.source, h.colour, c, plan.coef[c]);
+    forward(*plan.transform, plan.coef[c].data(), h.dims, h.levels);
+  }
+}
+
+void transform_all_components(ImagePlan& plan) {
+  for (std::size_t c = 0; c < plan.header.channels; ++c) transform_component(plan, c);
+}
+
+void set_base_step(ImagePlan& plan, double base_step) {
+  plan.header.steps = subband_steps(base_step, plan.norms, plan.weights);
+}
+
+void release_component(ImagePlan& plan, std::size_t c) {
+  if (c < plan.coef.size() && !plan.coef[c].empty()) {
+    plan.spare.swap(plan.coef[c]);
+    std::vector<float>().swap(plan.coef[c]);
+  }
+  if (c < plan.icoef.size() && !plan.icoef[c].empty()) {
+    plan.ispare.swap(plan.icoef[c]);
+    std::vector<std::int32_t>().swap(plan.icoef[c]);
+  }
+}
+
+void release_coefficients(ImagePlan& plan) {
+  std::vector<float>().swap(plan.spare);
+  std::vector<std::int32_t>().swap(plan.ispare);
+  std::vector<std::vector<float>>().swap(plan.coef);
+  std::vector<std::vector<std::int32_t>>().swap(plan.icoef);
+}
+
+void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
+                    std::vector<std::uint8_t>& negative) {
+  const CodeBlock& b = plan.blocks[i];
+  const float step = plan.header.steps[b.component * plan.bands.size() + b.band];
+  magnitude.resize(b.count());
+  negative.resize(b.count());
+  if (plan.header.reversible) {
+    std::vector<std::int32_t> values(b.count());
+    copy_block_out(plan.icoef[b.component].data(), plan.header.dims, b, values.data());
+    for (std::int32_t v : values)
+      if (v >= (1 << 24) || v <= -(1 << 24)) throw EncodeError("reversible coefficient out of range");
+    quantize<std::int32_t>(values, 1.0f, magnitude, negative);
+  } else {
+    std::vector<float> values(b.count());
+    copy_block_out(plan.coef[b.component].data(), plan.header.dims, b, values.data());
+    quantize<float>(values, step, magnitude, negative);
+  }
+}
+
+std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<BlockEntry>& entries,
+                                   const std::vector<std::vector<std::uint8_t>>& codewords) {
+  std::vector<std::vector<std::uint8_t>> data(std::size_t(plan.header.levels) + 1);
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+    auto& d = data[std::size_t(plan.blocks[i].resolution)];
+    d.insert(d.end(), codewords[i].begin(), codewords[i].end());
+  }
+  return write_container(plan.header, entries, data);
+}
+
+EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
+                                double base_step, std::optional<double> known_psnr) {
+  EncodeResult r;
+  r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
+  if (known_psnr)
+    r.psnr = *known_psnr;
+  else
+    r.psnr = plan.measure_psnr ? measure_psnr(image, bytes, plan.threads) : std::nan("");
+  r.base_step = base_step;
+  r.bytes = std::move(bytes);
+  return r;
+}
+
+}  // namespace pupwave

@@ -1,0 +1,76 @@
+#pragma once
+// Internal to the image encoder: an image after colour and wavelet transform, partitioned
+// into code-blocks, with the container header being built. Shared by the bit-plane and
+// zstd encoding paths (image_encoder.cpp, image_encoder_zstd.cpp).
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "codec/entropy/codeblocks.h"
+#include "codec/format/container.h"
+#include "codec/image/image_codec.h"
+#include "transforms/spec.h"
+
+namespace pupwave {
+
+struct ImagePlan {
+  StreamHeader header;
+  std::vector<Subband> bands;
+  std::vector<CodeBlock> blocks;
+  std::vector<double> norms;                     // synthesis norm per band
+  std::vector<double> weights;                   // output error per unit component error
+  std::vector<std::vector<float>> coef;          // irreversible: transformed components (or empty)
+  std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components (or empty)
+  // A released component's buffer, reused by the next: first touches of fresh pages cost more
+  // than the transform on some machines (about 0.6 ms per MiB here).
+  std::vector<float> spare;
+  std::vector<std::int32_t> ispare;
+  const Image* source = nullptr;  // the input, alive while the plan is used
+  Transform1DPtr transform;
+  std::size_t pixels = 0;   // width * height
+  std::size_t samples = 0;  // pixels * channels
+  double peak = 1.0;        // PSNR peak of the input
+  unsigned threads = 0;
+  bool measure_psnr = true;  // EncodeOptions::measure_psnr
+};
+
+// Validates the image and options and lays out bands and blocks; no coefficients yet.
+// The plan refers to `image`, which must outlive it.
+ImagePlan plan_image(const Image& image, const EncodeOptions& options);
+
+// Fills coef[c] (or icoef[c]) with component c after colour and wavelet transform; the
+// encoder holds one component at a time to keep its memory small.
+void transform_component(ImagePlan& plan, std::size_t c);
+// Transforms every component (for coders that revisit all blocks many times).
+void transform_all_components(ImagePlan& plan);
+
+// Sets the quantizer steps of every (component, band) from a base step.
+void set_base_step(ImagePlan& plan, double base_step);
+
+// Done with component c for now: its buffer becomes the spare the next component fills.
+void release_component(ImagePlan& plan, std::size_t c);
+// Frees the transformed components and the spare once every block has been coded for the last time.
+void release_coefficients(ImagePlan& plan);
+
+// Index-unit magnitudes and signs of block i under the plan's steps.
+void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
+                    std::vector<std::uint8_t>& negative);
+
+// The .pw file of the plan with the given per-block index entries and codewords.
+std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<BlockEntry>& entries,
+                                   const std::vector<std::vector<std::uint8_t>>& codewords);
+
+// Decodes `bytes` and returns its PSNR (all channels) against `image`.
+double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads);
+
+// The result of an encode: the bytes with their bpp and PSNR and the base step used. The PSNR
+// is `known_psnr` if given, else measured when the plan asks for it, else NaN.
+EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
+                                double base_step, std::optional<double> known_psnr = std::nullopt);
+
+// Encodes with the zstd back end (rate control by the base step only).
+EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOptions& options);
+
+}  // namespace pupwave

@@ -1,0 +1,83 @@
+#include "codec/rate/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace pupwave {
+
+double psnr_from_mse(double mse, double peak) {
+  if (mse <= 0.0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(peak * peak / mse);
+}
+
+double psnr_peak(const Image& reference) {
+  if (is_integer(reference.type)) return nominal_max(reference.type);
+  if (reference.samples.empty()) return 1.0;
+  const auto [lo, hi] = std::minmax_element(reference.samples.begin(), reference.samples.end());
+  const double range = double(*hi) - double(*lo);
+  return range > 0.0 ? range : 1.0;
+}
+
+namespace {
+
+// Accumulates the error of one sequence of differences.
+struct ErrorSum {
+  double sum_sq = 0.0;
+  double max_abs = 0.0;
+  std::size_t count = 0;
+  void add(double diff) {
+    sum_sq += diff * diff;
+    max_abs = std::max(max_abs, std::abs(diff));
+    ++count;
+  }
+  ChannelError finish(double peak) const {
+    ChannelError e;
+    e.mse = count ? sum_sq / double(count) : 0.0;
+    e.psnr = psnr_from_mse(e.mse, peak);
+    e.max_abs = max_abs;
+    return e;
+  }
+};
+
+double luma_at(const Image& img, std::size_t i) {
+  return 0.299 * img.plane(0)[i] + 0.587 * img.plane(1)[i] + 0.114 * img.plane(2)[i];
+}
+
+}  // namespace
+
+ImageError compare_images(const Image& reference, const Image& test) {
+  if (reference.width != test.width || reference.height != test.height || reference.channels != test.channels)
+    throw std::invalid_argument("images differ in shape: " + std::to_string(reference.width) + "x" +
+                                std::to_string(reference.height) + "x" + std::to_string(reference.channels) +
+                                " vs " + std::to_string(test.width) + "x" + std::to_string(test.height) +
+                                "x" + std::to_string(test.channels));
+  if (reference.type != test.type)
+    throw std::invalid_argument("images differ in sample type: " + to_string(reference.type) + " vs " +
+                                to_string(test.type));
+  ImageError result;
+  result.peak = psnr_peak(reference);
+  ErrorSum all;
+  for (std::size_t c = 0; c < reference.channels; ++c) {
+    ErrorSum channel;
+    const float* a = reference.plane(c);
+    const float* b = test.plane(c);
+    for (std::size_t i = 0; i < reference.plane_size(); ++i) {
+      const double d = double(a[i]) - double(b[i]);
+      channel.add(d);
+      all.add(d);
+    }
+    result.channels.push_back(channel.finish(result.peak));
+  }
+  result.overall = all.finish(result.peak);
+  result.has_luma = reference.channels == 3 || reference.channels == 4;
+  if (result.has_luma) {
+    ErrorSum luma;
+    for (std::size_t i = 0; i < reference.plane_size(); ++i)
+      luma.add(luma_at(reference, i) - luma_at(test, i));
+    result.luma = luma.finish(result.peak);
+  }
+  return result;
+}
+
+}  // namespace pupwave

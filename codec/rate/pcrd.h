@@ -1,0 +1,64 @@
+#pragma once
+// Post-compression rate-distortion optimization (PCRD, Taubman's EBCOT): every code-block
+// has a convex hull of (bytes, distortion removed) truncation points; one global slope
+// threshold lambda picks in every block the last hull point whose slope is >= lambda,
+// which minimizes the total distortion for the total size it gives.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "codec/entropy/block_encoder.h"
+
+namespace pupwave {
+
+// A truncation point on a block's convex hull.
+struct HullPoint {
+  int passes = 0;
+  std::size_t bytes = 0;
+  double removed = 0.0;  // cumulative distortion removed (index units squared)
+  double slope = 0.0;    // removed / bytes gained from the previous hull point
+};
+
+// The hull of a block's truncation points (the empty truncation excluded), slopes strictly
+// decreasing. Passes that add bytes without removing distortion never appear.
+std::vector<HullPoint> rd_hull(const EncodedBlock& block);
+
+// Passes to keep at threshold lambda: the last hull point with slope >= lambda (0 if none).
+int passes_at_slope(const std::vector<HullPoint>& hull, double lambda);
+
+// Per-block passes at one threshold.
+std::vector<int> passes_at_slope(const std::vector<std::vector<HullPoint>>& hulls, double lambda);
+
+// Chooses the per-block passes at the threshold where `accept(passes)` changes, by bisection
+// on log lambda. accept must be monotone in lambda: with `accept_high` (a size budget) it
+// holds for large lambda and the smallest accepted lambda is returned (most bytes that fit);
+// otherwise (a distortion target) it holds for small lambda and the largest accepted lambda
+// is returned (fewest bytes that suffice). Falls back to no passes / all passes when nothing
+// is accepted.
+template <class Accept>
+std::vector<int> allocate_by_slope(const std::vector<std::vector<HullPoint>>& hulls, bool accept_high,
+                                   Accept&& accept) {
+  double lo = 1e-12, hi = 1e12;  // lambda in index-units^2 per byte
+  for (const auto& h : hulls)
+    if (!h.empty() && std::isfinite(h.front().slope)) hi = std::max(hi, h.front().slope * 2.0);
+  std::vector<int> none = passes_at_slope(hulls, hi);
+  std::vector<int> all = passes_at_slope(hulls, 0.0);
+  if (accept_high ? accept(all) : !accept(all)) return all;
+  if (accept_high ? !accept(none) : accept(none)) return none;
+  std::vector<int> best = accept_high ? none : all;
+  for (int iter = 0; iter < 64 && hi / lo > 1.0 + 1e-7; ++iter) {
+    const double mid = std::sqrt(lo * hi);
+    auto choice = passes_at_slope(hulls, mid);
+    const bool ok = accept(choice);
+    if (ok) best = choice;
+    if (ok == accept_high)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return best;
+}
+
+}  // namespace pupwave

@@ -1,0 +1,142 @@
+#include "codec/volume/volume_brick.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "codec/entropy/block_decoder.h"
+#include "codec/error.h"
+#include "codec/image/image_components.h"
+#include "codec/rate/quantizer.h"
+#include "transforms/norms.h"
+#include "transforms/separable.h"
+
+namespace pupwave {
+
+std::vector<BrickBox> brick_boxes(const Extent& dims, std::size_t brick) {
+  if (brick == 0) throw std::invalid_argument("brick edge must be positive");
+  Extent n{};
+  for (int a = 0; a < 3; ++a) n[a] = (dims[a] + brick - 1) / brick;
+  std::vector<BrickBox> boxes;
+  boxes.reserve(n[0] * n[1] * n[2]);
+  for (std::size_t z = 0; z < n[2]; ++z)
+    for (std::size_t y = 0; y < n[1]; ++y)
+      for (std::size_t x = 0; x < n[0]; ++x) {
+        BrickBox b;
+        const Extent at{x, y, z};
+        for (int a = 0; a < 3; ++a) {
+          b.offset[a] = at[a] * brick;
+          b.size[a] = std::min(brick, dims[a] - b.offset[a]);
+        }
+        boxes.push_back(b);
+      }
+  return boxes;
+}
+
+std::vector<CodeBlock> brick_blocks(const BrickCoding& c, const Extent& size) {
+  return partition_blocks(subbands(size, c.levels), c.levels, 1, {c.block, c.block, c.block});
+}
+
+std::vector<float> brick_steps(const BrickCoding& c, const Extent& size, double base_step) {
+  const auto bands = subbands(size, c.levels);
+  if (c.reversible) return std::vector<float>(bands.size(), 1.0f);
+  const std::vector<double> norms = synthesis_norms(*c.transform, size, c.levels);
+  const std::vector<double> unit{1.0};
+  return subband_steps(base_step, norms, unit);
+}
+
+namespace {
+
+// Index-unit magnitudes and signs of one block of transformed coefficients.
+template <class T>
+EncodedBlock code_one(const BrickCoding& c, const std::vector<T>& coef, const Extent& size,
+                      const CodeBlock& b, float step) {
+  std::vector<T> values(b.count());
+  copy_block_out(coef.data(), size, b, values.data());
+  std::vector<float> magnitude(b.count());
+  std::vector<std::uint8_t> negative(b.count());
+  quantize<T>(values, step, magnitude, negative);
+  return encode_block(magnitude, negative, b.size, b.orientation, c.delta);
+}
+
+}  // namespace
+
+CodedBrick code_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size,
+                      double base_step) {
+  CodedBrick out;
+  out.blocks = brick_blocks(c, size);
+  const std::vector<float> steps = brick_steps(c, size, base_step);
+  out.coded.reserve(out.blocks.size());
+  if (c.reversible) {
+    std::vector<std::int32_t> coef(samples.begin(), samples.end());  // integer samples (checked)
+    forward(*c.transform, coef.data(), size, c.levels);
+    for (std::int32_t v : coef)
+      if (v >= (1 << 24) || v <= -(1 << 24)) throw EncodeError("reversible coefficient out of range");
+    for (const CodeBlock& b : out.blocks) out.coded.push_back(code_one(c, coef, size, b, 1.0f));
+  } else {
+    std::vector<float> coef(samples.begin(), samples.end());
+    forward(*c.transform, coef.data(), size, c.levels);
+    for (const CodeBlock& b : out.blocks) out.coded.push_back(code_one(c, coef, size, b, steps[b.band]));
+  }
+  return out;
+}
+
+namespace {
+
+// Dequantized coefficients of every block the level needs, in the brick's in-place layout.
+template <class T>
+std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::span<const float> steps,
+                                std::span<const BlockEntry> entries,
+                                std::span<const std::span<const std::uint8_t>> codewords, int level) {
+  const auto blocks = brick_blocks(c, size);
+  require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(), "brick block count");
+  std::vector<T> coef(size[0] * size[1] * size[2], T(0));
+  std::vector<T> values;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const CodeBlock& b = blocks[i];
+    if (b.resolution > c.levels - level || entries[i].passes == 0) continue;
+    const DecodedBlock d =
+        decode_block(codewords[i], entries[i].planes, entries[i].passes, b.size, b.orientation);
+    values.assign(b.count(), T(0));
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      const float v = reconstruct(d, k, c.delta, c.reversible);
+      if constexpr (std::is_floating_point_v<T>)
+        values[k] = v * steps[b.band];
+      else
+        values[k] = T(v);
+    }
+    copy_block_in(values.data(), size, b, coef.data());
+  }
+  return coef;
+}
+
+// The low corner (extent `part`) of an array laid out over `size`, as double times `gain`.
+template <class T>
+std::vector<double> corner(const std::vector<T>& data, const Extent& size, const Extent& part, double gain) {
+  std::vector<double> out;
+  out.reserve(part[0] * part[1] * part[2]);
+  for (std::size_t z = 0; z < part[2]; ++z)
+    for (std::size_t y = 0; y < part[1]; ++y)
+      for (std::size_t x = 0; x < part[0]; ++x)
+        out.push_back(double(data[x + size[0] * (y + size[1] * z)]) / gain);
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> decode_brick(const BrickCoding& c, const Extent& size, double base_step,
+                                 std::span<const BlockEntry> entries,
+                                 std::span<const std::span<const std::uint8_t>> codewords, int level) {
+  const Extent part = level_extent(size, level);
+  const std::vector<float> steps = brick_steps(c, size, base_step);
+  const double gain = level > 0 ? coarse_gain(*c.transform, size, level) : 1.0;
+  if (c.reversible) {
+    auto coef = dequantize_brick<std::int32_t>(c, size, steps, entries, codewords, level);
+    inverse(*c.transform, coef.data(), size, c.levels, level);
+    return corner(coef, size, part, gain);
+  }
+  auto coef = dequantize_brick<float>(c, size, steps, entries, codewords, level);
+  inverse(*c.transform, coef.data(), size, c.levels, level);
+  return corner(coef, size, part, gain);
+}
+
+}  // namespace pupwave

@@ -1,0 +1,61 @@
+#pragma once
+// Internal to the volume codec: brick geometry and the coding of one brick (3-D transform,
+// quantizer, 3-D code-blocks through the bit-plane coder) and its inverse. The encoder and the
+// decoder both reconstruct bricks through decode_brick, so the encoder sees exactly the values
+// the decoder will produce (needed for the max-error guarantee).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/entropy/block_encoder.h"
+#include "codec/entropy/block_index.h"
+#include "codec/entropy/codeblocks.h"
+#include "transforms/transform1d.h"
+
+namespace pupwave {
+
+// A brick: a box of a grid's volume.
+struct BrickBox {
+  Extent offset{0, 0, 0};
+  Extent size{1, 1, 1};
+  std::size_t count() const { return size[0] * size[1] * size[2]; }
+};
+
+// Bricks of `dims` with edge `brick`, x fastest; edge bricks are smaller.
+std::vector<BrickBox> brick_boxes(const Extent& dims, std::size_t brick);
+
+// Parameters every brick of a stream shares.
+struct BrickCoding {
+  const Transform1D* transform = nullptr;
+  int levels = 0;           // brick levels (clamped per brick by the engine's axis rules)
+  std::size_t block = 32;   // code-block edge
+  double delta = 0.4375;    // reconstruction offset inside a bin (index units)
+  bool reversible = false;  // integer transform, steps 1, bit exact
+};
+
+// Code-blocks of a brick of `size`, in partition_blocks order.
+std::vector<CodeBlock> brick_blocks(const BrickCoding& c, const Extent& size);
+
+// Quantizer step per band of a brick: base / synthesis norm (1 when reversible).
+std::vector<float> brick_steps(const BrickCoding& c, const Extent& size, double base_step);
+
+// Transform coefficients of a brick, coded block by block with every pass kept.
+struct CodedBrick {
+  std::vector<CodeBlock> blocks;
+  std::vector<EncodedBlock> coded;
+};
+
+// Forward-transforms a brick's samples (float, or int32 when reversible, given as double)
+// and codes every code-block at `base_step`.
+CodedBrick code_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size,
+                      double base_step);
+
+// Decodes a brick from its block entries and codewords (one per block, passes as entries say),
+// inverse-transforming down to `level` (the level-`level` coarse band scaled to sample units,
+// extent level_extent(size, level), x fastest). Throws DecodeError for inconsistent entries.
+std::vector<double> decode_brick(const BrickCoding& c, const Extent& size, double base_step,
+                                 std::span<const BlockEntry> entries,
+                                 std::span<const std::span<const std::uint8_t>> codewords, int level);
+
+}  // namespace pupwave

@@ -1,0 +1,290 @@
+// encode_volumes: validation, masks of sparse grids, bricks coded at a fixed step (step,
+// lossless) or at the step that gives the smallest brick once outliers are corrected
+// (max-error), and assembly of the stream.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "codec/error.h"
+#include "codec/parallel.h"
+#include "codec/rate/quantizer.h"
+#include "codec/volume/volume_encoder_plan.h"
+#include "codec/volume/volume_outliers.h"
+#include "transforms/separable.h"
+#include "transforms/spec.h"
+
+namespace pupwave {
+namespace {
+
+// Base steps tried per brick in max-error mode, as multiples of the bound: a coarser step
+// gives fewer coefficient bits but more outliers; the smallest total wins.
+constexpr double kBoundStepFactors[] = {1.25, 1.9, 2.8};
+
+int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) {
+  if (v < lo || v > hi || (v & (v - 1)) != 0)
+    throw std::invalid_argument(std::string(what) + " must be a power of two in [" + std::to_string(lo) +
+                                ", " + std::to_string(hi) + "]");
+  int k = 0;
+  while ((std::size_t(1) << k) < v) ++k;
+  return k;
+}
+
+void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o) {
+  if (grids.empty()) throw EncodeError("no grids to encode");
+  if (grids.size() > kMaxVolumeGrids) throw EncodeError("more than 1024 grids");
+  if (o.mode != VolumeRateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
+    throw std::invalid_argument("rate target must be positive and finite");
+  std::size_t total = 0;
+  for (const VolumeGrid& g : grids) {
+    const Volume& v = g.volume;
+    if (v.count() == 0) throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
+    for (std::size_t d : v.dims)
+      if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
+    total += v.count();
+    if (total > kMaxVolumeVoxels) throw EncodeError("volumes exceed 2^31 voxels");
+    if (v.samples.size() != v.count() || (v.is_sparse() && v.active.size() != v.count()))
+      throw std::invalid_argument("volume sample or mask count does not match its dims");
+    if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
+    for (double s : v.samples)
+      if (!std::isfinite(s)) throw EncodeError("volume has non-finite samples (NaN or infinity)");
+    if (o.mode == VolumeRateMode::lossless && !is_integer(v.type))
+      throw std::invalid_argument(
+          "lossless coding needs integer volumes (u8, u16); use --max-error for float");
+  }
+}
+
+// Voxel states and inactive values of a sparse grid.
+MaskChunk make_mask(const Volume& v) {
+  MaskChunk m;
+  m.states.resize(v.count());
+  for (std::size_t i = 0; i < v.count(); ++i) {
+    VoxelState s = VoxelState::active;
+    if (!v.is_active(i)) {
+      if (v.samples[i] == v.background)
+        s = VoxelState::inactive_background;
+      else if (v.samples[i] == -v.background)
+        s = VoxelState::inactive_negative;
+      else {
+        s = VoxelState::inactive_other;
+        m.other_values.push_back(v.samples[i]);
+      }
+    }
+    m.states[i] = std::uint8_t(s);
+  }
+  return m;
+}
+
+bool brick_has_active(const Volume& v, const BrickBox& box) {
+  if (!v.is_sparse()) return true;
+  for (std::size_t z = 0; z < box.size[2]; ++z)
+    for (std::size_t y = 0; y < box.size[1]; ++y)
+      for (std::size_t x = 0; x < box.size[0]; ++x)
+        if (v.active[v.index(box.offset[0] + x, box.offset[1] + y, box.offset[2] + z)]) return true;
+  return false;
+}
+
+double value_range(const Volume& v) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i < v.count(); ++i)
+    if (v.is_active(i)) {
+      lo = std::min(lo, v.samples[i]);
+      hi = std::max(hi, v.samples[i]);
+    }
+  return hi > lo ? hi - lo : 0.0;
+}
+
+std::vector<int> all_passes(const CodedBrick& c) {
+  std::vector<int> p;
+  for (const auto& b : c.coded) p.push_back(b.pass_count());
+  return p;
+}
+
+// A brick coded at one base step with every pass, corrected to the bound when there is one.
+BrickCode code_at_step(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
+                       const std::vector<double>& samples, const std::vector<std::uint8_t>& active,
+                       double base) {
+  BrickCode code;
+  code.base_step = base;
+  code.coded = code_brick(plan.coding, samples, job.box.size, base);
+  code.passes = all_passes(code.coded);
+  auto recon = reconstruct_brick(plan, job, code);
+  const double bound = plan.header.max_error;
+  if (bound > 0.0) {
+    for (double& v : recon) v = to_stored(v, grid.volume.type);
+    const auto outliers = find_outliers(samples, recon, active, bound, grid.volume.type);
+    code.outliers = encode_outliers(outliers);
+    code.outlier_count = outliers.size();
+  }
+  measure_brick(grid, job, std::move(recon), code);
+  return code;
+}
+
+std::size_t code_bytes(const BrickCode& c) {
+  std::size_t n = c.outliers.size();
+  for (std::size_t i = 0; i < c.passes.size(); ++i) n += c.coded.coded[i].size(c.passes[i]);
+  return n;
+}
+
+// Fixed step (step, lossless) or the best step for the bound (max-error), brick by brick.
+std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
+                                  const VolumeEncodeOptions& o) {
+  std::vector<BrickCode> codes(plan.jobs.size());
+  parallel_for(plan.jobs.size(), plan.threads, [&](std::size_t i) {
+    const BrickJob& job = plan.jobs[i];
+    const VolumeGrid& grid = grids[job.grid];
+    std::vector<double> samples;
+    std::vector<std::uint8_t> active;
+    brick_samples(grid, job.box, samples, active);
+    if (o.mode != VolumeRateMode::max_error) {
+      codes[i] =
+          code_at_step(plan, grid, job, samples, active, o.mode == VolumeRateMode::step ? o.target : 1.0);
+      return;
+    }
+    for (double f : kBoundStepFactors) {
+      BrickCode c = code_at_step(plan, grid, job, samples, active, f * o.target);
+      if (codes[i].passes.empty() || code_bytes(c) < code_bytes(codes[i])) codes[i] = std::move(c);
+    }
+  });
+  return codes;
+}
+
+}  // namespace
+
+VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o) {
+  validate(grids, o);
+  VolumePlan plan;
+  plan.transform = make_transform(o.transform);
+  const bool reversible = o.mode == VolumeRateMode::lossless;
+  if (reversible && !plan.transform->is_reversible())
+    throw std::invalid_argument("lossless coding needs a reversible transform (cdf53), not " +
+                                plan.transform->spec());
+  VolumeStreamHeader& h = plan.header;
+  h.spec = plan.transform->spec();
+  h.reversible = reversible;
+  h.brick_log2 = log2_exact(o.brick, 8, 256, "brick edge");
+  h.block_log2 = log2_exact(o.block, 16, 64, "code-block edge");
+  const int default_l = default_levels({o.brick, o.brick, o.brick});
+  if (o.levels < -1 || o.levels > h.brick_log2)
+    throw std::invalid_argument("levels must be in [0, log2(brick edge)]");
+  h.levels = o.levels < 0 ? default_l : o.levels;
+  h.delta = reversible ? 0.0 : kDefaultReconstructionDelta;
+  h.max_error = o.mode == VolumeRateMode::max_error ? o.target : 0.0;
+  plan.coding = BrickCoding{plan.transform.get(), h.levels, o.block, h.delta, reversible};
+  plan.threads = o.threads;
+  plan.masks.resize(grids.size());
+  for (std::uint32_t g = 0; g < grids.size(); ++g) {
+    const Volume& v = grids[g].volume;
+    VolumeGrid d = grids[g];
+    d.volume.samples.clear();
+    d.volume.active.assign(v.is_sparse() ? 1 : 0, 1);
+    h.grids.push_back(std::move(d));
+    if (v.is_sparse()) plan.masks[g] = make_mask(v);
+    const auto boxes = brick_boxes(v.dims, o.brick);
+    for (std::uint32_t b = 0; b < boxes.size(); ++b)
+      if (brick_has_active(v, boxes[b])) plan.jobs.push_back({g, b, boxes[b]});
+    plan.voxels += v.count();
+    plan.range = std::max(plan.range, value_range(v));
+  }
+  h.brick_chunks = std::uint32_t(plan.jobs.size());
+  return plan;
+}
+
+void brick_samples(const VolumeGrid& grid, const BrickBox& box, std::vector<double>& samples,
+                   std::vector<std::uint8_t>& active) {
+  const Volume& v = grid.volume;
+  samples.clear();
+  active.clear();
+  for (std::size_t z = 0; z < box.size[2]; ++z)
+    for (std::size_t y = 0; y < box.size[1]; ++y)
+      for (std::size_t x = 0; x < box.size[0]; ++x) {
+        const std::size_t i = v.index(box.offset[0] + x, box.offset[1] + y, box.offset[2] + z);
+        samples.push_back(v.samples[i]);
+        if (v.is_sparse()) active.push_back(v.active[i]);
+      }
+}
+
+std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& job, const BrickCode& code) {
+  std::vector<BlockEntry> entries(code.passes.size());
+  std::vector<std::vector<std::uint8_t>> words(code.passes.size());
+  std::vector<std::span<const std::uint8_t>> spans;
+  for (std::size_t i = 0; i < code.passes.size(); ++i) {
+    const EncodedBlock& b = code.coded.coded[i];
+    entries[i] = {code.passes[i] > 0 ? b.planes : 0, code.passes[i], std::uint32_t(b.size(code.passes[i]))};
+    words[i] = b.codeword(code.passes[i]);
+    spans.emplace_back(words[i]);
+  }
+  return decode_brick(plan.coding, job.box.size, code.base_step, entries, spans, 0);
+}
+
+void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<double> reconstruction,
+                   BrickCode& code) {
+  std::vector<double> samples;
+  std::vector<std::uint8_t> active;
+  brick_samples(grid, job.box, samples, active);
+  code.max_error = 0.0;
+  code.sse = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!active.empty() && active[i] == 0) continue;
+    const double e = std::abs(samples[i] - to_stored(reconstruction[i], grid.volume.type));
+    code.max_error = std::max(code.max_error, e);
+    code.sse += e * e;
+  }
+}
+
+std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes) {
+  std::vector<std::uint8_t> out;
+  write_volume_signature(out);
+  write_header_chunk(out, plan.header);
+  for (std::uint32_t g = 0; g < plan.masks.size(); ++g)
+    if (plan.header.grids[g].volume.is_sparse()) write_mask_chunk(out, g, plan.masks[g]);
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    const BrickCode& c = codes[i];
+    BrickChunk chunk{plan.jobs[i].grid, plan.jobs[i].brick, c.base_step, {}, {}, c.outliers};
+    std::vector<std::vector<std::uint8_t>> words(c.passes.size());
+    for (std::size_t k = 0; k < c.passes.size(); ++k) {
+      const EncodedBlock& b = c.coded.coded[k];
+      chunk.entries.push_back(
+          {c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
+      words[k] = b.codeword(c.passes[k]);
+      chunk.codewords.emplace_back(words[k]);
+    }
+    write_brick_chunk(out, chunk);
+  }
+  return out;
+}
+
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options) {
+  VolumePlan plan = plan_volumes(grids, options);
+  const unsigned saved_threads = transform_threads();
+  set_transform_threads(1);  // bricks are already coded in parallel
+  const bool rate = options.mode == VolumeRateMode::bpv || options.mode == VolumeRateMode::psnr;
+  std::vector<BrickCode> codes;
+  try {
+    codes = rate ? code_for_rate(grids, plan, options) : code_fixed(grids, plan, options);
+  } catch (...) {
+    set_transform_threads(saved_threads);
+    throw;
+  }
+  set_transform_threads(saved_threads);
+  VolumeEncodeResult r;
+  r.bytes = assemble_volumes(plan, codes);
+  r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
+  double sse = 0.0;
+  std::size_t counted = 0;
+  for (const VolumeGrid& g : grids)
+    counted += g.volume.is_sparse() ? g.volume.active_count() : g.volume.count();
+  for (const BrickCode& c : codes) {
+    r.max_error = std::max(r.max_error, c.max_error);
+    r.outliers += c.outlier_count;
+    sse += c.sse;
+  }
+  const double mse = counted > 0 ? sse / double(counted) : 0.0;
+  r.psnr =
+      mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
+  if (plan.header.max_error > 0.0 && r.max_error > plan.header.max_error)
+    throw EncodeError("internal error: error bound exceeded after correction");  // never expected
+  return r;
+}
+
+}  // namespace pupwave

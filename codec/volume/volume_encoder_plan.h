@@ -1,0 +1,63 @@
+#pragma once
+// Internal to the volume encoder: the validated options, the stream header being built and the
+// bricks to code, shared by the fixed-step / max-error path (volume_encoder.cpp) and the
+// rate-controlled path (volume_encoder_rate.cpp).
+
+#include <vector>
+
+#include "codec/volume/volume_brick.h"
+#include "codec/volume/volume_codec.h"
+#include "codec/volume/volume_format.h"
+
+namespace pupwave {
+
+// One brick to code: its grid, its index among the grid's bricks and its box.
+struct BrickJob {
+  std::uint32_t grid = 0;
+  std::uint32_t brick = 0;
+  BrickBox box;
+};
+
+struct VolumePlan {
+  VolumeStreamHeader header;
+  Transform1DPtr transform;
+  BrickCoding coding;
+  std::vector<MaskChunk> masks;  // per grid (empty for dense)
+  std::vector<BrickJob> jobs;
+  std::size_t voxels = 0;  // box voxels of all grids
+  double range = 0.0;      // largest value range (max - min of active voxels) over grids
+  unsigned threads = 0;
+};
+
+// A brick coded with the passes that go into the stream.
+struct BrickCode {
+  double base_step = 1.0;
+  CodedBrick coded;
+  std::vector<int> passes;
+  std::vector<std::uint8_t> outliers;
+  std::size_t outlier_count = 0;
+  double max_error = 0.0;  // over voxels that must meet the bound, after correction
+  double sse = 0.0;        // squared error over the same voxels
+};
+
+VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options);
+
+// Samples of a job's brick (x fastest) and the flags of voxels that count (empty: all).
+void brick_samples(const VolumeGrid& grid, const BrickBox& box, std::vector<double>& samples,
+                   std::vector<std::uint8_t>& active);
+
+// Reconstructs a brick from its chosen passes (exactly as the decoder will, before outliers).
+std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& job, const BrickCode& code);
+
+// Error statistics of a reconstruction (rounded to the stored type) against the original.
+void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<double> reconstruction,
+                   BrickCode& code);
+
+// The complete stream.
+std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes);
+
+// Rate-controlled coding (bpv, psnr): PCRD over every code-block of every brick.
+std::vector<BrickCode> code_for_rate(const std::vector<VolumeGrid>& grids, VolumePlan& plan,
+                                     const VolumeEncodeOptions& options);
+
+}  // namespace pupwave

@@ -1,0 +1,119 @@
+#include "codec/volume/volume_format.h"
+
+#include <zstd.h>
+
+#include <bit>
+#include <cmath>
+
+#include "codec/error.h"
+#include "codec/format/byte_io.h"
+#include "codec/format/crc32.h"
+
+namespace pupwave {
+namespace {
+
+constexpr char kSignature[4] = {'P', 'U', 'P', 'V'};
+constexpr std::size_t kMaxText = 65535;
+constexpr std::size_t kMaxMetadata = 4096;
+constexpr int kMaskZstdLevel = 9;
+
+void put_u64(ByteWriter& w, std::uint64_t v) {
+  w.u32(std::uint32_t(v));
+  w.u32(std::uint32_t(v >> 32));
+}
+void put_f64(ByteWriter& w, double v) { put_u64(w, std::bit_cast<std::uint64_t>(v)); }
+
+void put_text(ByteWriter& w, const std::string& s) {
+  if (s.size() > kMaxText) throw EncodeError("grid name or metadata text longer than 65535 bytes");
+  w.str16(s);
+}
+
+void write_chunk(std::vector<std::uint8_t>& out, const char (&tag)[5],
+                 const std::vector<std::uint8_t>& payload) {
+  ByteWriter w(out);
+  for (int i = 0; i < 4; ++i) w.u8(std::uint8_t(tag[i]));
+  w.u32(std::uint32_t(payload.size()));
+  w.bytes(payload);
+  w.u32(crc32(payload, crc32(std::span(reinterpret_cast<const std::uint8_t*>(tag), 4))));
+}
+
+void write_metadata(ByteWriter& w, const std::map<std::string, MetaValue>& metadata) {
+  if (metadata.size() > kMaxMetadata) throw EncodeError("more than 4096 metadata entries in a grid");
+  w.u32(std::uint32_t(metadata.size()));
+  for (const auto& [key, m] : metadata) {
+    put_text(w, key);
+    w.u8(std::uint8_t(m.kind));
+    put_text(w, m.text);
+    put_u64(w, std::uint64_t(m.integer));
+    for (double v : m.numbers) put_f64(w, v);
+  }
+}
+
+void write_grid(ByteWriter& w, const VolumeGrid& g) {
+  put_text(w, g.name);
+  w.u8(std::uint8_t(g.grid_class));
+  for (std::int64_t o : g.origin) put_u64(w, std::uint64_t(o));
+  for (double v : g.index_to_world) put_f64(w, v);
+  write_metadata(w, g.metadata);
+  for (std::size_t d : g.volume.dims) w.u32(std::uint32_t(d));
+  w.u8(std::uint8_t(g.volume.type));
+  put_f64(w, g.volume.background);
+  w.u8(g.volume.is_sparse() ? 1 : 0);
+}
+
+}  // namespace
+
+void write_volume_signature(std::vector<std::uint8_t>& out) {
+  out.insert(out.end(), kSignature, kSignature + 4);
+  out.push_back(kVolumeStreamVersion);
+}
+
+void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader& h) {
+  std::vector<std::uint8_t> p;
+  ByteWriter w(p);
+  w.u8(h.reversible ? 1 : 0);
+  w.u8(std::uint32_t(h.levels));
+  w.u8(std::uint32_t(h.brick_log2));
+  w.u8(std::uint32_t(h.block_log2));
+  put_f64(w, h.delta);
+  put_f64(w, h.max_error);
+  put_text(w, h.spec);
+  w.u32(h.brick_chunks);
+  w.u32(std::uint32_t(h.grids.size()));
+  for (const VolumeGrid& g : h.grids) write_grid(w, g);
+  write_chunk(out, "VHDR", p);
+}
+
+void write_mask_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const MaskChunk& mask) {
+  std::vector<std::uint8_t> packed(ZSTD_compressBound(mask.states.size()));
+  const std::size_t n =
+      ZSTD_compress(packed.data(), packed.size(), mask.states.data(), mask.states.size(), kMaskZstdLevel);
+  if (ZSTD_isError(n)) throw EncodeError(std::string("zstd: ") + ZSTD_getErrorName(n));
+  packed.resize(n);
+  std::vector<std::uint8_t> p;
+  ByteWriter w(p);
+  w.u32(grid);
+  w.u32(std::uint32_t(packed.size()));
+  w.bytes(packed);
+  w.u32(std::uint32_t(mask.other_values.size()));
+  for (double v : mask.other_values) put_f64(w, v);
+  write_chunk(out, "MASK", p);
+}
+
+void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& b) {
+  std::vector<std::uint8_t> p;
+  ByteWriter w(p);
+  w.u32(b.grid);
+  w.u32(b.brick);
+  put_f64(w, b.base_step);
+  w.u32(std::uint32_t(b.entries.size()));
+  const auto index = encode_index(b.entries);
+  w.u32(std::uint32_t(index.size()));
+  w.bytes(index);
+  for (const auto& cw : b.codewords) w.bytes(cw);
+  w.u32(std::uint32_t(b.outliers.size()));
+  w.bytes(b.outliers);
+  write_chunk(out, "BRIK", p);
+}
+
+}  // namespace pupwave

@@ -1,0 +1,74 @@
+#pragma once
+// Internal to the volume codec: the "PUPV" stream (docs/bitstream.md, Volumes). A signature,
+// then CRC-guarded chunks: VHDR (coding parameters and grid descriptions), MASK (per sparse
+// grid: voxel states and inactive values), BRIK (one per coded brick). Parsing treats its input
+// as hostile: every field is validated before use and sizes are capped.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "codec/entropy/block_index.h"
+#include "codec/volume/volume.h"
+
+namespace pupwave {
+
+inline constexpr std::uint8_t kVolumeStreamVersion = 1;
+// Caps that keep a hostile header from demanding unbounded memory.
+inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;
+inline constexpr std::size_t kMaxVolumeVoxels = std::size_t(1) << 31;
+inline constexpr std::size_t kMaxVolumeGrids = 1024;
+
+// Voxel states of a sparse grid's MASK chunk (one byte per voxel, zstd-compressed).
+enum class VoxelState : std::uint8_t {
+  inactive_background = 0,
+  active = 1,
+  inactive_negative = 2,
+  inactive_other = 3
+};
+
+struct VolumeStreamHeader {
+  std::string spec;  // transform spec for make_transform
+  bool reversible = false;
+  int levels = 0;                  // per brick
+  int brick_log2 = 6;              // brick edge 2^k
+  int block_log2 = 5;              // code-block edge 2^k
+  double delta = 0.4375;           // reconstruction offset in a bin (index units)
+  double max_error = 0.0;          // bound the outlier corrections were quantized to (0: none)
+  std::uint32_t brick_chunks = 0;  // BRIK chunks that follow (all grids)
+  std::vector<VolumeGrid>
+      grids;  // descriptions: volume.dims/type/background, active non-empty when sparse (size 1)
+};
+
+// Per sparse grid: the state of every box voxel and the values of inactive_other voxels.
+struct MaskChunk {
+  std::vector<std::uint8_t> states;
+  std::vector<double> other_values;
+};
+
+struct BrickChunk {
+  std::uint32_t grid = 0;
+  std::uint32_t brick = 0;  // index into brick_boxes(dims, brick edge)
+  double base_step = 1.0;
+  std::vector<BlockEntry> entries;
+  std::vector<std::span<const std::uint8_t>> codewords;  // one per block (into the stream or owner)
+  std::vector<std::uint8_t> outliers;                    // volume_outliers.h encoding (may be empty)
+};
+
+// Writers append one framed chunk each.
+void write_volume_signature(std::vector<std::uint8_t>& out);
+void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader& header);
+void write_mask_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const MaskChunk& mask);
+void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& brick);
+
+struct ParsedVolumeStream {
+  VolumeStreamHeader header;
+  std::vector<MaskChunk> masks;    // one per grid (empty for dense grids)
+  std::vector<BrickChunk> bricks;  // codewords point into the parsed bytes
+};
+
+// Parses and validates a whole stream. Throws DecodeError for any inconsistency.
+ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes);
+
+}  // namespace pupwave

@@ -1,0 +1,122 @@
+#include "codec/volume/volume_outliers.h"
+
+#include <zstd.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "codec/error.h"
+
+namespace pupwave {
+namespace {
+
+constexpr int kZstdLevel = 9;
+constexpr std::size_t kMaxVarintBytes = 10;
+// Corrections beyond this many bounds mean a broken reconstruction; refuse rather than overflow.
+constexpr double kMaxCorrection = 9.0e15;
+
+void put_varint(std::vector<std::uint8_t>& out, std::uint64_t v) {
+  while (v >= 0x80u) {
+    out.push_back(std::uint8_t(v | 0x80u));
+    v >>= 7;
+  }
+  out.push_back(std::uint8_t(v));
+}
+
+std::uint64_t get_varint(std::span<const std::uint8_t> in, std::size_t& pos) {
+  std::uint64_t v = 0;
+  for (int shift = 0; shift < 64; shift += 7) {
+    require_stream(pos < in.size(), "outlier list truncated");
+    const std::uint8_t b = in[pos++];
+    v |= std::uint64_t(b & 0x7fu) << shift;
+    if ((b & 0x80u) == 0) return v;
+  }
+  throw DecodeError("outlier list: bad varint");
+}
+
+std::uint64_t zigzag(std::int64_t v) { return (std::uint64_t(v) << 1) ^ std::uint64_t(v >> 63); }
+std::int64_t unzigzag(std::uint64_t v) { return std::int64_t(v >> 1) ^ -std::int64_t(v & 1u); }
+
+}  // namespace
+
+double to_stored(double value, VoxelType type) {
+  switch (type) {
+    case VoxelType::u8: return std::clamp(std::round(value), 0.0, 255.0);
+    case VoxelType::u16: return std::clamp(std::round(value), 0.0, 65535.0);
+    case VoxelType::f32: return double(float(value));
+    case VoxelType::f64: return value;
+  }
+  return value;
+}
+
+std::vector<Outlier> find_outliers(std::span<const double> original, std::span<double> reconstruction,
+                                   std::span<const std::uint8_t> check, double bound, VoxelType type) {
+  std::vector<Outlier> out;
+  for (std::size_t i = 0; i < original.size(); ++i) {
+    if (!check.empty() && check[i] == 0) continue;
+    const double residual = original[i] - reconstruction[i];
+    if (std::abs(residual) <= bound) continue;
+    const double k = std::round(residual / bound);
+    if (!(std::abs(k) < kMaxCorrection)) throw EncodeError("error bound too small for the data range");
+    const double fixed = to_stored(reconstruction[i] + k * bound, type);
+    if (!(std::abs(original[i] - fixed) <= bound))
+      throw EncodeError("error bound below the precision of the stored type");
+    out.push_back({std::uint32_t(i), std::int64_t(k)});
+    reconstruction[i] = fixed;
+  }
+  return out;
+}
+
+void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> outliers, double bound,
+                    VoxelType type) {
+  for (const Outlier& o : outliers)
+    reconstruction[o.index] = to_stored(reconstruction[o.index] + double(o.k) * bound, type);
+}
+
+std::vector<std::uint8_t> encode_outliers(std::span<const Outlier> outliers) {
+  if (outliers.empty()) return {};
+  std::vector<std::uint8_t> raw;
+  put_varint(raw, outliers.size());
+  std::uint32_t next = 0;
+  for (const Outlier& o : outliers) {
+    put_varint(raw, o.index - next);
+    next = o.index + 1;
+  }
+  for (const Outlier& o : outliers) put_varint(raw, zigzag(o.k));
+  std::vector<std::uint8_t> out(ZSTD_compressBound(raw.size()));
+  const std::size_t n = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), kZstdLevel);
+  if (ZSTD_isError(n)) throw EncodeError(std::string("zstd: ") + ZSTD_getErrorName(n));
+  out.resize(n);
+  return out;
+}
+
+std::vector<Outlier> decode_outliers(std::span<const std::uint8_t> bytes, std::size_t count) {
+  if (bytes.empty()) return {};
+  const unsigned long long content = ZSTD_getFrameContentSize(bytes.data(), bytes.size());
+  require_stream(content != ZSTD_CONTENTSIZE_ERROR && content != ZSTD_CONTENTSIZE_UNKNOWN &&
+                     content <= (2 * count + 1) * kMaxVarintBytes,
+                 "outlier list size");
+  std::vector<std::uint8_t> raw(static_cast<std::size_t>(content));
+  const std::size_t n = ZSTD_decompress(raw.data(), raw.size(), bytes.data(), bytes.size());
+  require_stream(!ZSTD_isError(n) && n == raw.size(), "corrupt outlier list");
+  std::size_t pos = 0;
+  const std::uint64_t total = get_varint(raw, pos);
+  require_stream(total >= 1 && total <= count, "outlier count");
+  std::vector<Outlier> out(static_cast<std::size_t>(total));
+  std::uint64_t next = 0;
+  for (Outlier& o : out) {
+    require_stream(next < count, "outlier index out of range");
+    const std::uint64_t gap = get_varint(raw, pos);
+    require_stream(gap < count - next, "outlier index out of range");  // also rules out wrap-around
+    next += gap;
+    o.index = std::uint32_t(next++);
+  }
+  for (Outlier& o : out) {
+    o.k = unzigzag(get_varint(raw, pos));
+    require_stream(o.k != 0, "outlier correction");
+  }
+  require_stream(pos == raw.size(), "trailing bytes in outlier list");
+  return out;
+}
+
+}  // namespace pupwave

@@ -1,0 +1,40 @@
+#pragma once
+// Internal to the volume codec: explicit corrections of the voxels the transform coding leaves
+// outside a point-wise error bound E (the SPERR approach). A correction is k * E added to the
+// reconstruction (k = round(residual / E), so |residual - k E| <= E / 2 before the value is
+// rounded to its stored type, and <= E after, since the original is itself a stored value).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/volume/volume.h"
+
+namespace pupwave {
+
+struct Outlier {
+  std::uint32_t index = 0;  // voxel index inside its brick (x fastest)
+  std::int64_t k = 0;       // correction in units of the bound (never 0)
+};
+
+// A reconstructed value as the output file stores it: rounded to float for f32, rounded and
+// clamped for u8/u16, unchanged for f64.
+double to_stored(double value, VoxelType type);
+
+// Outliers of a brick: voxels with `check[i]` whose stored reconstruction is farther than
+// `bound` from `original[i]`. Applies the corrections to `reconstruction` (stored values).
+std::vector<Outlier> find_outliers(std::span<const double> original, std::span<double> reconstruction,
+                                   std::span<const std::uint8_t> check, double bound, VoxelType type);
+
+// Applies decoded corrections to a brick's reconstruction (then rounds to the stored type).
+void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> outliers, double bound,
+                    VoxelType type);
+
+// Indices as gaps and corrections as zigzag varints, compressed by zstd (empty for none).
+std::vector<std::uint8_t> encode_outliers(std::span<const Outlier> outliers);
+
+// Inverse of encode_outliers for a brick of `count` voxels; throws DecodeError unless every
+// index is in range and strictly increasing and every correction is non-zero.
+std::vector<Outlier> decode_outliers(std::span<const std::uint8_t> bytes, std::size_t count);
+
+}  // namespace pupwave
