@@ -2,8 +2,8 @@
 
 namespace pupwave {
 
-void require_stream(bool condition, const std::string& what) {
-  if (!condition) throw DecodeError("corrupt or truncated stream: " + what);
+void throw_corrupt_stream(const std::string& what) {
+  throw DecodeError("corrupt or truncated stream: " + what);
 }
 
 }  // namespace pupwave

@@ -2,6 +2,7 @@
 // Errors the codec reports. They are exceptions caught at the CLI boundary and turned into a
 // message and a non-zero exit there; the library never prints or exits.
 
+#include <concepts>
 #include <stdexcept>
 #include <string>
 
@@ -19,7 +20,20 @@ class DecodeError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Throws DecodeError("corrupt or truncated stream: " + what).
+[[noreturn]] void throw_corrupt_stream(const std::string& what);
+
 // Throws DecodeError(what) unless condition holds; used for every field and length check.
-void require_stream(bool condition, const std::string& what);
+// The message is a literal, or a callable that builds it: either way nothing is allocated on
+// the success path, which runs once per field of every stream.
+inline void require_stream(bool condition, const char* what) {
+  if (!condition) [[unlikely]]
+    throw_corrupt_stream(what);
+}
+template <std::invocable F>
+inline void require_stream(bool condition, F&& what) {
+  if (!condition) [[unlikely]]
+    throw_corrupt_stream(std::string(what()));
+}
 
 }  // namespace pupwave

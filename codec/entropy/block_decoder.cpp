@@ -110,9 +110,9 @@ class BitPlaneDecoder {
 DecodedBlock decode_block(std::span<const std::uint8_t> codeword, int planes, int passes, const Extent& size,
                           unsigned orientation) {
   require_stream(planes >= 0 && planes <= kMaxBitPlanes,
-                 "code-block bit-plane count " + std::to_string(planes));
+                 [&] { return "code-block bit-plane count " + std::to_string(planes); });
   require_stream(passes >= 0 && passes <= passes_for_planes(planes),
-                 "code-block pass count " + std::to_string(passes));
+                 [&] { return "code-block pass count " + std::to_string(passes); });
   return BitPlaneDecoder(codeword, size, orientation).run(planes, passes);
 }
 

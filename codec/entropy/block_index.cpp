@@ -93,9 +93,10 @@ std::vector<BlockEntry> decode_index(std::span<const std::uint8_t> bytes, std::s
     if (e.passes == 0) continue;
     require_stream(decode_uint(rc, m.planes, planes), "block index: bad bit-plane count");
     const std::int64_t p = m.previous_planes + unzigzag(planes);
-    require_stream(
-        p >= 1 && p <= kMaxBitPlanes && e.passes <= passes_for_planes(int(p)),
-        "block index: bit-plane count " + std::to_string(p) + " for " + std::to_string(e.passes) + " passes");
+    require_stream(p >= 1 && p <= kMaxBitPlanes && e.passes <= passes_for_planes(int(p)), [&] {
+      return "block index: bit-plane count " + std::to_string(p) + " for " + std::to_string(e.passes) +
+             " passes";
+    });
     e.planes = int(p);
     m.previous_planes = e.planes;
     require_stream(decode_uint(rc, m.length[IndexModels::length_context(e.passes)], length),

@@ -40,7 +40,8 @@ class ByteWriter {
 // Reads little-endian fields from a byte span; every read is bounds checked.
 class ByteReader {
  public:
-  ByteReader(std::span<const std::uint8_t> in, std::string what) : in_(in), what_(std::move(what)) {}
+  // `what` names the structure in error messages (a string literal: it is not copied).
+  ByteReader(std::span<const std::uint8_t> in, const char* what) : in_(in), what_(what) {}
   std::uint32_t u8() { return get(1); }
   std::uint32_t u16() { return get(2); }
   std::uint32_t u32() { return get(4); }
@@ -58,7 +59,7 @@ class ByteReader {
   }
   std::string str16(std::size_t max_len) {
     const std::size_t n = u16();
-    require_stream(n <= max_len, what_ + ": string too long");
+    require_stream(n <= max_len, [&] { return std::string(what_) + ": string too long"; });
     auto s = bytes(n);
     return std::string(s.begin(), s.end());
   }
@@ -66,7 +67,9 @@ class ByteReader {
   std::size_t remaining() const { return in_.size() - pos_; }
 
  private:
-  void need(std::size_t n) const { require_stream(n <= in_.size() - pos_, what_ + " truncated"); }
+  void need(std::size_t n) const {
+    require_stream(n <= in_.size() - pos_, [&] { return std::string(what_) + " truncated"; });
+  }
   std::uint32_t get(int n) {
     need(std::size_t(n));
     std::uint32_t v = 0;
@@ -75,7 +78,7 @@ class ByteReader {
     return v;
   }
   std::span<const std::uint8_t> in_;
-  std::string what_;
+  const char* what_;
   std::size_t pos_ = 0;
 };
 

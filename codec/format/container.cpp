@@ -7,27 +7,15 @@
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
-#include "codec/format/crc32.h"
+#include "codec/format/chunks.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 
 namespace pupwave {
 namespace {
 
-constexpr std::uint8_t kSignature[4] = {'P', 'U', 'P', 'W'};
-constexpr std::size_t kSignatureBytes = 5;  // signature + version
-constexpr std::size_t kChunkOverhead = 12;  // tag, length, CRC
+constexpr ChunkTag kSignature = "PUPW";
 constexpr int kMaxStreamLevels = 32;
-
-void write_chunk(std::vector<std::uint8_t>& out, const char* tag, std::span<const std::uint8_t> payload) {
-  if (payload.size() > 0xFFFFFFFFu) throw EncodeError("chunk " + std::string(tag, 4) + " exceeds 4 GiB");
-  const std::size_t start = out.size();
-  ByteWriter w(out);
-  w.bytes({reinterpret_cast<const std::uint8_t*>(tag), 4});
-  w.u32(std::uint32_t(payload.size()));
-  w.bytes(payload);
-  w.u32(crc32(std::span<const std::uint8_t>(out).subspan(start)));
-}
 
 std::vector<std::uint8_t> header_payload(const StreamHeader& h) {
   std::vector<std::uint8_t> p;
@@ -47,29 +35,12 @@ std::vector<std::uint8_t> header_payload(const StreamHeader& h) {
   return p;
 }
 
-// A chunk located in the stream; its CRC is checked when it is read.
-struct Chunk {
-  std::string tag;
-  std::span<const std::uint8_t> payload;
-};
-
-Chunk read_chunk(std::span<const std::uint8_t> bytes, std::size_t& pos, const char* expected) {
-  ByteReader r(bytes.subspan(pos), std::string("chunk ") + expected);
-  const auto tag = r.bytes(4);
-  const std::uint32_t length = r.u32();
-  require_stream(std::memcmp(tag.data(), expected, 4) == 0, std::string("expected chunk ") + expected);
-  const auto payload = r.bytes(length);
-  const std::uint32_t stored = r.u32();
-  const std::uint32_t actual = crc32(bytes.subspan(pos, 8 + std::size_t(length)));
-  require_stream(stored == actual, std::string("checksum mismatch in chunk ") + expected);
-  pos += r.position();
-  return {std::string(expected), payload};
-}
-
 void validate_shape(const StreamHeader& h) {
   for (std::size_t d : h.dims)
-    require_stream(d >= 1 && d <= kMaxAxisExtent, "dimension " + std::to_string(d) + " outside [1, 65536]");
-  require_stream(h.channels >= 1 && h.channels <= 4, "channel count " + std::to_string(h.channels));
+    require_stream(d >= 1 && d <= kMaxAxisExtent,
+                   [&] { return "dimension " + std::to_string(d) + " outside [1, 65536]"; });
+  require_stream(h.channels >= 1 && h.channels <= 4,
+                 [&] { return "channel count " + std::to_string(h.channels); });
   require_stream(h.dims[0] * h.dims[1] * h.dims[2] * h.channels <= kMaxTotalSamples,
                  "image too large (over 2^31 samples)");
 }
@@ -79,7 +50,8 @@ void validate_coding(const StreamHeader& h) {
   require_stream(h.colour != ColourTransform::ict || !h.reversible, "ICT in a reversible stream");
   require_stream(h.colour != ColourTransform::rct || h.reversible, "RCT in an irreversible stream");
   require_stream(!h.reversible || is_integer(h.type), "reversible coding of float samples");
-  require_stream(h.levels >= 0 && h.levels <= kMaxStreamLevels, "level count " + std::to_string(h.levels));
+  require_stream(h.levels >= 0 && h.levels <= kMaxStreamLevels,
+                 [&] { return "level count " + std::to_string(h.levels); });
   std::size_t block = 1;
   for (int a = 0; a < 3; ++a) {
     require_stream(h.block_log2[a] <= 10, "code-block extent");
@@ -87,7 +59,7 @@ void validate_coding(const StreamHeader& h) {
   }
   // Blocks of at least 1024 samples bound the index size by the image size.
   require_stream(block >= 1024 && block <= (std::size_t(1) << 20),
-                 "code-block size " + std::to_string(block));
+                 [&] { return "code-block size " + std::to_string(block); });
   require_stream(h.delta >= 0.0 && h.delta < 1.0, "reconstruction offset");
   for (float s : h.steps)
     require_stream(std::isfinite(s) && s > 0.0f && s < 1e30f && (!h.reversible || s == 1.0f),
@@ -124,7 +96,8 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
 std::vector<Subband> header_bands(const StreamHeader& h) {
   try {
     const auto t = make_transform(h.spec);
-    require_stream(!h.reversible || t->is_reversible(), "transform " + h.spec + " is not reversible");
+    require_stream(!h.reversible || t->is_reversible(),
+                   [&] { return "transform " + h.spec + " is not reversible"; });
   } catch (const std::invalid_argument& e) {
     throw DecodeError(std::string("corrupt or unsupported stream: transform spec: ") + e.what());
   }
@@ -144,8 +117,9 @@ void locate_codewords(ParsedStream& s) {
     used[r] += s.index[i].length;
   }
   for (std::size_t r = 0; r < s.resolution_data.size(); ++r)
-    require_stream(used[r] == s.resolution_data[r].size(),
-                   "DATA chunk " + std::to_string(r) + " size does not match its code-block lengths");
+    require_stream(used[r] == s.resolution_data[r].size(), [&] {
+      return "DATA chunk " + std::to_string(r) + " size does not match its code-block lengths";
+    });
 }
 
 }  // namespace
@@ -154,8 +128,8 @@ const char* to_string(EntropyCoder coder) { return coder == EntropyCoder::ebcot 
 
 std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
                                           const std::vector<std::vector<std::uint8_t>>& resolution_data) {
-  std::vector<std::uint8_t> out(kSignature, kSignature + 4);
-  out.push_back(kStreamVersion);
+  std::vector<std::uint8_t> out;
+  write_signature(out, kSignature, kStreamVersion);
   write_chunk(out, "HEAD", header_payload(header));
   const auto coded = encode_index(index);
   std::vector<std::uint8_t> index_payload;
@@ -175,15 +149,12 @@ std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, 
 }
 
 ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels) {
-  require_stream(bytes.size() >= kSignatureBytes && std::memcmp(bytes.data(), kSignature, 4) == 0,
-                 "not a pupwave stream (bad signature)");
-  require_stream(bytes[4] == kStreamVersion, "unsupported stream version " + std::to_string(bytes[4]));
-  std::size_t pos = kSignatureBytes;
+  ChunkReader chunks(bytes, kSignature, kStreamVersion, "pupwave stream");
   ParsedStream s;
-  s.header = parse_header(read_chunk(bytes, pos, "HEAD").payload);
+  s.header = parse_header(chunks.expect("HEAD").payload);
   s.bands = header_bands(s.header);
   s.blocks = partition_blocks(s.bands, s.header.levels, s.header.channels, s.header.block_size());
-  const auto index_chunk = read_chunk(bytes, pos, "INDX").payload;
+  const auto index_chunk = chunks.expect("INDX").payload;
   ByteReader ir(index_chunk, "INDX chunk");
   require_stream(ir.u32() == s.blocks.size(), "block count does not match the image geometry");
   s.index = decode_index(index_chunk.subspan(4), s.blocks.size());
@@ -192,8 +163,8 @@ ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_level
                                 std::to_string(s.header.levels) + "] (the stream's levels)");
   const int resolutions = s.header.levels + 1;
   const int last = resolutions - 1 - drop_levels;
-  for (int r = 0; r <= last; ++r) s.resolution_data.push_back(read_chunk(bytes, pos, "DATA").payload);
-  if (last == resolutions - 1) require_stream(pos == bytes.size(), "trailing bytes after the last chunk");
+  for (int r = 0; r <= last; ++r) s.resolution_data.push_back(chunks.expect("DATA").payload);
+  if (last == resolutions - 1) require_stream(chunks.at_end(), "trailing bytes after the last chunk");
   locate_codewords(s);
   return s;
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "codec/error.h"
+#include "codec/format/chunks.h"
 #include "codec/parallel.h"
 #include "codec/volume/volume_brick.h"
 #include "codec/volume/volume_codec.h"
@@ -160,9 +161,7 @@ void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s,
 
 }  // namespace
 
-bool is_volume_stream(std::span<const std::uint8_t> bytes) {
-  return bytes.size() >= 4 && std::memcmp(bytes.data(), "PUPV", 4) == 0;
-}
+bool is_volume_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kVolumeSignature); }
 
 std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level, unsigned threads) {
   const ParsedVolumeStream s = parse_volume_stream(bytes);

@@ -7,12 +7,11 @@
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
-#include "codec/format/crc32.h"
+#include "codec/format/chunks.h"
 
 namespace pupwave {
 namespace {
 
-constexpr char kSignature[4] = {'P', 'U', 'P', 'V'};
 constexpr std::size_t kMaxText = 65535;
 constexpr std::size_t kMaxMetadata = 4096;
 constexpr int kMaskZstdLevel = 9;
@@ -26,15 +25,6 @@ void put_f64(ByteWriter& w, double v) { put_u64(w, std::bit_cast<std::uint64_t>(
 void put_text(ByteWriter& w, const std::string& s) {
   if (s.size() > kMaxText) throw EncodeError("grid name or metadata text longer than 65535 bytes");
   w.str16(s);
-}
-
-void write_chunk(std::vector<std::uint8_t>& out, const char (&tag)[5],
-                 const std::vector<std::uint8_t>& payload) {
-  ByteWriter w(out);
-  for (int i = 0; i < 4; ++i) w.u8(std::uint8_t(tag[i]));
-  w.u32(std::uint32_t(payload.size()));
-  w.bytes(payload);
-  w.u32(crc32(payload, crc32(std::span(reinterpret_cast<const std::uint8_t*>(tag), 4))));
 }
 
 void write_metadata(ByteWriter& w, const std::map<std::string, MetaValue>& metadata) {
@@ -64,8 +54,7 @@ void write_grid(ByteWriter& w, const VolumeGrid& g) {
 }  // namespace
 
 void write_volume_signature(std::vector<std::uint8_t>& out) {
-  out.insert(out.end(), kSignature, kSignature + 4);
-  out.push_back(kVolumeStreamVersion);
+  write_signature(out, kVolumeSignature, kVolumeStreamVersion);
 }
 
 void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader& h) {

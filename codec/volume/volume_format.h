@@ -14,7 +14,9 @@
 
 namespace pupwave {
 
-inline constexpr std::uint8_t kVolumeStreamVersion = 1;
+// Version 2: chunks framed by codec/format/chunks.h (the CRC also covers the length field).
+inline constexpr std::uint8_t kVolumeStreamVersion = 2;
+inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;
 inline constexpr std::size_t kMaxVolumeVoxels = std::size_t(1) << 31;

@@ -7,7 +7,7 @@
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
-#include "codec/format/crc32.h"
+#include "codec/format/chunks.h"
 #include "codec/volume/volume_format.h"
 
 namespace pupwave {
@@ -24,23 +24,8 @@ std::uint64_t get_u64(ByteReader& r) {
 double get_f64(ByteReader& r) { return std::bit_cast<double>(get_u64(r)); }
 double get_finite(ByteReader& r, const char* what) {
   const double v = get_f64(r);
-  require_stream(std::isfinite(v), std::string("volume stream: non-finite ") + what);
+  require_stream(std::isfinite(v), [&] { return std::string("volume stream: non-finite ") + what; });
   return v;
-}
-
-// One framed chunk: tag, payload (CRC checked).
-struct Chunk {
-  std::string tag;
-  std::span<const std::uint8_t> payload;
-};
-
-Chunk next_chunk(ByteReader& r) {
-  const auto tag = r.bytes(4);
-  const std::size_t length = r.u32();
-  Chunk c{std::string(tag.begin(), tag.end()), r.bytes(length)};
-  const std::uint32_t crc = r.u32();
-  require_stream(crc == crc32(c.payload, crc32(tag)), "volume stream: checksum mismatch in chunk " + c.tag);
-  return c;
 }
 
 void read_metadata(ByteReader& r, std::map<std::string, MetaValue>& metadata) {
@@ -154,30 +139,26 @@ BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamH
 }  // namespace
 
 ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes) {
-  ByteReader r(bytes, "volume stream");
-  const auto sig = r.bytes(4);
-  require_stream(std::memcmp(sig.data(), "PUPV", 4) == 0, "not a pupwave volume stream");
-  require_stream(r.u8() == kVolumeStreamVersion, "volume stream: unsupported version");
-  const Chunk head = next_chunk(r);
-  require_stream(head.tag == "VHDR", "volume stream: missing header");
+  ChunkReader r(bytes, kVolumeSignature, kVolumeStreamVersion, "volume stream");
+  const Chunk head = r.expect("VHDR");
   ParsedVolumeStream s;
   s.header = read_header(head.payload);
   s.masks.resize(s.header.grids.size());
   std::size_t masks = 0, needed = 0;
   for (const VolumeGrid& g : s.header.grids) needed += g.volume.is_sparse() ? 1 : 0;
-  while (r.remaining() > 0) {
-    const Chunk c = next_chunk(r);
-    if (c.tag == "MASK") {
+  while (!r.at_end()) {
+    const Chunk c = r.next();
+    if (c.is("MASK")) {
       std::uint32_t grid = 0;
       MaskChunk m = read_mask(c.payload, s.header, grid);
       require_stream(s.masks[grid].states.empty(), "volume stream: repeated mask");
       s.masks[grid] = std::move(m);
       ++masks;
-    } else if (c.tag == "BRIK") {
+    } else if (c.is("BRIK")) {
       require_stream(s.bricks.size() < s.header.brick_chunks, "volume stream: too many bricks");
       s.bricks.push_back(read_brick(c.payload, s.header));
     } else {
-      throw DecodeError("volume stream: unknown chunk " + c.tag);
+      throw DecodeError("volume stream: unknown chunk " + c.name());
     }
   }
   require_stream(masks == needed, "volume stream truncated (missing mask)");

@@ -1,0 +1,51 @@
+// Golden checksums of encoded volume streams, as tests/codec/golden_stream_test.cpp pins image
+// streams: any change to the PUPV layout, the chunk framing, brick coding, the quantizer or the
+// outlier list changes them. When a format change is deliberate, bump kVolumeStreamVersion,
+// update docs/bitstream.md and these values; an encoder-only change (a different step choice)
+// updates the lossy values without a version bump.
+#include <gtest/gtest.h>
+
+#include "codec/format/crc32.h"
+#include "codec/volume/volume_codec.h"
+#include "volcodec/volcodec_test_util.h"
+
+namespace pupwave {
+namespace {
+
+std::uint32_t stream_crc(Volume v, VolumeRateMode mode, double target, const char* spec) {
+  VolumeGrid g;
+  g.name = "golden";
+  g.volume = std::move(v);
+  VolumeEncodeOptions o;
+  o.mode = mode;
+  o.target = target;
+  o.transform = spec;
+  o.brick = 16;
+  o.block = 16;
+  o.threads = 1;
+  return crc32(encode_volumes({g}, o).bytes);
+}
+
+TEST(GoldenVolumeStream, LosslessStreamIsUnchanged) {
+  EXPECT_EQ(stream_crc(test::smooth_volume({21, 17, 9}, VoxelType::u16, 4000.0), VolumeRateMode::lossless, 0,
+                       "cdf53"),
+            988979592u);
+}
+
+TEST(GoldenVolumeStream, ErrorBoundedStreamsAreUnchanged) {
+  EXPECT_EQ(stream_crc(test::smooth_volume({21, 17, 9}, VoxelType::f32, 10.0), VolumeRateMode::max_error,
+                       1e-2, "cdf97"),
+            3879452798u);
+  EXPECT_EQ(stream_crc(test::sphere_level_set({24, 24, 24}, 7.0, 2.5, 0.3), VolumeRateMode::max_error, 1e-3,
+                       "cdf97"),
+            3995777476u);
+}
+
+TEST(GoldenVolumeStream, StepStreamIsUnchanged) {
+  EXPECT_EQ(stream_crc(test::smooth_volume({19, 13, 11}, VoxelType::f64, 1.0, 3), VolumeRateMode::step, 1e-3,
+                       "cdf53"),
+            1605022543u);
+}
+
+}  // namespace
+}  // namespace pupwave
