@@ -9,7 +9,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 pupwave=${1:-$here/../../build/tools/pupwave}
-data=${PUPWAVE_SHARED_DATA_DIR:-$here/../../../shared/data}
+data=${PUPWAVE_DATA_DIR:-$here/../../testimages}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$pupwave" generate-volume --kind turbulence --size 128 "$work/turb128.raw" > /dev/null

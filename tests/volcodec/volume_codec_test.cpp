@@ -25,7 +25,7 @@ VolumeGrid grid_of(Volume v, const std::string& name = "field") {
 
 Volume read_wmag91() {
   Volume v({91, 91, 91}, VoxelType::f32);
-  std::ifstream in(PUPWAVE_SHARED_DATA_DIR "/wmag91.float", std::ios::binary);
+  std::ifstream in(PUPWAVE_TESTIMAGES_DIR "/wmag91.float", std::ios::binary);
   std::vector<float> raw(v.count());
   in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * 4));
   EXPECT_TRUE(in.good()) << "cannot read wmag91.float";

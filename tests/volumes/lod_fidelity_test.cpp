@@ -99,7 +99,7 @@ TEST_F(VolumeTest, LodFidelityToBoxAverage) {
   report("gray_scott64.raw", dir_ / "gs.vdb", dir_, 3);
   VolumeGrid w;
   w.name = "wmag";
-  w.volume = cli::read_raw_volume(std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float", {91, 91, 91},
+  w.volume = cli::read_raw_volume(std::string(PUPWAVE_TESTIMAGES_DIR) + "/wmag91.float", {91, 91, 91},
                                   VoxelType::f32);
   cli::write_vdb({w}, dir_ / "wmag.vdb");
   report("wmag91.float", dir_ / "wmag.vdb", dir_, 3);

@@ -84,9 +84,9 @@ TEST_F(VolumeTest, RawIntegerWriteRoundsAndClamps) {
 
 TEST_F(VolumeTest, RawSharedSimulationField) {
   const Volume v =
-      read_raw_volume(std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float", {91, 91, 91}, VoxelType::f32);
+      read_raw_volume(std::string(PUPWAVE_TESTIMAGES_DIR) + "/wmag91.float", {91, 91, 91}, VoxelType::f32);
   const auto [lo, hi] = std::minmax_element(v.samples.begin(), v.samples.end());
-  EXPECT_NEAR(*hi - *lo, 265.25, 0.01);  // the value range quoted in ../shared/data/README.md
+  EXPECT_NEAR(*hi - *lo, 265.25, 0.01);  // the value range quoted in testimages/README.md
 }
 
 // Writes grids with write_vdb after read_vdb and compares with OpenVDB's view of both files.
@@ -210,7 +210,7 @@ namespace {
 
 // The CLI path: the real simulation field raw -> .vdb -> raw comes back byte for byte.
 TEST_F(VolumeTest, ConvertVolumeCliRoundTrip) {
-  const std::string wmag = std::string(PUPWAVE_SHARED_DATA_DIR) + "/wmag91.float";
+  const std::string wmag = std::string(PUPWAVE_TESTIMAGES_DIR) + "/wmag91.float";
   const fs::path vdb = dir_ / "wmag.vdb", raw = dir_ / "wmag.raw";
   CliResult r = run_cli(
       {"convert-volume", wmag, vdb.string(), "--dims", "91,91,91", "--dtype", "f32", "--name", "wmag"});
