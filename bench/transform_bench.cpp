@@ -50,7 +50,7 @@ void bm_memcpy(benchmark::State& state) {
 template <class T>
 void bm_transform(benchmark::State& state, const std::string& spec, bool inverse) {
   const auto t = pupwave::make_transform(spec);
-  pupwave::set_transform_threads(static_cast<unsigned>(state.range(0)));
+  const auto executor = pupwave::make_pool_executor(static_cast<unsigned>(state.range(0)));
   const int levels = pupwave::default_levels(kDims);
   std::vector<T> input = test_image<T>();
   if (inverse) pupwave::forward(*t, input.data(), kDims, levels);
@@ -60,14 +60,13 @@ void bm_transform(benchmark::State& state, const std::string& spec, bool inverse
     std::memcpy(work.data(), input.data(), input.size() * sizeof(T));
     state.ResumeTiming();
     if (inverse) {
-      pupwave::inverse(*t, work.data(), kDims, levels);
+      pupwave::inverse(*t, work.data(), kDims, levels, 0, *executor);
     } else {
-      pupwave::forward(*t, work.data(), kDims, levels);
+      pupwave::forward(*t, work.data(), kDims, levels, *executor);
     }
     benchmark::DoNotOptimize(work.data());
   }
   set_bytes(state, input.size() * sizeof(T));
-  pupwave::set_transform_threads(0);
 }
 
 // threads = 1 is timed by CPU time (robust on a shared machine); threads = 0 (all hardware

@@ -111,7 +111,8 @@ void run_compress_volume(const CompressOptions& opt) {
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
   enc.brick = opt.brick;
-  enc.threads = opt.threads;
+  const auto executor = make_pool_executor(opt.threads);
+  enc.executor = executor.get();
   set_volume_rate(opt, grids, enc);
   const auto start = std::chrono::steady_clock::now();
   const VolumeEncodeResult r = encode_volumes(grids, enc);
@@ -151,10 +152,10 @@ void run_compress(const CompressOptions& opt) {
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
   enc.entropy = opt.entropy;
-  enc.threads = opt.threads;
+  const auto executor = make_pool_executor(opt.threads);
+  enc.executor = executor.get();
   enc.measure_psnr = opt.report_psnr;
   set_rate(opt, enc);
-  set_transform_threads(opt.threads);
   const auto start = std::chrono::steady_clock::now();
   const EncodeResult r = encode_image(image, enc);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -41,7 +41,7 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
 
 void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
-  auto grids = decode_volumes(bytes, opt.level, opt.threads);
+  auto grids = decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_volume_output(grids, opt);
   for (const VolumeGrid& g : grids)
@@ -53,11 +53,10 @@ void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const Decompr
 void run_decompress(const DecompressOptions& opt) {
   check_output_path(opt.output);
   const auto bytes = read_file_bytes(opt.input);
-  set_transform_threads(opt.threads);
   if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
   const auto start = std::chrono::steady_clock::now();
-  const Image image = decode_image(bytes, opt.level, opt.threads);
+  const Image image = decode_image(bytes, opt.level, *make_pool_executor(opt.threads));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   SampleType stored = image.type;
   write_image(image, opt.output, &stored);

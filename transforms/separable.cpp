@@ -1,15 +1,11 @@
 #include "transforms/separable.h"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <functional>
 #include <limits>
-#include <mutex>
 #include <span>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <type_traits>
 
 namespace pupwave {
@@ -19,44 +15,18 @@ namespace {
 // cache lines (32 floats = two), and each row's page is visited once per 32 columns; 32
 // measured fastest on a 4096 x 4096 float image (16: 1.25x slower, 64: 1.07x slower).
 constexpr std::size_t kColumnBlock = 32;
-// Below this many samples in a pass, thread start-up costs more than it saves.
-constexpr std::size_t kMinSamplesPerThread = std::size_t{1} << 16;
+// Lines are handed to the executor in tasks of at least this many samples: below it, task
+// overhead costs more than it saves. Results never depend on how lines are grouped.
+constexpr std::size_t kMinSamplesPerTask = std::size_t{1} << 16;
 
-std::atomic<unsigned> g_threads{0};
-
-unsigned effective_threads(std::size_t samples) {
-  unsigned n = g_threads.load(std::memory_order_relaxed);
-  if (n == 0) n = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t by_size = std::max<std::size_t>(1, samples / kMinSamplesPerThread);
-  return static_cast<unsigned>(std::min<std::size_t>(n, by_size));
-}
-
-// Runs body(begin, end) over [0, items) split into contiguous chunks, one per thread;
-// rethrows the first exception raised by any chunk.
-void parallel_for(std::size_t items, unsigned threads,
-                  const std::function<void(std::size_t, std::size_t)>& body) {
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, items));
-  if (threads <= 1) {
-    body(0, items);
-    return;
-  }
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  std::vector<std::thread> pool;
-  pool.reserve(threads);
-  for (unsigned k = 0; k < threads; ++k) {
-    const std::size_t begin = items * k / threads, end = items * (k + 1) / threads;
-    pool.emplace_back([&, begin, end] {
-      try {
-        body(begin, end);
-      } catch (...) {
-        const std::lock_guard lock(error_mutex);
-        if (!error) error = std::current_exception();
-      }
-    });
-  }
-  for (auto& th : pool) th.join();
-  if (error) std::rethrow_exception(error);
+// Runs body(begin, end) over [0, items) split into contiguous chunks of about equal size, as
+// many as the executor can run at once (and as the work is worth); one task per chunk.
+void parallel_chunks(const Executor& ex, std::size_t items, std::size_t samples,
+                     const std::function<void(std::size_t, std::size_t)>& body) {
+  const std::size_t by_size = std::max<std::size_t>(1, samples / kMinSamplesPerTask);
+  const std::size_t chunks = std::min({items, by_size, std::size_t(ex.concurrency())});
+  if (chunks <= 1) return body(0, items);
+  ex.run(chunks, [&](std::size_t k) { body(items * k / chunks, items * (k + 1) / chunks); });
 }
 
 template <class T>
@@ -70,9 +40,10 @@ void run_line(const Transform1D& t, std::span<T> line, bool analysis) {
 
 // Transforms the rows (axis 0 lines) of the region r in place: they are contiguous already.
 template <class T>
-void pass_axis0(const Transform1D& t, T* data, const Extent& dims, const Extent& r, bool analysis) {
+void pass_axis0(const Transform1D& t, T* data, const Extent& dims, const Extent& r, bool analysis,
+                const Executor& ex) {
   const std::size_t lines = r[1] * r[2];
-  parallel_for(lines, effective_threads(lines * r[0]), [&](std::size_t b, std::size_t e) {
+  parallel_chunks(ex, lines, lines * r[0], [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
       const std::size_t y = k % r[1], z = k / r[1];
       run_line(t, std::span<T>(data + (z * dims[1] + y) * dims[0], r[0]), analysis);
@@ -83,8 +54,8 @@ void pass_axis0(const Transform1D& t, T* data, const Extent& dims, const Extent&
 // Transforms the lines along axis 1 or 2 of region r: gathers kColumnBlock adjacent columns
 // into contiguous scratch lines, transforms them, and scatters them back.
 template <class T>
-void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Extent& r, int axis,
-                  bool analysis) {
+void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Extent& r, int axis, bool analysis,
+                  const Executor& ex) {
   const std::size_t plane = dims[0] * dims[1];
   const std::size_t stride = axis == 1 ? dims[0] : plane;
   const std::size_t other_stride = axis == 1 ? plane : dims[0];
@@ -95,7 +66,7 @@ void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Exten
   // turn during the gather fall in different cache sets (a power-of-two pitch such as 4096
   // floats maps them all to one set and thrashes the L1 cache).
   const std::size_t ld = ((len + 15) / 16 * 16) | 16;
-  parallel_for(blocks * others, effective_threads(r[0] * r[1] * r[2]), [&](std::size_t b, std::size_t e) {
+  parallel_chunks(ex, blocks * others, r[0] * r[1] * r[2], [&](std::size_t b, std::size_t e) {
     std::vector<T> buf(kColumnBlock * ld);
     for (std::size_t k = b; k < e; ++k) {
       const std::size_t x0 = (k % blocks) * kColumnBlock;
@@ -111,11 +82,12 @@ void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Exten
 }
 
 template <class T>
-void pass(const Transform1D& t, T* data, const Extent& dims, const Extent& r, int axis, bool analysis) {
+void pass(const Transform1D& t, T* data, const Extent& dims, const Extent& r, int axis, bool analysis,
+          const Executor& ex) {
   if (axis == 0) {
-    pass_axis0(t, data, dims, r, analysis);
+    pass_axis0(t, data, dims, r, analysis, ex);
   } else {
-    pass_strided(t, data, dims, r, axis, analysis);
+    pass_strided(t, data, dims, r, axis, analysis, ex);
   }
 }
 
@@ -138,12 +110,6 @@ void check_call(const Transform1D& t, const T* data, const Extent& dims, int lev
 }
 
 }  // namespace
-
-void set_transform_threads(unsigned threads) { g_threads.store(threads); }
-unsigned transform_threads() {
-  const unsigned n = g_threads.load();
-  return n == 0 ? std::max(1u, std::thread::hardware_concurrency()) : n;
-}
 
 Extent level_extent(const Extent& dims, int level) {
   check_levels(level);
@@ -186,17 +152,18 @@ std::vector<Subband> subbands(const Extent& dims, int levels) {
 }
 
 template <class T>
-void forward(const Transform1D& t, T* data, const Extent& dims, int levels) {
+void forward(const Transform1D& t, T* data, const Extent& dims, int levels, const Executor& ex) {
   check_call(t, data, dims, levels);
   for (int l = 1; l <= levels; ++l) {
     const Extent r = level_extent(dims, l - 1);
     for (int a = 0; a < 3; ++a)
-      if (r[static_cast<std::size_t>(a)] > 1) pass(t, data, dims, r, a, true);
+      if (r[static_cast<std::size_t>(a)] > 1) pass(t, data, dims, r, a, true, ex);
   }
 }
 
 template <class T>
-void inverse(const Transform1D& t, T* data, const Extent& dims, int levels, int stop_level) {
+void inverse(const Transform1D& t, T* data, const Extent& dims, int levels, int stop_level,
+             const Executor& ex) {
   check_call(t, data, dims, levels);
   if (stop_level < 0 || stop_level > levels)
     throw std::invalid_argument("inverse wavelet transform: stop level " + std::to_string(stop_level) +
@@ -204,15 +171,15 @@ void inverse(const Transform1D& t, T* data, const Extent& dims, int levels, int 
   for (int l = levels; l > stop_level; --l) {
     const Extent r = level_extent(dims, l - 1);
     for (int a = 2; a >= 0; --a)
-      if (r[static_cast<std::size_t>(a)] > 1) pass(t, data, dims, r, a, false);
+      if (r[static_cast<std::size_t>(a)] > 1) pass(t, data, dims, r, a, false, ex);
   }
 }
 
-template void forward<float>(const Transform1D&, float*, const Extent&, int);
-template void forward<double>(const Transform1D&, double*, const Extent&, int);
-template void forward<int32_t>(const Transform1D&, int32_t*, const Extent&, int);
-template void inverse<float>(const Transform1D&, float*, const Extent&, int, int);
-template void inverse<double>(const Transform1D&, double*, const Extent&, int, int);
-template void inverse<int32_t>(const Transform1D&, int32_t*, const Extent&, int, int);
+template void forward<float>(const Transform1D&, float*, const Extent&, int, const Executor&);
+template void forward<double>(const Transform1D&, double*, const Extent&, int, const Executor&);
+template void forward<int32_t>(const Transform1D&, int32_t*, const Extent&, int, const Executor&);
+template void inverse<float>(const Transform1D&, float*, const Extent&, int, int, const Executor&);
+template void inverse<double>(const Transform1D&, double*, const Extent&, int, int, const Executor&);
+template void inverse<int32_t>(const Transform1D&, int32_t*, const Extent&, int, int, const Executor&);
 
 }  // namespace pupwave

@@ -8,11 +8,13 @@
 // the low corner holding the level-(l-1) coarse band. Axes of extent 1 are never transformed.
 // Forward processes axes 0, 1, 2 per level; inverse undoes them in reverse order (needed for
 // bit-exact integer 5/3, whose rounding does not commute between axes).
-// Results do not depend on the number of threads.
+// Lines run as tasks of the executor passed in (serial unless the caller gives one); results
+// do not depend on the executor or its thread count.
 
 #include <cstdint>
 #include <vector>
 
+#include "transforms/executor.h"
 #include "transforms/subband.h"
 #include "transforms/transform1d.h"
 
@@ -40,18 +42,15 @@ std::vector<Subband> subbands(const Extent& dims, int levels);
 // Throws std::invalid_argument for a null pointer, a zero extent or levels outside
 // [0, kMaxLevels].
 template <class T>
-void forward(const Transform1D& t, T* data, const Extent& dims, int levels);
+void forward(const Transform1D& t, T* data, const Extent& dims, int levels,
+             const Executor& ex = serial_executor());
 
 // In-place inverse of forward with the same t, dims and levels. stop_level k > 0 undoes only
 // levels `levels`..k+1, leaving the level-k coarse band (extent level_extent(dims, k))
 // reconstructed in the low corner, for reduced-resolution decoding; samples outside that
 // corner are left as they are. Requires 0 <= stop_level <= levels.
 template <class T>
-void inverse(const Transform1D& t, T* data, const Extent& dims, int levels, int stop_level = 0);
-
-// Worker threads for large arrays (lines are split among threads; results are identical for
-// any count). 0 = std::thread::hardware_concurrency() (the default), 1 = single-threaded.
-void set_transform_threads(unsigned threads);
-unsigned transform_threads();
+void inverse(const Transform1D& t, T* data, const Extent& dims, int levels, int stop_level = 0,
+             const Executor& ex = serial_executor());
 
 }  // namespace pupwave

@@ -10,6 +10,7 @@
 
 #include "codec/format/container.h"
 #include "codec/image/image.h"
+#include "transforms/executor.h"
 
 namespace pupwave {
 
@@ -26,7 +27,9 @@ struct EncodeOptions {
   RateMode mode = RateMode::psnr;
   double target = 40.0;  // dB, bits per pixel or base step, by mode
   EntropyCoder entropy = EntropyCoder::ebcot;
-  unsigned threads = 0;          // 0: all hardware threads
+  // Runs the parallel work (transform lines, code-blocks); null: default_executor(), the
+  // shared pool on all hardware threads. Streams never depend on it.
+  const Executor* executor = nullptr;
   Extent block_size{64, 64, 1};  // code-block extent (powers of two, >= 1024 samples)
   // Decode the result to report its PSNR. Costs about a full decode and a decoded image's
   // memory; PSNR targets measure it anyway.
@@ -49,6 +52,8 @@ EncodeResult encode_image(const Image& image, const EncodeOptions& options);
 // Decodes a stream, at full resolution (level 0) or at 1/2^level resolution, reading only
 // the data that resolution needs. Throws DecodeError for a corrupt or truncated stream and
 // std::invalid_argument when level exceeds the stream's level count.
-Image decode_image(std::span<const std::uint8_t> bytes, int level = 0, unsigned threads = 0);
+// Parallel work runs on `executor`; the pixels never depend on it.
+Image decode_image(std::span<const std::uint8_t> bytes, int level = 0,
+                   const Executor& executor = default_executor());
 
 }  // namespace pupwave

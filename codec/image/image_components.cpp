@@ -4,7 +4,6 @@
 #include <cmath>
 #include <span>
 
-#include "codec/parallel.h"
 #include "codec/rate/metrics.h"
 
 namespace pupwave {
@@ -151,11 +150,11 @@ Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, cons
   return out;
 }
 
-void finish_image_in_place(Image& image, ColourTransform colour, unsigned threads) {
+void finish_image_in_place(Image& image, ColourTransform colour, const Executor& ex) {
   constexpr std::size_t kRun = std::size_t(1) << 16;  // samples per task
   const std::size_t n = image.plane_size();
   const double shift = level_shift(image.type);
-  parallel_for((n + kRun - 1) / kRun, threads, [&](std::size_t k) {
+  ex.run((n + kRun - 1) / kRun, [&](std::size_t k) {
     const std::size_t first = k * kRun, count = std::min(kRun, n - first);
     if (colour == ColourTransform::ict)
       inverse_ict(image.plane(0) + first, image.plane(1) + first, image.plane(2) + first, count);

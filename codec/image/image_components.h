@@ -8,6 +8,7 @@
 
 #include "codec/image/colour.h"
 #include "codec/image/image.h"
+#include "transforms/executor.h"
 #include "transforms/subband.h"
 #include "transforms/transform1d.h"
 
@@ -42,9 +43,9 @@ Image image_from_components(std::vector<std::vector<std::int32_t>>& planes, cons
                             const Extent& size, SampleType type, ColourTransform colour);
 
 // The same for full-resolution float planes that already are the image's own planes (decoded
-// into image.samples, gain 1): undoes colour and level shift, rounds and clamps in place, on
-// up to `threads` threads (0: all), so a decoder never holds a second full-size copy.
-void finish_image_in_place(Image& image, ColourTransform colour, unsigned threads);
+// into image.samples, gain 1): undoes colour and level shift, rounds and clamps in place, as
+// tasks of `ex`, so a decoder never holds a second full-size copy.
+void finish_image_in_place(Image& image, ColourTransform colour, const Executor& ex);
 
 // PSNR (all channels, as compare_images(reference, decoded).overall) of full-resolution
 // component planes laid out over the reference's extent, without building the decoded

@@ -10,7 +10,6 @@
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
 #include "codec/image/image_plan.h"
-#include "codec/parallel.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 
@@ -41,10 +40,10 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
 // Decodes every block of the read resolutions into the component planes at planes[c] (each
 // dims-sized and zeroed).
 template <class T>
-void decode_into(const ParsedStream& s, unsigned threads, const std::vector<T*>& planes) {
+void decode_into(const ParsedStream& s, const Executor& ex, const std::vector<T*>& planes) {
   const StreamHeader& h = s.header;
   const int last = int(s.resolution_data.size()) - 1;
-  parallel_for(s.blocks.size(), threads, [&](std::size_t i) {
+  ex.run(s.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
     if (b.resolution > last) return;
     std::vector<T> values = block_values<T>(s, i);
@@ -58,50 +57,50 @@ void decode_into(const ParsedStream& s, unsigned threads, const std::vector<T*>&
 
 // Decodes every block of the read resolutions into component planes of type T.
 template <class T>
-std::vector<std::vector<T>> decode_planes(const ParsedStream& s, unsigned threads) {
+std::vector<std::vector<T>> decode_planes(const ParsedStream& s, const Executor& ex) {
   const StreamHeader& h = s.header;
   std::vector<std::vector<T>> planes(h.channels, std::vector<T>(h.dims[0] * h.dims[1] * h.dims[2], T(0)));
   std::vector<T*> pointers;
   for (auto& p : planes) pointers.push_back(p.data());
-  decode_into(s, threads, pointers);
+  decode_into(s, ex, pointers);
   return planes;
 }
 
 // Full-resolution lossy decode straight into the output image's samples: the component
 // planes are the image's planes, so no second full-size copy is made.
-Image decode_full_float(const ParsedStream& s, const Transform1D& t, unsigned threads) {
+Image decode_full_float(const ParsedStream& s, const Transform1D& t, const Executor& ex) {
   const StreamHeader& h = s.header;
   Image out(h.dims[0], h.dims[1], h.channels, h.type);
   std::vector<float*> planes;
   for (std::size_t c = 0; c < h.channels; ++c) planes.push_back(out.plane(c));
-  decode_into(s, threads, planes);
-  for (float* p : planes) inverse(t, p, h.dims, h.levels, 0);
-  finish_image_in_place(out, h.colour, threads);
+  decode_into(s, ex, planes);
+  for (float* p : planes) inverse(t, p, h.dims, h.levels, 0, ex);
+  finish_image_in_place(out, h.colour, ex);
   return out;
 }
 
 }  // namespace
 
-Image decode_image(std::span<const std::uint8_t> bytes, int level, unsigned threads) {
+Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executor& ex) {
   const ParsedStream s = parse_container(bytes, level);
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
   const auto t = make_transform(h.spec);
   const Extent size = level_extent(h.dims, level);
   if (h.reversible) {
-    auto planes = decode_planes<std::int32_t>(s, threads);
-    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level);
+    auto planes = decode_planes<std::int32_t>(s, ex);
+    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level, ex);
     return image_from_components(planes, h.dims, size, h.type, h.colour);
   }
-  if (level == 0) return decode_full_float(s, *t, threads);
-  auto planes = decode_planes<float>(s, threads);
-  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level);
+  if (level == 0) return decode_full_float(s, *t, ex);
+  auto planes = decode_planes<float>(s, ex);
+  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level, ex);
   return image_from_components(planes, h.dims, size, h.type, h.colour, coarse_gain(*t, h.dims, level));
 }
 
 // The encoder's check of a stream: decodes it at full resolution and compares it with the
 // input without building the decoded image.
-double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads) {
+double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, const Executor& ex) {
   const ParsedStream s = parse_container(bytes, 0);
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
@@ -110,12 +109,12 @@ double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, uns
     throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
   const auto t = make_transform(h.spec);
   if (h.reversible) {
-    auto planes = decode_planes<std::int32_t>(s, threads);
-    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0);
+    auto planes = decode_planes<std::int32_t>(s, ex);
+    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0, ex);
     return components_psnr(image, planes, h.colour);
   }
-  auto planes = decode_planes<float>(s, threads);
-  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0);
+  auto planes = decode_planes<float>(s, ex);
+  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0, ex);
   return components_psnr(image, planes, h.colour);
 }
 

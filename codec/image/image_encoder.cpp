@@ -8,7 +8,6 @@
 #include "codec/entropy/block_encoder.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"
-#include "codec/parallel.h"
 #include "codec/rate/pcrd.h"
 #include "codec/rate/rate_guess.h"
 #include "transforms/separable.h"
@@ -49,7 +48,7 @@ CodedImage code_blocks(ImagePlan& plan) {
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
       if (plan.blocks[i].component == c) ids.push_back(i);
     if (plan.coef.size() <= c || plan.coef[c].empty()) transform_component(plan, c);
-    parallel_for(ids.size(), plan.threads, [&](std::size_t k) {
+    plan.executor->run(ids.size(), [&](std::size_t k) {
       const std::size_t i = ids[k];
       std::vector<float> magnitude;
       std::vector<std::uint8_t> negative;
@@ -168,7 +167,7 @@ EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
         return remaining_distortion(coded, p) <= allowed;
       });
       auto bytes = build(plan, coded, passes);
-      const double got = measure_psnr(image, bytes, plan.threads);
+      const double got = measure_psnr(image, bytes, *plan.executor);
       if (got >= psnr && (best.empty() || bytes.size() < best.size())) {
         best = bytes;
         best_psnr = got;

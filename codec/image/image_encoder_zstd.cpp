@@ -5,7 +5,6 @@
 
 #include "codec/entropy/zstd_blocks.h"
 #include "codec/image/image_plan.h"
-#include "codec/parallel.h"
 
 namespace pupwave {
 namespace {
@@ -15,7 +14,7 @@ constexpr int kStepBisections = 30;
 std::vector<std::uint8_t> code_with_zstd(ImagePlan& plan, double base) {
   if (!plan.header.reversible) set_base_step(plan, base);
   std::vector<std::vector<std::uint8_t>> words(plan.blocks.size());
-  parallel_for(plan.blocks.size(), plan.threads, [&](std::size_t i) {
+  plan.executor->run(plan.blocks.size(), [&](std::size_t i) {
     std::vector<float> magnitude;
     std::vector<std::uint8_t> negative;
     quantize_block(plan, i, magnitude, negative);
@@ -71,7 +70,7 @@ EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOption
         plan, true, [&](const std::vector<std::uint8_t>& b) { return double(b.size()) <= budget; });
   } else {
     std::tie(bytes, base) = bisect_step(plan, false, [&](const std::vector<std::uint8_t>& b) {
-      return measure_psnr(image, b, plan.threads) >= options.target;
+      return measure_psnr(image, b, *plan.executor) >= options.target;
     });
   }
   release_coefficients(plan);

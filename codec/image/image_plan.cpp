@@ -76,7 +76,7 @@ ImagePlan plan_image(const Image& image, const EncodeOptions& o) {
   plan.pixels = image.plane_size();
   plan.samples = plan.pixels * image.channels;
   plan.peak = psnr_peak(image);
-  plan.threads = o.threads;
+  plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.measure_psnr = o.measure_psnr;
   plan.source = &image;
   if (reversible)
@@ -93,12 +93,12 @@ void transform_component(ImagePlan& plan, std::size_t c) {
     plan.icoef.resize(h.channels);
     plan.icoef[c].swap(plan.ispare);
     integer_component(*plan.source, h.colour, c, plan.icoef[c]);
-    forward(*plan.transform, plan.icoef[c].data(), h.dims, h.levels);
+    forward(*plan.transform, plan.icoef[c].data(), h.dims, h.levels, *plan.executor);
   } else {
     plan.coef.resize(h.channels);
     plan.coef[c].swap(plan.spare);
     float_component(*plan.source, h.colour, c, plan.coef[c]);
-    forward(*plan.transform, plan.coef[c].data(), h.dims, h.levels);
+    forward(*plan.transform, plan.coef[c].data(), h.dims, h.levels, *plan.executor);
   }
 }
 
@@ -164,7 +164,7 @@ EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::
   if (known_psnr)
     r.psnr = *known_psnr;
   else
-    r.psnr = plan.measure_psnr ? measure_psnr(image, bytes, plan.threads) : std::nan("");
+    r.psnr = plan.measure_psnr ? measure_psnr(image, bytes, *plan.executor) : std::nan("");
   r.base_step = base_step;
   r.bytes = std::move(bytes);
   return r;

@@ -29,11 +29,11 @@ struct ImagePlan {
   std::vector<std::int32_t> ispare;
   const Image* source = nullptr;  // the input, alive while the plan is used
   Transform1DPtr transform;
-  std::size_t pixels = 0;   // width * height
-  std::size_t samples = 0;  // pixels * channels
-  double peak = 1.0;        // PSNR peak of the input
-  unsigned threads = 0;
-  bool measure_psnr = true;  // EncodeOptions::measure_psnr
+  std::size_t pixels = 0;              // width * height
+  std::size_t samples = 0;             // pixels * channels
+  double peak = 1.0;                   // PSNR peak of the input
+  const Executor* executor = nullptr;  // EncodeOptions::executor, resolved (never null)
+  bool measure_psnr = true;            // EncodeOptions::measure_psnr
 };
 
 // Validates the image and options and lays out bands and blocks; no coefficients yet.
@@ -63,7 +63,7 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
                                    const std::vector<std::vector<std::uint8_t>>& codewords);
 
 // Decodes `bytes` and returns its PSNR (all channels) against `image`.
-double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, unsigned threads);
+double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, const Executor& executor);
 
 // The result of an encode: the bytes with their bpp and PSNR and the base step used. The PSNR
 // is `known_psnr` if given, else measured when the plan asks for it, else NaN.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "codec/volume/volume.h"
+#include "transforms/executor.h"
 
 namespace pupwave {
 
@@ -32,7 +33,8 @@ struct VolumeEncodeOptions {
   double target = 1e-3;    // step, bits per voxel, dB or absolute error bound, by mode
   std::size_t brick = 64;  // brick edge (power of two, 8..256); edge bricks are smaller
   std::size_t block = 32;  // code-block edge inside a brick (power of two, 16..64)
-  unsigned threads = 0;    // 0: all hardware threads
+  // Runs the bricks as parallel tasks; null: default_executor(). Streams never depend on it.
+  const Executor* executor = nullptr;
 };
 
 struct VolumeEncodeResult {
@@ -54,7 +56,7 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
 // Throws DecodeError for a corrupt or truncated stream and std::invalid_argument when level
 // exceeds the stream's levels.
 std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level = 0,
-                                       unsigned threads = 0);
+                                       const Executor& executor = default_executor());
 
 // True when bytes start with the volume stream signature (cheap; validates nothing else).
 bool is_volume_stream(std::span<const std::uint8_t> bytes);
@@ -62,8 +64,5 @@ bool is_volume_stream(std::span<const std::uint8_t> bytes);
 // Human-readable description of a volume stream (grids, transform, mode, chunk sizes), after
 // validating the whole stream. Throws DecodeError for a corrupt or truncated stream.
 std::string describe_volume_stream(std::span<const std::uint8_t> bytes);
-
-// Largest |a - b| over the voxels active in `a` (both of the same dims; throws otherwise).
-double max_abs_error(const Volume& a, const Volume& b);
 
 }  // namespace pupwave

@@ -7,7 +7,6 @@
 
 #include "codec/error.h"
 #include "codec/format/chunks.h"
-#include "codec/parallel.h"
 #include "codec/volume/volume_brick.h"
 #include "codec/volume/volume_codec.h"
 #include "codec/volume/volume_format.h"
@@ -163,7 +162,7 @@ void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s,
 
 bool is_volume_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kVolumeSignature); }
 
-std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level, unsigned threads) {
+std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level, const Executor& ex) {
   const ParsedVolumeStream s = parse_volume_stream(bytes);
   const VolumeStreamHeader& h = s.header;
   if (level < 0 || level > h.levels)
@@ -180,13 +179,8 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
     g.volume.active.clear();
     g.volume.samples.assign(g.volume.count(), g.volume.background);
   }
-  const unsigned saved_threads = transform_threads();
-  set_transform_threads(1);  // bricks are decoded in parallel already
-  struct Restore {
-    unsigned n;
-    ~Restore() { set_transform_threads(n); }
-  } restore{saved_threads};
-  parallel_for(s.bricks.size(), threads, [&](std::size_t i) {
+  // Bricks are the parallel tasks; each brick's inverse transform runs serially inside its task.
+  ex.run(s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
     const BrickBox& box = boxes[b.grid][b.brick];
     const VoxelType type = h.grids[b.grid].volume.type;
@@ -199,14 +193,6 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
   });
   restore_sparse(grids, s, level);
   return grids;
-}
-
-double max_abs_error(const Volume& a, const Volume& b) {
-  if (a.dims != b.dims) throw std::invalid_argument("volumes differ in size");
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.count(); ++i)
-    if (a.is_active(i)) worst = std::max(worst, std::abs(a.samples[i] - b.samples[i]));
-  return worst;
 }
 
 }  // namespace pupwave

@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "codec/error.h"
-#include "codec/parallel.h"
 #include "codec/rate/quantizer.h"
 #include "codec/volume/volume_encoder_plan.h"
 #include "codec/volume/volume_outliers.h"
@@ -130,7 +129,7 @@ std::size_t code_bytes(const BrickCode& c) {
 std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
                                   const VolumeEncodeOptions& o) {
   std::vector<BrickCode> codes(plan.jobs.size());
-  parallel_for(plan.jobs.size(), plan.threads, [&](std::size_t i) {
+  plan.executor->run(plan.jobs.size(), [&](std::size_t i) {
     const BrickJob& job = plan.jobs[i];
     const VolumeGrid& grid = grids[job.grid];
     std::vector<double> samples;
@@ -171,7 +170,7 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncode
   h.delta = reversible ? 0.0 : kDefaultReconstructionDelta;
   h.max_error = o.mode == VolumeRateMode::max_error ? o.target : 0.0;
   plan.coding = BrickCoding{plan.transform.get(), h.levels, o.block, h.delta, reversible};
-  plan.threads = o.threads;
+  plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.masks.resize(grids.size());
   for (std::uint32_t g = 0; g < grids.size(); ++g) {
     const Volume& v = grids[g].volume;
@@ -256,17 +255,10 @@ std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::ve
 
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options) {
   VolumePlan plan = plan_volumes(grids, options);
-  const unsigned saved_threads = transform_threads();
-  set_transform_threads(1);  // bricks are already coded in parallel
+  // Bricks are the parallel tasks; each brick's own transform runs serially inside its task.
   const bool rate = options.mode == VolumeRateMode::bpv || options.mode == VolumeRateMode::psnr;
-  std::vector<BrickCode> codes;
-  try {
-    codes = rate ? code_for_rate(grids, plan, options) : code_fixed(grids, plan, options);
-  } catch (...) {
-    set_transform_threads(saved_threads);
-    throw;
-  }
-  set_transform_threads(saved_threads);
+  const std::vector<BrickCode> codes =
+      rate ? code_for_rate(grids, plan, options) : code_fixed(grids, plan, options);
   VolumeEncodeResult r;
   r.bytes = assemble_volumes(plan, codes);
   r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));

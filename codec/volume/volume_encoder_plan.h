@@ -24,9 +24,9 @@ struct VolumePlan {
   BrickCoding coding;
   std::vector<MaskChunk> masks;  // per grid (empty for dense)
   std::vector<BrickJob> jobs;
-  std::size_t voxels = 0;  // box voxels of all grids
-  double range = 0.0;      // largest value range (max - min of active voxels) over grids
-  unsigned threads = 0;
+  std::size_t voxels = 0;              // box voxels of all grids
+  double range = 0.0;                  // largest value range (max - min of active voxels) over grids
+  const Executor* executor = nullptr;  // VolumeEncodeOptions::executor, resolved (never null)
 };
 
 // A brick coded with the passes that go into the stream.

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include "codec/parallel.h"
 #include "codec/rate/pcrd.h"
 #include "codec/volume/volume_encoder_plan.h"
 #include "codec/volume/volume_outliers.h"
@@ -27,7 +26,7 @@ struct Coded {
 Coded code_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan, double base) {
   Coded c;
   c.codes.resize(plan.jobs.size());
-  parallel_for(plan.jobs.size(), plan.threads, [&](std::size_t i) {
+  plan.executor->run(plan.jobs.size(), [&](std::size_t i) {
     std::vector<double> samples;
     std::vector<std::uint8_t> active;
     brick_samples(grids[plan.jobs[i].grid], plan.jobs[i].box, samples, active);
@@ -68,7 +67,7 @@ double remaining(const Coded& c, const std::vector<int>& passes) {
 
 // Measures every brick's reconstruction (max error, squared error) for the chosen passes.
 double measure_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan, Coded& c) {
-  parallel_for(c.codes.size(), plan.threads, [&](std::size_t i) {
+  plan.executor->run(c.codes.size(), [&](std::size_t i) {
     measure_brick(grids[plan.jobs[i].grid], plan.jobs[i], reconstruct_brick(plan, plan.jobs[i], c.codes[i]),
                   c.codes[i]);
   });

@@ -185,13 +185,10 @@ TEST(Separable, ThreadCountDoesNotChangeResults3d) {
   const auto x = random_array<double>(volume(d), 22, -100, 100);
   auto one = x, many = x;
   const auto tr = make_cdf53();
-  set_transform_threads(1);
-  forward(*tr, one.data(), d, 3);
-  set_transform_threads(3);
-  forward(*tr, many.data(), d, 3);
-  inverse(*tr, many.data(), d, 3);
-  set_transform_threads(0);
-  inverse(*tr, one.data(), d, 3);
+  forward(*tr, one.data(), d, 3, serial_executor());
+  forward(*tr, many.data(), d, 3, *make_pool_executor(3));
+  inverse(*tr, many.data(), d, 3, 0, *make_pool_executor(3));
+  inverse(*tr, one.data(), d, 3, 0, default_executor());
   EXPECT_EQ(one, many);
   for (std::size_t i = 0; i < x.size(); ++i) ASSERT_NEAR(one[i], x[i], 1e-9);
 }
@@ -201,11 +198,8 @@ TEST(Separable, ThreadCountDoesNotChangeResults) {
   const auto x = random_array<float>(volume(d), 21, -100, 100);
   auto one = x, many = x;
   const auto tr = make_cdf97();
-  set_transform_threads(1);
-  forward(*tr, one.data(), d, 4);
-  set_transform_threads(4);
-  forward(*tr, many.data(), d, 4);
-  set_transform_threads(0);
+  forward(*tr, one.data(), d, 4, serial_executor());
+  forward(*tr, many.data(), d, 4, *make_pool_executor(4));
   EXPECT_EQ(one, many);
   EXPECT_NE(one, x);
 }

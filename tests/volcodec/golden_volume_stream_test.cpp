@@ -22,7 +22,7 @@ std::uint32_t stream_crc(Volume v, VolumeRateMode mode, double target, const cha
   o.transform = spec;
   o.brick = 16;
   o.block = 16;
-  o.threads = 1;
+  o.executor = &serial_executor();
   return crc32(encode_volumes({g}, o).bytes);
 }
 

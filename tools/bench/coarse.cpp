@@ -1,16 +1,15 @@
 #include "tools/bench/coarse.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "codec/rate/metrics.h"
 #include "tools/bench/progress.h"
 #include "tools/bench/rd_report.h"
+#include "transforms/executor.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 
@@ -68,27 +67,20 @@ std::vector<CoarseRecord> run_coarse(const std::vector<BenchImage>& images,
         records.push_back(r);
       }
   Progress progress(log, records.size(), "coarse", terminal);
-  std::atomic<std::size_t> next{0};
   const std::size_t per_image = specs.size() * levels.size();
-  auto worker = [&] {
-    for (std::size_t j; (j = next.fetch_add(1)) < records.size();) {
-      CoarseRecord& r = records[j];
-      try {
-        const Image& ref = images[j / per_image].pixels;
-        r.psnr_luma = luma_psnr(ref, coarse_reconstruction(ref, r.transform, r.levels));
-        r.ok = true;
-      } catch (const std::exception& e) {
-        r.error = e.what();
-        progress.note("warning: coarse " + r.image + " " + r.transform + ": " + r.error);
-      }
-      progress.step(r.image + " " + r.transform + " L=" + std::to_string(r.levels) + ": " +
-                    fixed(r.psnr_luma, 2) + " dB");
+  make_pool_executor(std::max(1u, jobs))->run(records.size(), [&](std::size_t j) {
+    CoarseRecord& r = records[j];
+    try {
+      const Image& ref = images[j / per_image].pixels;
+      r.psnr_luma = luma_psnr(ref, coarse_reconstruction(ref, r.transform, r.levels));
+      r.ok = true;
+    } catch (const std::exception& e) {
+      r.error = e.what();
+      progress.note("warning: coarse " + r.image + " " + r.transform + ": " + r.error);
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::max(1u, jobs); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+    progress.step(r.image + " " + r.transform + " L=" + std::to_string(r.levels) + ": " +
+                  fixed(r.psnr_luma, 2) + " dB");
+  });
   progress.finish();
   return records;
 }

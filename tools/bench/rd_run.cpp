@@ -3,16 +3,15 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
-#include <thread>
 
 #include "codec/rate/metrics.h"
 #include "tools/bench/progress.h"
 #include "tools/image_io.h"
+#include "transforms/executor.h"
 
 namespace pupwave::bench {
 namespace {
@@ -133,22 +132,15 @@ std::vector<RdRecord> run_rd(const RdRun& run, const fs::path& work_root, std::o
   }
   std::vector<RdRecord> records(jobs.size());
   Progress progress(log, jobs.size(), "rd", run.terminal);
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t j; (j = next.fetch_add(1)) < jobs.size();) {
-      records[j] = run_job(run, jobs[j], work);
-      const RdRecord& r = records[j];
-      char what[200];
-      std::snprintf(what, sizeof what, "%s %s %g bpp: %s", r.image.c_str(), r.codec.c_str(), r.target_bpp,
-                    r.ok ? (bpp_label(std::round(r.psnr * 100) / 100) + " dB").c_str() : "FAILED");
-      if (!r.ok) progress.note("warning: " + std::string(what) + ": " + r.error);
-      progress.step(what);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::max(1u, run.jobs); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  make_pool_executor(std::max(1u, run.jobs))->run(jobs.size(), [&](std::size_t j) {
+    records[j] = run_job(run, jobs[j], work);
+    const RdRecord& r = records[j];
+    char what[200];
+    std::snprintf(what, sizeof what, "%s %s %g bpp: %s", r.image.c_str(), r.codec.c_str(), r.target_bpp,
+                  r.ok ? (bpp_label(std::round(r.psnr * 100) / 100) + " dB").c_str() : "FAILED");
+    if (!r.ok) progress.note("warning: " + std::string(what) + ": " + r.error);
+    progress.step(what);
+  });
   progress.finish();
   fs::remove_all(work);
   return records;
