@@ -10,6 +10,7 @@
 
 #include "codec/format/container.h"
 #include "codec/image/image.h"
+#include "codec/image/image_view.h"
 #include "transforms/executor.h"
 
 namespace pupwave {
@@ -47,7 +48,12 @@ struct EncodeResult {
 // non-reversible transform for lossless, lossless float samples, a non-positive target) and
 // EncodeError for images the format cannot hold (empty, over 2^16 per axis or 2^31 samples,
 // more than 4 channels, non-finite samples).
-EncodeResult encode_image(const Image& image, const EncodeOptions& options);
+// The image is read through a typed strided view (image_view.h), never copied whole; a view
+// that cannot be read throws std::invalid_argument.
+EncodeResult encode_image(const ImageView& image, const EncodeOptions& options);
+inline EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
+  return encode_image(view_of(image), options);
+}
 
 // Decodes a stream, at full resolution (level 0) or at 1/2^level resolution, reading only
 // the data that resolution needs. Throws DecodeError for a corrupt or truncated stream and

@@ -45,18 +45,21 @@ void write_planes(std::vector<std::vector<T>>& planes, Image& out) {
 // Squared error of every sample against the reference, summed in compare_images' order
 // (channel by channel, sample by sample) so the PSNR is the same to the last bit.
 template <class T>
-double components_psnr_after_colour(const Image& reference, const std::vector<std::vector<T>>& planes) {
+double components_psnr_after_colour(const ImageView& reference, const std::vector<std::vector<T>>& planes) {
   const double shift = level_shift(reference.type);
-  const std::size_t n = reference.plane_size();
+  const std::size_t w = reference.width;
+  std::vector<float> row(w);
   double sum_sq = 0.0;
-  for (std::size_t c = 0; c < planes.size(); ++c) {
-    const float* a = reference.plane(c);
-    const T* b = planes[c].data();
-    for (std::size_t i = 0; i < n; ++i) {
-      const double d = double(a[i]) - double(finish_sample(double(b[i]) + shift, reference.type));
-      sum_sq += d * d;
+  for (std::size_t c = 0; c < planes.size(); ++c)
+    for (std::size_t y = 0; y < reference.height; ++y) {
+      reference.read_row(c, y, row.data());
+      const T* b = planes[c].data() + y * w;
+      for (std::size_t x = 0; x < w; ++x) {
+        const double d = double(row[x]) - double(finish_sample(double(b[x]) + shift, reference.type));
+        sum_sq += d * d;
+      }
     }
-  }
+  const std::size_t n = reference.plane_size();
   const std::size_t count = n * planes.size();
   return psnr_from_mse(count ? sum_sq / double(count) : 0.0, psnr_peak(reference));
 }
@@ -70,35 +73,48 @@ ColourTransform colour_for(std::size_t channels, bool reversible) {
 
 double level_shift(SampleType type) { return is_integer(type) ? (nominal_max(type) + 1.0) / 2.0 : 0.0; }
 
-void float_component(const Image& image, ColourTransform colour, std::size_t c, std::vector<float>& out) {
-  const std::size_t n = image.plane_size();
+void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out) {
+  const std::size_t w = image.width;
   const auto shift = float(level_shift(image.type));
-  out.resize(n);
+  out.resize(image.plane_size());
   if (colour != ColourTransform::ict || c >= 3) {
-    for (std::size_t i = 0; i < n; ++i) out[i] = image.plane(c)[i] - shift;
+    for (std::size_t y = 0; y < image.height; ++y) {
+      float* row = out.data() + y * w;
+      image.read_row(c, y, row);
+      for (std::size_t x = 0; x < w; ++x) row[x] -= shift;
+    }
     return;
   }
-  const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float rgb[3] = {r[i] - shift, g[i] - shift, b[i] - shift};
-    forward_ict(rgb, c, out.data() + i);
+  std::vector<float> rows(3 * w);
+  for (std::size_t y = 0; y < image.height; ++y) {
+    for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
+    for (std::size_t x = 0; x < w; ++x) {
+      const float rgb[3] = {rows[x] - shift, rows[w + x] - shift, rows[2 * w + x] - shift};
+      forward_ict(rgb, c, out.data() + y * w + x);
+    }
   }
 }
 
-void integer_component(const Image& image, ColourTransform colour, std::size_t c,
+void integer_component(const ImageView& image, ColourTransform colour, std::size_t c,
                        std::vector<std::int32_t>& out) {
-  const std::size_t n = image.plane_size();
+  const std::size_t w = image.width;
   const auto shift = std::int32_t(level_shift(image.type));
-  out.resize(n);
-  if (colour != ColourTransform::rct || c >= 3) {
-    for (std::size_t i = 0; i < n; ++i) out[i] = std::int32_t(image.plane(c)[i]) - shift;
-    return;
-  }
-  const float *r = image.plane(0), *g = image.plane(1), *b = image.plane(2);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t rgb[3] = {std::int32_t(r[i]) - shift, std::int32_t(g[i]) - shift,
-                                 std::int32_t(b[i]) - shift};
-    forward_rct(rgb, c, out.data() + i);
+  out.resize(image.plane_size());
+  const std::size_t used = colour == ColourTransform::rct && c < 3 ? 3 : 1;
+  std::vector<float> rows(used * w);
+  for (std::size_t y = 0; y < image.height; ++y) {
+    std::int32_t* dst = out.data() + y * w;
+    if (used == 1) {
+      image.read_row(c, y, rows.data());
+      for (std::size_t x = 0; x < w; ++x) dst[x] = std::int32_t(rows[x]) - shift;
+      continue;
+    }
+    for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
+    for (std::size_t x = 0; x < w; ++x) {
+      const std::int32_t rgb[3] = {std::int32_t(rows[x]) - shift, std::int32_t(rows[w + x]) - shift,
+                                   std::int32_t(rows[2 * w + x]) - shift};
+      forward_rct(rgb, c, dst + x);
+    }
   }
 }
 
@@ -165,14 +181,14 @@ void finish_image_in_place(Image& image, ColourTransform colour, const Executor&
   });
 }
 
-double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes,
+double components_psnr(const ImageView& reference, std::vector<std::vector<float>>& planes,
                        ColourTransform colour) {
   if (colour == ColourTransform::ict)
     inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
   return components_psnr_after_colour(reference, planes);
 }
 
-double components_psnr(const Image& reference, std::vector<std::vector<std::int32_t>>& planes,
+double components_psnr(const ImageView& reference, std::vector<std::vector<std::int32_t>>& planes,
                        ColourTransform colour) {
   if (colour == ColourTransform::rct)
     inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());

@@ -8,6 +8,7 @@
 
 #include "codec/image/colour.h"
 #include "codec/image/image.h"
+#include "codec/image/image_view.h"
 #include "transforms/executor.h"
 #include "transforms/subband.h"
 #include "transforms/transform1d.h"
@@ -23,8 +24,8 @@ double level_shift(SampleType type);
 // Component c after level shift and colour transform (forward_ict / forward_rct), one at a
 // time so an encoder holds a single transformed component. `out` is resized to the plane size
 // (its capacity is reused).
-void float_component(const Image& image, ColourTransform colour, std::size_t c, std::vector<float>& out);
-void integer_component(const Image& image, ColourTransform colour, std::size_t c,
+void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out);
+void integer_component(const ImageView& image, ColourTransform colour, std::size_t c,
                        std::vector<std::int32_t>& out);
 
 // Squared output error per unit error of each component (ICT components weigh more).
@@ -51,9 +52,9 @@ void finish_image_in_place(Image& image, ColourTransform colour, const Executor&
 // component planes laid out over the reference's extent, without building the decoded
 // image: undoes colour and level shift, rounds and clamps like image_from_components.
 // Consumes `planes` (the colour transform is undone in place).
-double components_psnr(const Image& reference, std::vector<std::vector<float>>& planes,
+double components_psnr(const ImageView& reference, std::vector<std::vector<float>>& planes,
                        ColourTransform colour);
-double components_psnr(const Image& reference, std::vector<std::vector<std::int32_t>>& planes,
+double components_psnr(const ImageView& reference, std::vector<std::vector<std::int32_t>>& planes,
                        ColourTransform colour);
 
 }  // namespace pupwave

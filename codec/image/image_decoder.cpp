@@ -100,7 +100,7 @@ Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executo
 
 // The encoder's check of a stream: decodes it at full resolution and compares it with the
 // input without building the decoded image.
-double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, const Executor& ex) {
+double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes, const Executor& ex) {
   const ParsedStream s = parse_container(bytes, 0);
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");

@@ -129,7 +129,7 @@ void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int
 // Best quality within a byte budget; the base step is refined while every pass still fits.
 // The first step comes from the rate model of component 0 (coded right after, so it is
 // transformed once); the refinement loop catches a guess that was too coarse.
-EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
+EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp) {
   const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
   double base = plan.peak / 512.0;
   if (!plan.header.reversible) {
@@ -153,7 +153,7 @@ EncodeResult encode_for_size(const Image& image, ImagePlan& plan, double bpp) {
 
 // Smallest stream whose decoded PSNR reaches the target: PCRD on the estimated distortion,
 // corrected by measuring the decoded image.
-EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
+EncodeResult encode_for_psnr(const ImageView& image, ImagePlan& plan, double psnr) {
   const double target_mse = plan.peak * plan.peak / std::pow(10.0, psnr / 10.0);
   double base = 0.3 * std::sqrt(target_mse);
   for (int round = 0;; ++round, base /= 4.0) {
@@ -183,7 +183,7 @@ EncodeResult encode_for_psnr(const Image& image, ImagePlan& plan, double psnr) {
   }
 }
 
-EncodeResult encode_with_levels(const Image& image, const EncodeOptions& options) {
+EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& options) {
   ImagePlan plan = plan_image(image, options);
   if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
   switch (options.mode) {
@@ -204,7 +204,7 @@ EncodeResult encode_with_levels(const Image& image, const EncodeOptions& options
 
 }  // namespace
 
-EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
+EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) {
   if (options.levels >= 0 || options.entropy == EntropyCoder::zstd) return encode_with_levels(image, options);
   // Unstable banks (pups:cinpact-c3) amplify the coarse band at every level until quantization
   // indices leave the block coder's range; with default levels, use fewer instead of failing.

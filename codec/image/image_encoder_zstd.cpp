@@ -55,7 +55,7 @@ std::pair<std::vector<std::uint8_t>, double> bisect_step(ImagePlan& plan, bool a
 
 }  // namespace
 
-EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOptions& options) {
+EncodeResult encode_zstd(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
   std::vector<std::uint8_t> bytes;
   double base = 1.0;
   transform_all_components(plan);  // the step search revisits every block many times

@@ -15,19 +15,32 @@
 namespace pupwave {
 namespace {
 
-void validate_image(const Image& image) {
+void validate_image(const ImageView& image) {
   if (image.width == 0 || image.height == 0) throw EncodeError("cannot encode an empty image");
   if (image.width > kMaxAxisExtent || image.height > kMaxAxisExtent)
     throw EncodeError("image dimensions exceed 65536 per axis");
   if (image.channels < 1 || image.channels > 4) throw EncodeError("images must have 1 to 4 channels");
   if (image.plane_size() * image.channels > kMaxTotalSamples) throw EncodeError("image exceeds 2^31 samples");
-  if (image.samples.size() != image.plane_size() * image.channels)
-    throw std::invalid_argument("image sample count does not match its dimensions");
-  for (float v : image.samples)
-    if (!std::isfinite(v)) throw EncodeError("image has non-finite samples (NaN or infinity)");
+  check_view(image);
+  if (is_integer(image.type) && image.storage != StorageType::f32 && image.storage != StorageType::f16)
+    return;  // integer storage holds only finite values
+  // Float storage: every sample must be finite and, for integer types, an integer in range.
+  const bool integer = is_integer(image.type);
+  const auto top = float(nominal_max(image.type));
+  std::vector<float> row(image.width);
+  for (std::size_t c = 0; c < image.channels; ++c)
+    for (std::size_t y = 0; y < image.height; ++y) {
+      image.read_row(c, y, row.data());
+      for (float v : row) {
+        if (!std::isfinite(v)) throw EncodeError("image has non-finite samples (NaN or infinity)");
+        if (integer && (v < 0.0f || v > top || v != std::nearbyint(v)))
+          throw EncodeError(to_string(image.type) + " image has a sample that is not an integer in 0.." +
+                            std::to_string(int(top)));
+      }
+    }
 }
 
-void validate_options(const Image& image, const EncodeOptions& o) {
+void validate_options(const ImageView& image, const EncodeOptions& o) {
   if (o.mode == RateMode::lossless && !is_integer(image.type))
     throw std::invalid_argument(
         "lossless coding needs integer samples (8 or 16 bit); float images are lossy");
@@ -51,7 +64,7 @@ Extent block_log2(const Extent& size) {
 
 }  // namespace
 
-ImagePlan plan_image(const Image& image, const EncodeOptions& o) {
+ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   validate_image(image);
   validate_options(image, o);
   auto t = make_transform(o.transform);
@@ -78,7 +91,7 @@ ImagePlan plan_image(const Image& image, const EncodeOptions& o) {
   plan.peak = psnr_peak(image);
   plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.measure_psnr = o.measure_psnr;
-  plan.source = &image;
+  plan.source = image;
   if (reversible)
     h.steps.assign(plan.bands.size() * h.channels, 1.0f);
   else
@@ -92,12 +105,12 @@ void transform_component(ImagePlan& plan, std::size_t c) {
   if (h.reversible) {
     plan.icoef.resize(h.channels);
     plan.icoef[c].swap(plan.ispare);
-    integer_component(*plan.source, h.colour, c, plan.icoef[c]);
+    integer_component(plan.source, h.colour, c, plan.icoef[c]);
     forward(*plan.transform, plan.icoef[c].data(), h.dims, h.levels, *plan.executor);
   } else {
     plan.coef.resize(h.channels);
     plan.coef[c].swap(plan.spare);
-    float_component(*plan.source, h.colour, c, plan.coef[c]);
+    float_component(plan.source, h.colour, c, plan.coef[c]);
     forward(*plan.transform, plan.coef[c].data(), h.dims, h.levels, *plan.executor);
   }
 }
@@ -157,8 +170,9 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
   return write_container(plan.header, entries, data);
 }
 
-EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
-                                double base_step, std::optional<double> known_psnr) {
+EncodeResult make_encode_result(const ImageView& image, const ImagePlan& plan,
+                                std::vector<std::uint8_t> bytes, double base_step,
+                                std::optional<double> known_psnr) {
   EncodeResult r;
   r.bpp = double(bytes.size()) * 8.0 / double(plan.pixels);
   if (known_psnr)

@@ -27,7 +27,7 @@ struct ImagePlan {
   // than the transform on some machines (about 0.6 ms per MiB here).
   std::vector<float> spare;
   std::vector<std::int32_t> ispare;
-  const Image* source = nullptr;  // the input, alive while the plan is used
+  ImageView source;  // the input, alive while the plan is used
   Transform1DPtr transform;
   std::size_t pixels = 0;              // width * height
   std::size_t samples = 0;             // pixels * channels
@@ -38,7 +38,7 @@ struct ImagePlan {
 
 // Validates the image and options and lays out bands and blocks; no coefficients yet.
 // The plan refers to `image`, which must outlive it.
-ImagePlan plan_image(const Image& image, const EncodeOptions& options);
+ImagePlan plan_image(const ImageView& image, const EncodeOptions& options);
 
 // Fills coef[c] (or icoef[c]) with component c after colour and wavelet transform; the
 // encoder holds one component at a time to keep its memory small.
@@ -63,14 +63,15 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
                                    const std::vector<std::vector<std::uint8_t>>& codewords);
 
 // Decodes `bytes` and returns its PSNR (all channels) against `image`.
-double measure_psnr(const Image& image, std::span<const std::uint8_t> bytes, const Executor& executor);
+double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes, const Executor& executor);
 
 // The result of an encode: the bytes with their bpp and PSNR and the base step used. The PSNR
 // is `known_psnr` if given, else measured when the plan asks for it, else NaN.
-EncodeResult make_encode_result(const Image& image, const ImagePlan& plan, std::vector<std::uint8_t> bytes,
-                                double base_step, std::optional<double> known_psnr = std::nullopt);
+EncodeResult make_encode_result(const ImageView& image, const ImagePlan& plan,
+                                std::vector<std::uint8_t> bytes, double base_step,
+                                std::optional<double> known_psnr = std::nullopt);
 
 // Encodes with the zstd back end (rate control by the base step only).
-EncodeResult encode_zstd(const Image& image, ImagePlan& plan, const EncodeOptions& options);
+EncodeResult encode_zstd(const ImageView& image, ImagePlan& plan, const EncodeOptions& options);
 
 }  // namespace pupwave

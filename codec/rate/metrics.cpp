@@ -11,11 +11,19 @@ double psnr_from_mse(double mse, double peak) {
   return 10.0 * std::log10(peak * peak / mse);
 }
 
-double psnr_peak(const Image& reference) {
+double psnr_peak(const ImageView& reference) {
   if (is_integer(reference.type)) return nominal_max(reference.type);
-  if (reference.samples.empty()) return 1.0;
-  const auto [lo, hi] = std::minmax_element(reference.samples.begin(), reference.samples.end());
-  const double range = double(*hi) - double(*lo);
+  if (reference.plane_size() * reference.channels == 0) return 1.0;
+  std::vector<float> row(reference.width);
+  float lo = reference.at(0, 0, 0), hi = lo;
+  for (std::size_t c = 0; c < reference.channels; ++c)
+    for (std::size_t y = 0; y < reference.height; ++y) {
+      reference.read_row(c, y, row.data());
+      const auto [a, b] = std::minmax_element(row.begin(), row.end());
+      lo = std::min(lo, *a);
+      hi = std::max(hi, *b);
+    }
+  const double range = double(hi) - double(lo);
   return range > 0.0 ? range : 1.0;
 }
 

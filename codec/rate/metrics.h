@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "codec/image/image.h"
+#include "codec/image/image_view.h"
 
 namespace pupwave {
 
@@ -27,7 +28,8 @@ double psnr_from_mse(double mse, double peak);
 
 // Peak value for PSNR: 2^bits - 1 for integer samples; for float samples the value range
 // (max - min) of the reference, or 1.0 when the reference is constant.
-double psnr_peak(const Image& reference);
+double psnr_peak(const ImageView& reference);
+inline double psnr_peak(const Image& reference) { return psnr_peak(view_of(reference)); }
 
 // Compares `test` against `reference`; both must have equal width, height, channel count and
 // sample type (std::invalid_argument otherwise).
