@@ -115,8 +115,28 @@ TEST(BlockCoder, GarbageCodewordsDecodeWithoutFault) {
     std::vector<std::uint8_t> junk(std::size_t(rng() % 3000));
     for (auto& b : junk) b = std::uint8_t(rng());
     const int planes = int(rng() % (kMaxBitPlanes + 1));
-    const DecodedBlock dec = decode_block(junk, planes, passes_for_planes(planes), size, rng() % 4);
-    EXPECT_EQ(dec.known.size(), size[0] * size[1]);
+    const unsigned orientation = rng() % 4;
+    const DecodedBlock dec = decode_block(junk, planes, passes_for_planes(planes), size, orientation);
+    ASSERT_EQ(dec.known.size(), size[0] * size[1]);
+    ASSERT_EQ(dec.low_plane.size(), size[0] * size[1]);
+    // Whatever the bytes, the result is a valid partial decode of a block of `planes` planes:
+    // magnitudes below 2^planes, insignificant samples zero, last planes in range.
+    const std::int64_t limit = std::int64_t(1) << planes;
+    for (std::size_t i = 0; i < dec.known.size(); ++i) {
+      const std::int64_t v = dec.known[i];
+      if (dec.low_plane[i] == 255) {
+        ASSERT_EQ(v, 0) << "trial " << trial << " sample " << i;
+        continue;
+      }
+      ASSERT_LT(int(dec.low_plane[i]), planes) << "trial " << trial;
+      ASSERT_LT(v < 0 ? -v : v, limit) << "trial " << trial;
+      ASSERT_EQ((v < 0 ? -v : v) % (std::int64_t(1) << dec.low_plane[i]), 0) << "bits below the last plane";
+      ASSERT_TRUE(std::isfinite(reconstruct(dec, i, 0.375, false)));
+    }
+    // Decoding is a pure function of the bytes.
+    const DecodedBlock again = decode_block(junk, planes, passes_for_planes(planes), size, orientation);
+    EXPECT_EQ(again.known, dec.known);
+    EXPECT_EQ(again.low_plane, dec.low_plane);
   }
 }
 

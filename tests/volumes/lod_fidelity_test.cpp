@@ -58,7 +58,10 @@ openvdb::FloatGrid::Ptr level_of(const fs::path& file, const std::string& name) 
 }
 
 void report(const std::string& dataset, const fs::path& in, const fs::path& dir, int top) {
-  const auto fine = openvdb::gridPtrCast<openvdb::FloatGrid>(read_grids(in)[0]);
+  const auto grids = read_grids(in);
+  ASSERT_FALSE(grids.empty()) << in;
+  const auto fine = openvdb::gridPtrCast<openvdb::FloatGrid>(grids[0]);
+  ASSERT_TRUE(fine) << in << ": the first grid is not a float grid";
   const auto minmax = openvdb::tools::minMax(fine->tree());
   const double range = double(minmax.max()) - double(minmax.min());
   openvdb::tools::MultiResGrid<openvdb::FloatTree> mrg(std::size_t(top + 1), *fine);
@@ -71,8 +74,10 @@ void report(const std::string& dataset, const fs::path& in, const fs::path& dir,
   }
   for (int k = 1; k <= top; ++k) {
     const std::string name = fine->getName() + "_level_" + std::to_string(k);
-    const Error e97 = error_to_box(*level_of(ours[0], name), *fine, k, range);
-    const Error e53 = error_to_box(*level_of(ours[1], name), *fine, k, range);
+    const auto g97 = level_of(ours[0], name), g53 = level_of(ours[1], name);
+    ASSERT_TRUE(g97 && g53) << dataset << ": no float grid " << name << " in the lod output";
+    const Error e97 = error_to_box(*g97, *fine, k, range);
+    const Error e53 = error_to_box(*g53, *fine, k, range);
     const Error ev = error_to_box(*mrg.grid(std::size_t(k)), *fine, k, range);
     std::printf("| %s | %d | %.2e / %.2e | %.2e / %.2e | %.2e / %.2e |\n", dataset.c_str(), k, e97.rms,
                 e97.max, e53.rms, e53.max, ev.rms, ev.max);
