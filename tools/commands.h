@@ -17,5 +17,6 @@ void add_lod_command(CLI::App& app);
 void add_convert_volume_command(CLI::App& app);
 void add_filters_command(CLI::App& app);
 void add_subdivide_command(CLI::App& app);
+void add_mesh_command(CLI::App& app);
 
 }  // namespace pupwave::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   pupwave::cli::add_convert_volume_command(app);
   pupwave::cli::add_filters_command(app);
   pupwave::cli::add_subdivide_command(app);
+  pupwave::cli::add_mesh_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,119 @@
+#include "codec/mesh/mesh_format.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "codec/error.h"
+#include "codec/format/byte_io.h"
+#include "codec/format/crc32.h"
+
+namespace pupwave::mesh {
+namespace {
+
+constexpr std::uint8_t kSignature[4] = {'P', 'W', 'M', 'S'};
+
+}  // namespace
+
+void put_f64(std::vector<std::uint8_t>& out, double v) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, 8);
+  for (int i = 0; i < 8; ++i) out.push_back(std::uint8_t(bits >> (8 * i)));
+}
+
+double get_f64(std::span<const std::uint8_t> bytes, std::size_t offset) {
+  require_stream(offset <= bytes.size() && bytes.size() - offset >= 8, "mesh stream: value truncated");
+  std::uint64_t bits = 0;
+  for (int i = 0; i < 8; ++i) bits |= std::uint64_t(bytes[offset + std::size_t(i)]) << (8 * i);
+  double v;
+  std::memcpy(&v, &bits, 8);
+  return v;
+}
+
+void append_chunk(std::vector<std::uint8_t>& out, const char tag[4], std::span<const std::uint8_t> payload) {
+  if (out.empty()) {
+    for (std::uint8_t b : kSignature) out.push_back(b);
+    out.push_back(kMeshStreamVersion);
+  }
+  if (payload.size() > 0xFFFFFFFFu) throw EncodeError("mesh chunk larger than 4 GiB");
+  const std::size_t start = out.size();
+  ByteWriter w(out);
+  for (int i = 0; i < 4; ++i) w.u8(std::uint8_t(tag[i]));
+  w.u32(std::uint32_t(payload.size()));
+  w.bytes(payload);
+  w.u32(crc32(std::span<const std::uint8_t>(out).subspan(start)));
+}
+
+std::vector<std::uint8_t> write_header(const MeshHeader& h) {
+  std::vector<std::uint8_t> out;
+  ByteWriter w(out);
+  w.u8(std::uint8_t(h.coding));
+  w.u8(std::uint32_t(h.kinds.size()));
+  for (sqrt3::StepKind k : h.kinds) w.u8(std::uint8_t(k));
+  w.u32(h.coarse_vertices);
+  w.u32(h.coarse_faces);
+  w.u32(h.fine_vertices);
+  put_f64(out, h.step);
+  put_f64(out, h.coarse_step);
+  put_f64(out, h.max_error);
+  return out;
+}
+
+MeshHeader parse_header(std::span<const std::uint8_t> payload) {
+  ByteReader r(payload, "mesh header");
+  MeshHeader h;
+  const std::uint32_t coding = r.u8();
+  require_stream(coding <= 1, "mesh header: unknown coding " + std::to_string(coding));
+  h.coding = MeshCoding(coding);
+  const std::uint32_t levels = r.u8();
+  require_stream(levels <= 16, "mesh header: " + std::to_string(levels) + " levels (at most 16)");
+  for (std::uint32_t j = 0; j < levels; ++j) {
+    const std::uint32_t k = r.u8();
+    require_stream(k <= 1, "mesh header: unknown step kind " + std::to_string(k));
+    h.kinds.push_back(sqrt3::StepKind(k));
+  }
+  h.coarse_vertices = r.u32();
+  h.coarse_faces = r.u32();
+  h.fine_vertices = r.u32();
+  require_stream(h.coarse_vertices >= 3 && h.coarse_vertices <= kMaxStreamVertices,
+                 "mesh header: coarsest vertex count out of range");
+  require_stream(h.coarse_faces >= 1 && h.coarse_faces <= kMaxStreamFaces,
+                 "mesh header: face count out of range");
+  require_stream(h.fine_vertices >= h.coarse_vertices && h.fine_vertices <= kMaxStreamVertices,
+                 "mesh header: finest vertex count out of range");
+  const std::size_t at = r.position();
+  r.bytes(24);
+  h.step = get_f64(payload, at);
+  h.coarse_step = get_f64(payload, at + 8);
+  h.max_error = get_f64(payload, at + 16);
+  require_stream(r.remaining() == 0, "mesh header: trailing bytes");
+  if (h.coding == MeshCoding::quantised) {
+    for (double s : {h.step, h.coarse_step}) {
+      require_stream(std::isfinite(s) && s > 1e-300 && s < 1e250, "mesh header: quantiser step out of range");
+    }
+  }
+  require_stream(std::isfinite(h.max_error) && h.max_error >= 0, "mesh header: bad error bound");
+  return h;
+}
+
+std::vector<Chunk> read_chunks(std::span<const std::uint8_t> bytes, std::size_t max_chunks) {
+  require_stream(bytes.size() >= 5 && std::memcmp(bytes.data(), kSignature, 4) == 0,
+                 "not a pupwave mesh stream (.pwm signature missing)");
+  require_stream(bytes[4] == kMeshStreamVersion, "unsupported .pwm version " + std::to_string(bytes[4]));
+  std::vector<Chunk> chunks;
+  std::size_t pos = 5;
+  while (pos < bytes.size() && chunks.size() < max_chunks) {
+    ByteReader r(bytes.subspan(pos), "mesh chunk");
+    const auto tag = r.bytes(4);
+    const std::uint32_t length = r.u32();
+    const auto payload = r.bytes(length);
+    const std::uint32_t stored = r.u32();
+    const std::size_t framed = 8 + std::size_t(length);
+    require_stream(crc32(bytes.subspan(pos, framed)) == stored,
+                   "mesh chunk '" + std::string(tag.begin(), tag.end()) + "': CRC mismatch (corrupt file)");
+    chunks.push_back({std::string(tag.begin(), tag.end()), payload});
+    pos += framed + 4;
+  }
+  return chunks;
+}
+
+}  // namespace pupwave::mesh
