@@ -72,9 +72,10 @@ TEST(Sqrt3Figures, Fig22PerturbedMeshIsExactAndItsCoarseMeshStaysClose) {
       worst = std::max(worst, (mr.coarsest.points[i] - base.points[i]).norm());
     }
     rms = std::sqrt(rms / double(base.points.size()));
-    std::printf("Fig. 22 %-14s |rec - f| / size = %.1e; perturbation rms %.3g max %.3g; coarse deviation rms %.3g "
-                "(%.2f x) max %.3g (%.2f x)\n",
-                name, exact / mesh_scale(fine.points), rms_in, max_in, rms, rms / rms_in, worst, worst / max_in);
+    std::printf(
+        "Fig. 22 %-14s |rec - f| / size = %.1e; perturbation rms %.3g max %.3g; coarse deviation rms %.3g "
+        "(%.2f x) max %.3g (%.2f x)\n",
+        name, exact / mesh_scale(fine.points), rms_in, max_in, rms, rms / rms_in, worst, worst / max_in);
     EXPECT_LT(exact, 1e-12 * mesh_scale(fine.points)) << name;
     // Stability as numbers. The reversal (5.4-5.6) amplifies independent noise by its row norm
     // sqrt(a^2 + n h^2) per level: 2.04 at valence 6, 3.16 at 4, 6.67 at 3, so two levels give
@@ -95,8 +96,11 @@ TriMesh sampled_torus(double R, double r, int levels) {
   TriMesh m = test::torus(R, r, nu, nv);
   std::vector<Eigen::Vector2d> uv;
   for (std::uint32_t i = 0; i < nu; ++i)
-    for (std::uint32_t j = 0; j < nv; ++j) uv.push_back({2 * std::numbers::pi * i / nu, 2 * std::numbers::pi * j / nv});
-  auto unwrap = [](double a, double ref) { return a + 2 * std::numbers::pi * std::round((ref - a) / (2 * std::numbers::pi)); };
+    for (std::uint32_t j = 0; j < nv; ++j)
+      uv.push_back({2 * std::numbers::pi * i / nu, 2 * std::numbers::pi * j / nv});
+  auto unwrap = [](double a, double ref) {
+    return a + 2 * std::numbers::pi * std::round((ref - a) / (2 * std::numbers::pi));
+  };
   for (int l = 0; l < levels; ++l) {
     const Topology t(m.points.size(), m.faces);
     const Refinement ref = refine(t, StepKind::plain);
@@ -138,8 +142,9 @@ TEST(Sqrt3Figures, Fig23TorusStaysOnTheTorusThroughFourDecompositions) {
       rms += d * d;
     }
     rms = std::sqrt(rms / double(c.points.size()));
-    std::printf("Fig. 23 level %d (%5zu vertices): distance to the torus / r: max %.4f rms %.4f (/ R: max %.4f)\n", j,
-                c.points.size(), worst, rms, worst * r / R);
+    std::printf(
+        "Fig. 23 level %d (%5zu vertices): distance to the torus / r: max %.4f rms %.4f (/ R: max %.4f)\n", j,
+        c.points.size(), worst, rms, worst * r / R);
     EXPECT_LT(worst, bound[j]) << "level " << j;
   }
 }
