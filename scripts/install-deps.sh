@@ -12,6 +12,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # anchors and helpers for the rate-distortion harness and volume comparisons
   libopenjp2-tools libjxl-tools zfp libopenvdb-tools gnuplot-nox
+  # sqrt(3) meshes: OpenMesh for the subdivision cross-check test, Draco and the CGAL sample
+  # meshes for bench/mesh_vs_draco.py
+  libopenmesh-dev draco libcgal-demo
 )
 
 missing=()
