@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "codec/error.h"
+#include "codec/format/chunks.h"
 #include "codec/mesh/mesh_codec.h"
 #include "codec/mesh/mesh_entropy.h"
 #include "codec/mesh/mesh_format.h"
@@ -21,9 +22,8 @@ using sqrt3::Face;
 using sqrt3::Vec3;
 
 MeshHeader read_header(std::span<const std::uint8_t> bytes) {
-  const std::vector<Chunk> first = read_chunks(bytes, 1);
-  require_stream(!first.empty() && first[0].tag == "MHED", "mesh stream: first chunk must be MHED");
-  return parse_header(first[0].payload);
+  ChunkReader r(bytes, kMeshMagic, kMeshStreamVersion, kMeshWhat);
+  return parse_header(r.expect("MHED").payload);
 }
 
 std::vector<Face> parse_connectivity(std::span<const std::uint8_t> payload, const MeshHeader& h) {
@@ -91,9 +91,7 @@ std::vector<std::int64_t> coded_values(std::span<const std::uint8_t> payload, st
 
 }  // namespace
 
-bool is_mesh_stream(std::span<const std::uint8_t> bytes) {
-  return bytes.size() >= 4 && std::memcmp(bytes.data(), "PWMS", 4) == 0;
-}
+bool is_mesh_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kMeshMagic); }
 
 int mesh_stream_levels(std::span<const std::uint8_t> bytes) { return int(read_header(bytes).kinds.size()); }
 
@@ -105,16 +103,14 @@ sqrt3::TriMesh decode_mesh(std::span<const std::uint8_t> bytes, int coarser) {
                                 std::to_string(L));
   }
   const std::size_t used = std::size_t(L - coarser);
-  const std::vector<Chunk> chunks = read_chunks(bytes, 3 + used);
-  require_stream(chunks.size() == 3 + used, "mesh stream truncated: missing chunks");
-  require_stream(chunks[1].tag == "CONN" && chunks[2].tag == "BASE",
-                 "mesh stream: expected CONN and BASE chunks");
-  for (std::size_t j = 0; j < used; ++j)
-    require_stream(chunks[3 + j].tag == "DETL", "mesh stream: expected DETL");
-  if (used == std::size_t(L)) {
-    require_stream(read_chunks(bytes, 4 + used).size() == 3 + used, "mesh stream: data after the last chunk");
-  }
-  const std::vector<Face> faces = parse_connectivity(chunks[1].payload, h);
+  ChunkReader reader(bytes, kMeshMagic, kMeshStreamVersion, kMeshWhat);
+  reader.expect("MHED");
+  const Chunk conn = reader.expect("CONN");
+  const Chunk base = reader.expect("BASE");
+  std::vector<Chunk> detail;
+  for (std::size_t j = 0; j < used; ++j) detail.push_back(reader.expect("DETL"));
+  if (used == std::size_t(L)) require_stream(reader.at_end(), "mesh stream: data after the last chunk");
+  const std::vector<Face> faces = parse_connectivity(conn.payload, h);
   std::vector<std::size_t> sizes;
   try {
     sizes = level_sizes(faces, h);
@@ -126,9 +122,9 @@ sqrt3::TriMesh decode_mesh(std::span<const std::uint8_t> bytes, int coarser) {
   const bool quantised = h.coding == MeshCoding::quantised;
   if (quantised) {
     QuantisedLevels q;
-    q.coarsest = coded_values(chunks[2].payload, sizes[0], true);
+    q.coarsest = coded_values(base.payload, sizes[0], true);
     for (std::size_t j = 0; j < used; ++j)
-      q.levels.push_back(coded_values(chunks[3 + j].payload, sizes[j + 1] - sizes[j], false));
+      q.levels.push_back(coded_values(detail[j].payload, sizes[j + 1] - sizes[j], false));
     const std::vector<sqrt3::StepKind> kinds(h.kinds.begin(), h.kinds.begin() + std::ptrdiff_t(used));
     const sqrt3::Multiresolution mr = dequantise(q, faces, kinds, h.step, h.coarse_step);
     try {
@@ -137,9 +133,9 @@ sqrt3::TriMesh decode_mesh(std::span<const std::uint8_t> bytes, int coarser) {
       throw DecodeError(std::string("mesh stream: ") + e.what());
     }
   }
-  m.points = float_points(chunks[2].payload, sizes[0]);
+  m.points = float_points(base.payload, sizes[0]);
   for (std::size_t j = 0; j < used; ++j) {
-    sqrt3::Sqrt3Level level{h.kinds[j], float_points(chunks[3 + j].payload, sizes[j + 1] - sizes[j])};
+    sqrt3::Sqrt3Level level{h.kinds[j], float_points(detail[j].payload, sizes[j + 1] - sizes[j])};
     try {
       m = sqrt3::reconstruct_level(m, level);
     } catch (const std::invalid_argument& e) {
@@ -151,7 +147,9 @@ sqrt3::TriMesh decode_mesh(std::span<const std::uint8_t> bytes, int coarser) {
 
 std::string describe_mesh_stream(std::span<const std::uint8_t> bytes) {
   const MeshHeader h = read_header(bytes);
-  const std::vector<Chunk> chunks = read_chunks(bytes, 3 + h.kinds.size());
+  ChunkReader reader(bytes, kMeshMagic, kMeshStreamVersion, kMeshWhat);
+  std::vector<Chunk> chunks;
+  while (!reader.at_end()) chunks.push_back(reader.next());
   std::ostringstream out;
   out << "pupwave mesh multiresolution (.pwm version " << int(kMeshStreamVersion) << ")\n"
       << "  levels: " << h.kinds.size() << " (coarsest first:";
@@ -164,7 +162,7 @@ std::string describe_mesh_stream(std::span<const std::uint8_t> bytes) {
   } else {
     out << "  coding: float64 details (exact to rounding)\n";
   }
-  for (const Chunk& c : chunks) out << "  chunk " << c.tag << ": " << c.payload.size() << " bytes\n";
+  for (const Chunk& c : chunks) out << "  chunk " << c.name() << ": " << c.payload.size() << " bytes\n";
   return out.str();
 }
 

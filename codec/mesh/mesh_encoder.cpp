@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "codec/error.h"
+#include "codec/format/chunks.h"
 #include "codec/mesh/mesh_codec.h"
 #include "codec/mesh/mesh_entropy.h"
 #include "codec/mesh/mesh_format.h"
@@ -138,10 +139,11 @@ MeshEncodeResult encode_mesh(const sqrt3::TriMesh& fine, const MeshEncodeOptions
     data.push_back(encode_triples(delta_encode(t.q.coarsest)));
     for (const auto& l : t.q.levels) data.push_back(encode_triples(l));
   }
-  append_chunk(res.bytes, "MHED", write_header(h));
-  append_chunk(res.bytes, "CONN", connectivity_payload(mr.coarsest.faces));
-  append_chunk(res.bytes, "BASE", data[0]);
-  for (std::size_t j = 1; j < data.size(); ++j) append_chunk(res.bytes, "DETL", data[j]);
+  write_signature(res.bytes, kMeshMagic, kMeshStreamVersion);
+  write_chunk(res.bytes, "MHED", write_header(h));
+  write_chunk(res.bytes, "CONN", connectivity_payload(mr.coarsest.faces));
+  write_chunk(res.bytes, "BASE", data[0]);
+  for (std::size_t j = 1; j < data.size(); ++j) write_chunk(res.bytes, "DETL", data[j]);
   return res;
 }
 

@@ -5,15 +5,8 @@
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
-#include "codec/format/crc32.h"
 
 namespace pupwave::mesh {
-namespace {
-
-constexpr std::uint8_t kSignature[4] = {'P', 'W', 'M', 'S'};
-
-}  // namespace
-
 void put_f64(std::vector<std::uint8_t>& out, double v) {
   std::uint64_t bits;
   std::memcpy(&bits, &v, 8);
@@ -27,20 +20,6 @@ double get_f64(std::span<const std::uint8_t> bytes, std::size_t offset) {
   double v;
   std::memcpy(&v, &bits, 8);
   return v;
-}
-
-void append_chunk(std::vector<std::uint8_t>& out, const char tag[4], std::span<const std::uint8_t> payload) {
-  if (out.empty()) {
-    for (std::uint8_t b : kSignature) out.push_back(b);
-    out.push_back(kMeshStreamVersion);
-  }
-  if (payload.size() > 0xFFFFFFFFu) throw EncodeError("mesh chunk larger than 4 GiB");
-  const std::size_t start = out.size();
-  ByteWriter w(out);
-  for (int i = 0; i < 4; ++i) w.u8(std::uint8_t(tag[i]));
-  w.u32(std::uint32_t(payload.size()));
-  w.bytes(payload);
-  w.u32(crc32(std::span<const std::uint8_t>(out).subspan(start)));
 }
 
 std::vector<std::uint8_t> write_header(const MeshHeader& h) {
@@ -62,13 +41,14 @@ MeshHeader parse_header(std::span<const std::uint8_t> payload) {
   ByteReader r(payload, "mesh header");
   MeshHeader h;
   const std::uint32_t coding = r.u8();
-  require_stream(coding <= 1, "mesh header: unknown coding " + std::to_string(coding));
+  require_stream(coding <= 1, [&] { return "mesh header: unknown coding " + std::to_string(coding); });
   h.coding = MeshCoding(coding);
   const std::uint32_t levels = r.u8();
-  require_stream(levels <= 16, "mesh header: " + std::to_string(levels) + " levels (at most 16)");
+  require_stream(levels <= 16,
+                 [&] { return "mesh header: " + std::to_string(levels) + " levels (at most 16)"; });
   for (std::uint32_t j = 0; j < levels; ++j) {
     const std::uint32_t k = r.u8();
-    require_stream(k <= 1, "mesh header: unknown step kind " + std::to_string(k));
+    require_stream(k <= 1, [&] { return "mesh header: unknown step kind " + std::to_string(k); });
     h.kinds.push_back(sqrt3::StepKind(k));
   }
   h.coarse_vertices = r.u32();
@@ -93,27 +73,6 @@ MeshHeader parse_header(std::span<const std::uint8_t> payload) {
   }
   require_stream(std::isfinite(h.max_error) && h.max_error >= 0, "mesh header: bad error bound");
   return h;
-}
-
-std::vector<Chunk> read_chunks(std::span<const std::uint8_t> bytes, std::size_t max_chunks) {
-  require_stream(bytes.size() >= 5 && std::memcmp(bytes.data(), kSignature, 4) == 0,
-                 "not a pupwave mesh stream (.pwm signature missing)");
-  require_stream(bytes[4] == kMeshStreamVersion, "unsupported .pwm version " + std::to_string(bytes[4]));
-  std::vector<Chunk> chunks;
-  std::size_t pos = 5;
-  while (pos < bytes.size() && chunks.size() < max_chunks) {
-    ByteReader r(bytes.subspan(pos), "mesh chunk");
-    const auto tag = r.bytes(4);
-    const std::uint32_t length = r.u32();
-    const auto payload = r.bytes(length);
-    const std::uint32_t stored = r.u32();
-    const std::size_t framed = 8 + std::size_t(length);
-    require_stream(crc32(bytes.subspan(pos, framed)) == stored,
-                   "mesh chunk '" + std::string(tag.begin(), tag.end()) + "': CRC mismatch (corrupt file)");
-    chunks.push_back({std::string(tag.begin(), tag.end()), payload});
-    pos += framed + 4;
-  }
-  return chunks;
 }
 
 }  // namespace pupwave::mesh

@@ -27,17 +27,12 @@ struct MeshHeader {
   double max_error = 0;    // bound the encoder guaranteed (quantised)
 };
 
-struct Chunk {
-  std::string tag;
-  std::span<const std::uint8_t> payload;
-};
+// Signature of the stream; chunks are framed by codec/format/chunks.h.
+inline constexpr char kMeshMagic[5] = "PWMS";
+inline constexpr const char* kMeshWhat = "mesh stream";
 
-void append_chunk(std::vector<std::uint8_t>& out, const char tag[4], std::span<const std::uint8_t> payload);
 std::vector<std::uint8_t> write_header(const MeshHeader& h);
 MeshHeader parse_header(std::span<const std::uint8_t> payload);
-
-// Reads chunks in order after the signature; stops after `max_chunks` (not reading the rest).
-std::vector<Chunk> read_chunks(std::span<const std::uint8_t> bytes, std::size_t max_chunks);
 
 void put_f64(std::vector<std::uint8_t>& out, double v);
 double get_f64(std::span<const std::uint8_t> bytes, std::size_t offset);
