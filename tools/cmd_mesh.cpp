@@ -53,7 +53,18 @@ void run_subdivide(const MeshOptions& o) {
   check_output_path(o.output);
   mesh_format(o.output);
   const sqrt3::TriMesh in = read_checked(o.input);
-  if (in.points.size() * std::size_t(1) > (std::size_t(1) << 23)) throw std::runtime_error("mesh too large");
+  // Each step triples the faces: refuse before allocating a mesh larger than a .pwm file can
+  // hold (2^23 vertices, about 2^24 faces).
+  constexpr std::size_t kMaxSubdividedFaces = std::size_t(1) << 24;
+  std::size_t faces = in.faces.size();
+  for (int j = 0; j < o.levels; ++j) {
+    faces *= 3;
+    if (faces > kMaxSubdividedFaces) {
+      throw std::runtime_error(o.input + ": " + std::to_string(o.levels) +
+                               " sqrt(3) steps would give more than " + std::to_string(kMaxSubdividedFaces) +
+                               " faces");
+    }
+  }
   const sqrt3::TriMesh out = sqrt3::subdivide(in, o.levels);
   write_mesh(out, o.output);
   std::cout << o.input << " (" << sizes(in) << ") -> " << o.output << " (" << sizes(out) << "), " << o.levels

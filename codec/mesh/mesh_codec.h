@@ -21,7 +21,7 @@ struct MeshEncodeOptions {
 
 struct MeshEncodeResult {
   std::vector<std::uint8_t> bytes;
-  double step = 0;                         // quantiser step (0 for float64 details)
+  double step = 0;                         // step of the finest details (0 for float64)
   double measured_error = 0;               // max Euclidean vertex error of the decoded finest mesh
   sqrt3::Multiresolution multiresolution;  // what was coded (before quantisation)
 };

@@ -126,7 +126,9 @@ sqrt3::TriMesh decode_mesh(std::span<const std::uint8_t> bytes, int coarser) {
     for (std::size_t j = 0; j < used; ++j)
       q.levels.push_back(coded_values(detail[j].payload, sizes[j + 1] - sizes[j], false));
     const std::vector<sqrt3::StepKind> kinds(h.kinds.begin(), h.kinds.begin() + std::ptrdiff_t(used));
-    const sqrt3::Multiresolution mr = dequantise(q, faces, kinds, h.step, h.coarse_step);
+    const sqrt3::Multiresolution mr = dequantise(
+        q, faces, kinds, std::vector<double>(h.steps.begin(), h.steps.begin() + std::ptrdiff_t(used)),
+        h.coarse_step);
     try {
       return sqrt3::reconstruct(mr, 0);
     } catch (const std::invalid_argument& e) {
@@ -157,8 +159,10 @@ std::string describe_mesh_stream(std::span<const std::uint8_t> bytes) {
   out << ")\n  coarsest mesh: " << h.coarse_vertices << " vertices, " << h.coarse_faces << " faces\n"
       << "  finest mesh: " << h.fine_vertices << " vertices\n";
   if (h.coding == MeshCoding::quantised) {
-    out << "  coding: quantised + range coded, step " << h.step << " (coarsest " << h.coarse_step
-        << "), max vertex error <= " << h.max_error << "\n";
+    out << "  coding: quantised + range coded, max vertex error <= " << h.max_error
+        << "\n  steps: coarsest points " << h.coarse_step << ", details (coarsest level first)";
+    for (double st : h.steps) out << ' ' << st;
+    out << "\n";
   } else {
     out << "  coding: float64 details (exact to rounding)\n";
   }

@@ -19,8 +19,25 @@ namespace {
 using sqrt3::Multiresolution;
 using sqrt3::Vec3;
 
-// Ratio of the coarsest points' step to the details' step: coarse points reach every level.
-constexpr double kCoarseStepRatio = 0.5;
+// Each coarser level's step is the finer one's over this ratio, and the coarsest points' step
+// the coarsest details' over it again: a coarse value reaches every finer level, and 3x fewer
+// of them cost less to code finely. Measured against one step for all (bench/mesh_vs_draco.py
+// meshes): up to 14 % smaller files with noise, within 1 % on smooth meshes.
+constexpr double kLevelStepRatio = 2.0;
+
+struct Steps {
+  std::vector<double> details;  // per level, coarsest first
+  double coarse = 0;
+};
+
+// The steps for finest-level step s.
+Steps level_steps(std::size_t levels, double s) {
+  Steps st;
+  st.details.assign(levels, s);
+  for (std::size_t j = levels; j-- > 1;) st.details[j - 1] = st.details[j] / kLevelStepRatio;
+  st.coarse = (levels ? st.details[0] : s) / kLevelStepRatio;
+  return st;
+}
 
 std::vector<std::uint8_t> connectivity_payload(const std::vector<sqrt3::Face>& faces) {
   std::vector<std::uint8_t> raw;
@@ -59,8 +76,9 @@ Trial try_step(const Multiresolution& mr, const std::vector<sqrt3::StepKind>& ki
                const std::vector<Vec3>& target, double step) {
   Trial t;
   t.step = step;
-  t.q = quantise(mr, step, step * kCoarseStepRatio);
-  const Multiresolution dq = dequantise(t.q, mr.coarsest.faces, kinds, step, step * kCoarseStepRatio);
+  const Steps st = level_steps(kinds.size(), step);
+  t.q = quantise(mr, st.details, st.coarse);
+  const Multiresolution dq = dequantise(t.q, mr.coarsest.faces, kinds, st.details, st.coarse);
   t.error = max_vertex_error(sqrt3::reconstruct(dq, 0).points, target);
   return t;
 }
@@ -133,8 +151,10 @@ MeshEncodeResult encode_mesh(const sqrt3::TriMesh& fine, const MeshEncodeOptions
     } catch (const std::invalid_argument& e) {
       throw EncodeError(e.what());
     }
-    h.step = res.step = t.step;
-    h.coarse_step = t.step * kCoarseStepRatio;
+    res.step = t.step;
+    const Steps st = level_steps(h.kinds.size(), t.step);
+    h.steps = st.details;
+    h.coarse_step = st.coarse;
     res.measured_error = t.error;
     data.push_back(encode_triples(delta_encode(t.q.coarsest)));
     for (const auto& l : t.q.levels) data.push_back(encode_triples(l));

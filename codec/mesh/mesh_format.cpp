@@ -31,9 +31,10 @@ std::vector<std::uint8_t> write_header(const MeshHeader& h) {
   w.u32(h.coarse_vertices);
   w.u32(h.coarse_faces);
   w.u32(h.fine_vertices);
-  put_f64(out, h.step);
-  put_f64(out, h.coarse_step);
   put_f64(out, h.max_error);
+  put_f64(out, h.coarse_step);
+  for (std::size_t j = 0; j < h.kinds.size(); ++j)
+    put_f64(out, h.coding == MeshCoding::quantised ? h.steps[j] : 0.0);
   return out;
 }
 
@@ -61,15 +62,17 @@ MeshHeader parse_header(std::span<const std::uint8_t> payload) {
   require_stream(h.fine_vertices >= h.coarse_vertices && h.fine_vertices <= kMaxStreamVertices,
                  "mesh header: finest vertex count out of range");
   const std::size_t at = r.position();
-  r.bytes(24);
-  h.step = get_f64(payload, at);
+  r.bytes(16 + 8 * h.kinds.size());
+  h.max_error = get_f64(payload, at);
   h.coarse_step = get_f64(payload, at + 8);
-  h.max_error = get_f64(payload, at + 16);
+  for (std::size_t j = 0; j < h.kinds.size(); ++j) h.steps.push_back(get_f64(payload, at + 16 + 8 * j));
   require_stream(r.remaining() == 0, "mesh header: trailing bytes");
   if (h.coding == MeshCoding::quantised) {
-    for (double s : {h.step, h.coarse_step}) {
+    h.steps.push_back(h.coarse_step);
+    for (double s : h.steps) {
       require_stream(std::isfinite(s) && s > 1e-300 && s < 1e250, "mesh header: quantiser step out of range");
     }
+    h.steps.pop_back();
   }
   require_stream(std::isfinite(h.max_error) && h.max_error >= 0, "mesh header: bad error bound");
   return h;

@@ -22,9 +22,9 @@ struct MeshHeader {
   std::uint32_t coarse_vertices = 0;
   std::uint32_t coarse_faces = 0;
   std::uint32_t fine_vertices = 0;
-  double step = 0;         // details (quantised)
-  double coarse_step = 0;  // coarsest points (quantised)
-  double max_error = 0;    // bound the encoder guaranteed (quantised)
+  std::vector<double> steps;  // details of each level, coarsest first (quantised)
+  double coarse_step = 0;     // coarsest points (quantised)
+  double max_error = 0;       // bound the encoder guaranteed (quantised)
 };
 
 // Signature of the stream; chunks are framed by codec/format/chunks.h.

@@ -32,16 +32,18 @@ std::vector<sqrt3::Vec3> points_of(const std::vector<std::int64_t>& q, double st
 
 }  // namespace
 
-QuantisedLevels quantise(const sqrt3::Multiresolution& mr, double step, double coarse_step) {
+QuantisedLevels quantise(const sqrt3::Multiresolution& mr, const std::vector<double>& steps,
+                         double coarse_step) {
   QuantisedLevels q;
   quantise_points(mr.coarsest.points, coarse_step, q.coarsest);
   q.levels.resize(mr.levels.size());
-  for (std::size_t j = 0; j < mr.levels.size(); ++j) quantise_points(mr.levels[j].details, step, q.levels[j]);
+  for (std::size_t j = 0; j < mr.levels.size(); ++j)
+    quantise_points(mr.levels[j].details, steps[j], q.levels[j]);
   return q;
 }
 
 sqrt3::Multiresolution dequantise(const QuantisedLevels& q, const std::vector<sqrt3::Face>& faces,
-                                  const std::vector<sqrt3::StepKind>& kinds, double step,
+                                  const std::vector<sqrt3::StepKind>& kinds, const std::vector<double>& steps,
                                   double coarse_step) {
   sqrt3::Multiresolution mr;
   mr.coarsest.points = points_of(q.coarsest, coarse_step);
@@ -49,7 +51,7 @@ sqrt3::Multiresolution dequantise(const QuantisedLevels& q, const std::vector<sq
   mr.levels.resize(q.levels.size());
   for (std::size_t j = 0; j < q.levels.size(); ++j) {
     mr.levels[j].kind = kinds[j];
-    mr.levels[j].details = points_of(q.levels[j], step);
+    mr.levels[j].details = points_of(q.levels[j], steps[j]);
   }
   return mr;
 }

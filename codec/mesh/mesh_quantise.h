@@ -12,15 +12,18 @@ namespace pupwave::mesh {
 
 struct QuantisedLevels {
   std::vector<std::int64_t> coarsest;             // 3 per point, round(c / coarse_step)
-  std::vector<std::vector<std::int64_t>> levels;  // 3 per detail, round(d / step)
+  std::vector<std::vector<std::int64_t>> levels;  // 3 per detail, round(d / steps[level])
 };
 
 // Throws std::invalid_argument if a value does not fit kMaxQuantised.
-QuantisedLevels quantise(const sqrt3::Multiresolution& mr, double step, double coarse_step);
+QuantisedLevels quantise(const sqrt3::Multiresolution& mr, const std::vector<double>& steps,
+                         double coarse_step);
 
-// Multiresolution with points q * coarse_step and details q * step, faces and kinds as given.
+// Multiresolution with points q * coarse_step and details q * steps[level], faces and kinds
+// as given.
 sqrt3::Multiresolution dequantise(const QuantisedLevels& q, const std::vector<sqrt3::Face>& coarsest_faces,
-                                  const std::vector<sqrt3::StepKind>& kinds, double step, double coarse_step);
+                                  const std::vector<sqrt3::StepKind>& kinds, const std::vector<double>& steps,
+                                  double coarse_step);
 
 // Coarsest points are coded as differences to the previous point (per axis).
 std::vector<std::int64_t> delta_encode(const std::vector<std::int64_t>& v);

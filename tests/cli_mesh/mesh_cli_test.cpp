@@ -124,6 +124,7 @@ TEST_F(MeshCli, BadMeshesAreRejectedClearly) {
       {{"mesh", "subdivide", path("missing.off"), path("o.obj")}, "cannot read"},
       {{"mesh", "subdivide", data("u.off"), path("o.stl")}, "unknown mesh format"},
       {{"mesh", "reconstruct", data("u.off"), path("o.obj")}, "not a .pwm"},
+      {{"mesh", "subdivide", data("u.off"), path("o.obj"), "--levels", "16"}, "would give more than"},
   };
   for (const auto& c : cases) {
     const auto r = run_cli(c.args);
