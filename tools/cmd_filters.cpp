@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tools/commands.h"
+#include "tools/filter_bank_json.h"
 #include "transforms/pups/design.h"
 #include "transforms/pups/pups_transform.h"
 #include "transforms/pups/refinement.h"
@@ -61,7 +62,7 @@ void print_bank(std::ostream& os, const FilterBank& b) {
 
 void emit(const FilterBank& bank, bool json) {
   if (json)
-    std::cout << pups::to_json(bank).dump(2) << '\n';
+    std::cout << to_json(bank).dump(2) << '\n';
   else
     print_bank(std::cout, bank);
 }

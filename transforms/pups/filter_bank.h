@@ -1,14 +1,12 @@
 #pragma once
 // A PUPs multiresolution filter bank as plain data: the four banded filters P, Q, A, B of
 // Moltaji-Runions-Samavati (Eq. 23-29) with their offsets, the design parameters that made
-// them and the errors of the design. Serializable to JSON and to compact bytes for file
-// headers; both forms rebuild the bank bit-exactly.
+// them and the errors of the design. Serializable to compact bytes for file headers (the JSON
+// form is the CLI's, tools/filter_bank_json.h); both rebuild the bank bit-exactly.
 
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace pupwave::pups {
 
@@ -60,11 +58,6 @@ struct FilterBank {
 std::string to_string(WeightKind kind);
 // Inverse of to_string; throws std::invalid_argument for an unknown name.
 WeightKind weight_kind_from_string(const std::string& name);
-
-// JSON form; doubles are written so that they parse back to the identical value.
-nlohmann::json to_json(const FilterBank& bank);
-// Rebuilds a bank from to_json output; throws std::invalid_argument on missing or bad fields.
-FilterBank filter_bank_from_json(const nlohmann::json& j);
 
 // Compact little-endian binary form for file headers (layout in docs/pups.md).
 std::vector<std::uint8_t> to_bytes(const FilterBank& bank);
