@@ -38,11 +38,22 @@ struct BenchOptions {
   std::string cli;  // pupwave binary driving our codec; default: this very program
 };
 
+// Splits at commas outside parentheses, so custom specs such as
+// "pups:cinpact-interp(c=9,sigma=5,l=16)" stay whole.
 std::vector<std::string> split_list(const std::string& text) {
   std::vector<std::string> items;
-  std::istringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) items.push_back(item);
+  std::string item;
+  int depth = 0;
+  for (const char ch : text) {
+    depth += ch == '(' ? 1 : ch == ')' ? -1 : 0;
+    if (ch == ',' && depth <= 0) {
+      if (!item.empty()) items.push_back(item);
+      item.clear();
+    } else {
+      item += ch;
+    }
+  }
+  if (!item.empty()) items.push_back(item);
   return items;
 }
 
