@@ -54,6 +54,18 @@ std::vector<Preset> make_presets() {
   };
 }
 
+// Drops exactly-zero end coefficients: an interpolating weight whose support ends on an even
+// index (c in (2k-1, 2k]) has hard zeros there, which would make B's end taps zero and the
+// hard system of Eq. 41 singular. Presets have none, so their banks are unchanged.
+Refinement trimmed(Refinement r) {
+  while (r.coeffs.size() > 2 && r.coeffs.back() == 0.0) r.coeffs.pop_back();
+  while (r.coeffs.size() > 2 && r.coeffs.front() == 0.0) {
+    r.coeffs.erase(r.coeffs.begin());
+    ++r.first;
+  }
+  return r;
+}
+
 // Shortest decimal text that parses back to exactly x.
 std::string number(double x) {
   char buf[64];
@@ -146,7 +158,7 @@ void parse_weight_keys(std::map<std::string, std::string, std::less<>>& kv, Desi
 
 FilterBank design(const DesignParams& params, const ExtensionRule& rule) {
   const PlacedWeight weight = make_weight(params);
-  const Refinement r = refine(weight, params.samples);
+  const Refinement r = trimmed(refine(weight, params.samples));
   FilterBank bank = design_bank(r.coeffs, r.first, rule);
   const int l = bank.design.extension;
   bank.design = params;
@@ -179,6 +191,7 @@ DesignSpec parse_design_spec(std::string_view body) {
     for (const auto& p : presets())
       if (p.name == body) {
         spec.preset = p.name;
+        spec.boundary = p.boundary;
         return spec;
       }
     design_preset(body);  // throws the "unknown preset" message listing the known names
@@ -190,6 +203,11 @@ DesignSpec parse_design_spec(std::string_view body) {
   auto kv = parse_pairs(body.substr(open + 1, body.size() - open - 2));
   parse_weight_keys(kv, spec.params, weight);
   if (auto s = take(kv, "samples", false, weight)) spec.params.samples = parse_int("samples", *s);
+  if (auto b = take(kv, "boundary", false, weight)) {
+    if (*b != "hss" && *b != "wss")
+      throw std::invalid_argument("pups spec: boundary must be hss or wss, got '" + *b + "'");
+    spec.boundary = *b == "wss" ? BoundaryRule::line_wss : BoundaryRule::wire_hss;
+  }
   const auto l = take(kv, "l", false, weight), t = take(kv, "t", false, weight);
   if (l && t) throw std::invalid_argument("pups spec: give l= or t=, not both");
   if (t)
@@ -206,7 +224,7 @@ FilterBank design(const DesignSpec& spec) {
   return design(spec.params, spec.rule);
 }
 
-std::string canonical_spec_body(const FilterBank& bank) {
+std::string canonical_spec_body(const FilterBank& bank, BoundaryRule boundary) {
   for (const auto& p : presets())
     if (p.name == bank.name) return p.name;
   const DesignParams& d = bank.design;
@@ -224,6 +242,7 @@ std::string canonical_spec_body(const FilterBank& bank) {
   }
   if (d.samples != DesignParams{}.samples) args += ",samples=" + std::to_string(d.samples);
   args += ",l=" + std::to_string(d.extension);
+  if (boundary == BoundaryRule::line_wss) args += ",boundary=wss";
   return to_string(d.weight) + "(" + args + ")";
 }
 

@@ -3,6 +3,7 @@
 // the named presets used by the seeds, and the text form of a design used in transform
 // specs ("pups:<body>").
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,11 +18,21 @@ namespace pupwave::pups {
 // result. Throws std::invalid_argument for bad parameters.
 FilterBank design(const DesignParams& params, const ExtensionRule& rule);
 
+// How the transform reads a line beyond its ends (docs/pups.md, Boundary rules). Either
+// rule reconstructs perfectly; it is part of the transform spec, so it never changes for a
+// given spec string (old files decode the same).
+enum class BoundaryRule : std::uint8_t {
+  wire_hss,  // half-sample symmetric extension of each wire (the default; spec key absent)
+  line_wss,  // whole-sample symmetric extension of the line, JPEG 2000's rule ("boundary=wss"):
+             // exact symmetric extension for symmetric (odd-length) banks
+};
+
 // A named design.
 struct Preset {
   std::string name;
   std::string description;
   DesignParams params;  // params.extension = the fixed l of the preset
+  BoundaryRule boundary = BoundaryRule::wire_hss;
 };
 
 // All presets, in a stable order.
@@ -35,6 +46,7 @@ struct DesignSpec {
   std::string preset;  // non-empty for a preset
   DesignParams params;
   ExtensionRule rule;
+  BoundaryRule boundary = BoundaryRule::wire_hss;  // the preset's for a preset
 };
 
 // Parses the text after "pups:": a preset name, or `<weight>(key=value,...)` with keys
@@ -42,7 +54,8 @@ struct DesignSpec {
 //   polynomial:      coeffs=a0:a1:...:ak, domain=lo:hi
 //   cinpact, cinpact-interp: c, sigma
 // and for all: l=<even extension> or t=<orthogonality-error threshold> (default l=0),
-// samples=<n> (default 100000). Example: "cinpact-interp(c=5,sigma=4.79,l=32)".
+// samples=<n> (default 100000), boundary=hss|wss (default hss, see BoundaryRule).
+// Example: "cinpact-interp(c=5,sigma=4.79,l=32)".
 // Throws std::invalid_argument with a clear message for anything else.
 DesignSpec parse_design_spec(std::string_view body);
 
@@ -51,7 +64,8 @@ FilterBank design(const DesignSpec& spec);
 
 // Canonical spec body of a designed bank: the preset name if bank.name is a preset, else
 // `<weight>(...,l=<l used>)` with numbers in shortest round-trip form, so that
-// parse_design_spec + design rebuild the same bank. Throws for WeightKind::given.
-std::string canonical_spec_body(const FilterBank& bank);
+// parse_design_spec + design rebuild the same bank; ",boundary=wss" is added for line_wss
+// (never for a preset, whose name fixes its rule). Throws for WeightKind::given.
+std::string canonical_spec_body(const FilterBank& bank, BoundaryRule boundary = BoundaryRule::wire_hss);
 
 }  // namespace pupwave::pups

@@ -21,10 +21,20 @@ namespace {
 // sample where an odd one belongs), which no lifting step can read; see docs/pups.md.
 constexpr lifting::Boundary kWireHss{lifting::Extension::half_sample, lifting::Extension::half_sample};
 
+// The rules each wire is read with on a line of n samples.
+lifting::WireBoundaries wire_rules(BoundaryRule rule, std::size_t n) {
+  if (rule == BoundaryRule::line_wss) return lifting::whole_sample_symmetric_wires(n);
+  return {kWireHss, kWireHss};
+}
+
+// Bounded (as the synthesis-norms cache is) so that a stream of distinct specs, e.g. hostile
+// file headers or a design search, cannot grow memory without limit.
+constexpr std::size_t kMaxCachedSpecs = 256;
+
 }  // namespace
 
-PupsTransform::PupsTransform(const FilterBank& bank, std::string spec)
-    : bank_(bank), lifting_(factor_bank(bank, true)), spec_(std::move(spec)) {
+PupsTransform::PupsTransform(const FilterBank& bank, std::string spec, BoundaryRule boundary)
+    : bank_(bank), lifting_(factor_bank(bank, true)), spec_(std::move(spec)), boundary_(boundary) {
   for (const auto& s : lifting_.steps)
     steps_.push_back({s.kind == LiftingStep::Kind::predict, s.filter.c, s.filter.lo});
 }
@@ -35,12 +45,13 @@ void PupsTransform::analyze_impl(std::span<T> line) const {
   if (n <= 1) return;  // one coarse sample, no detail: the identity (interface contract)
   lifting::split(line, thread_scratch<T>(n / 2));
   const std::span<T> even = line.first((n + 1) / 2), odd = line.subspan((n + 1) / 2);
+  const lifting::WireBoundaries rules = wire_rules(boundary_, n);
   for (const Step& s : steps_) {
     const lifting::Taps taps{s.taps, s.offset};
     if (s.predict)
-      lifting::predict<T>(even, kWireHss, odd, taps);
+      lifting::predict<T>(even, rules.even, odd, taps);
     else
-      lifting::update<T>(odd, kWireHss, even, taps);
+      lifting::update<T>(odd, rules.odd, even, taps);
   }
   lifting::scale(even, lifting_.even_scale);
   lifting::scale(odd, lifting_.odd_scale);
@@ -53,12 +64,13 @@ void PupsTransform::synthesize_impl(std::span<T> line) const {
   const std::span<T> even = line.first((n + 1) / 2), odd = line.subspan((n + 1) / 2);
   lifting::undo_scale(even, lifting_.even_scale);
   lifting::undo_scale(odd, lifting_.odd_scale);
+  const lifting::WireBoundaries rules = wire_rules(boundary_, n);
   for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
     const lifting::Taps taps{it->taps, it->offset};
     if (it->predict)
-      lifting::undo_predict<T>(even, kWireHss, odd, taps);
+      lifting::undo_predict<T>(even, rules.even, odd, taps);
     else
-      lifting::undo_update<T>(odd, kWireHss, even, taps);
+      lifting::undo_update<T>(odd, rules.odd, even, taps);
   }
   lifting::merge(line, thread_scratch<T>(n / 2));
 }
@@ -70,23 +82,45 @@ void PupsTransform::synthesize(std::span<float> line) const { synthesize_impl(li
 
 }  // namespace pups
 
-Transform1DPtr make_pups_transform(const pups::FilterBank& bank, std::string spec) {
-  return std::make_shared<const pups::PupsTransform>(bank, std::move(spec));
+Transform1DPtr make_pups_transform(const pups::FilterBank& bank, std::string spec, pups::BoundaryRule boundary) {
+  return std::make_shared<const pups::PupsTransform>(bank, std::move(spec), boundary);
+}
+
+namespace {
+
+// Designing takes milliseconds (100000-sample least squares); cache by spec body.
+struct SpecCache {
+  std::mutex mutex;
+  std::map<std::string, Transform1DPtr, std::less<>> map;
+};
+
+SpecCache& spec_cache() {
+  static SpecCache cache;
+  return cache;
+}
+
+}  // namespace
+
+std::size_t pups_transform_cache_size() {
+  SpecCache& c = spec_cache();
+  const std::lock_guard lock(c.mutex);
+  return c.map.size();
 }
 
 Transform1DPtr make_pups_transform_from_spec(std::string_view body) {
   const pups::DesignSpec parsed = pups::parse_design_spec(body);
-  // Designing takes milliseconds (100000-sample least squares); cache by canonical body.
-  static std::mutex mutex;
-  static std::map<std::string, Transform1DPtr, std::less<>> cache;
+  SpecCache& c = spec_cache();
+  std::mutex& mutex = c.mutex;
+  auto& cache = c.map;
   {
     const std::lock_guard lock(mutex);
     if (auto it = cache.find(body); it != cache.end()) return it->second;
   }
   const pups::FilterBank bank = pups::design(parsed);
-  const std::string canonical = pups::canonical_spec_body(bank);
-  Transform1DPtr t = make_pups_transform(bank, "pups:" + canonical);
+  const std::string canonical = pups::canonical_spec_body(bank, parsed.boundary);
+  Transform1DPtr t = make_pups_transform(bank, "pups:" + canonical, parsed.boundary);
   const std::lock_guard lock(mutex);
+  if (cache.size() + 2 > pups::kMaxCachedSpecs) cache.clear();
   cache.emplace(std::string(body), t);
   cache.emplace(canonical, t);
   return t;

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "transforms/pups/design.h"
 #include "transforms/pups/filter_bank.h"
 #include "transforms/pups/lifting_factorization.h"
 #include "transforms/transform1d.h"
@@ -19,8 +20,8 @@ namespace pups {
 class PupsTransform final : public Transform1D {
  public:
   // Factors `bank` (throws std::invalid_argument if it is not perfectly reconstructing).
-  // spec: the canonical spec string returned by spec().
-  PupsTransform(const FilterBank& bank, std::string spec);
+  // spec: the canonical spec string returned by spec(); boundary: how lines are extended.
+  PupsTransform(const FilterBank& bank, std::string spec, BoundaryRule boundary = BoundaryRule::wire_hss);
 
   std::string spec() const override { return spec_; }
   void analyze(std::span<double> line) const override;
@@ -32,6 +33,7 @@ class PupsTransform final : public Transform1D {
   const FilterBank& bank() const { return bank_; }
   // The lifting steps, scales and the banded filters realized away from the ends.
   const LiftingFactorization& factorization() const { return lifting_; }
+  BoundaryRule boundary() const { return boundary_; }
 
  private:
   template <class T>
@@ -49,19 +51,25 @@ class PupsTransform final : public Transform1D {
   LiftingFactorization lifting_;
   std::vector<Step> steps_;
   std::string spec_;
+  BoundaryRule boundary_;
 };
 
 }  // namespace pups
 
 // Builds the transform of a filter bank (e.g. one read from a file header); spec is what
 // spec() returns (the caller's canonical "pups:..." string).
-Transform1DPtr make_pups_transform(const pups::FilterBank& bank, std::string spec);
+Transform1DPtr make_pups_transform(const pups::FilterBank& bank, std::string spec,
+                                   pups::BoundaryRule boundary = pups::BoundaryRule::wire_hss);
 
 // Builds the transform of a spec body (the text after "pups:"): a preset name or
 // `<weight>(key=value,...)` (see pups::parse_design_spec). spec() is "pups:" + the
 // canonical body, which parses back to the same bank. Throws std::invalid_argument with a
-// clear message for a bad body. Results are cached per canonical body.
+// clear message for a bad body. Results are cached per body (given and canonical), at most
+// 256 entries: the cache is emptied when full.
 Transform1DPtr make_pups_transform_from_spec(std::string_view body);
+
+// Entries in that cache now (to test its bound).
+std::size_t pups_transform_cache_size();
 
 // Condition number of the finite analysis operator of `t` on lines of n samples, from its
 // explicit matrix (columns = analyses of unit impulses) and inverse (syntheses): in the
