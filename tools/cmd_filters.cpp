@@ -1,5 +1,11 @@
-// `pupwave filters`: design PUPs filter banks, list the presets and transform specs, show one.
+// `pupwave filters`: design PUPs filter banks, list the presets and transform specs with their
+// figures of merit, show one, condition numbers; `search` is in cmd_filters_search.cpp.
 #include <algorithm>
+#include <cmath>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -10,6 +16,8 @@
 
 #include "tools/commands.h"
 #include "tools/filter_bank_json.h"
+#include "tools/filters_report.h"
+#include "transforms/analysis/merit.h"
 #include "transforms/pups/design.h"
 #include "transforms/pups/pups_transform.h"
 #include "transforms/pups/refinement.h"
@@ -34,37 +42,28 @@ struct DesignOptions {
   bool json = false;
 };
 
-std::string fmt(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", x);
-  return buf;
-}
-
-void print_filter(std::ostream& os, const char* name, const pups::Filter& f) {
-  os << "  " << name << " (" << f.taps.size() << " taps, offset " << f.offset << "):";
-  for (double t : f.taps) os << ' ' << fmt(t);
-  os << '\n';
-}
-
-// The readable table printed by `design` and `show`.
-void print_bank(std::ostream& os, const FilterBank& b) {
-  os << "weight: " << pups::to_string(b.design.weight);
-  if (!b.name.empty()) os << " (preset " << b.name << ")";
-  os << "\nspec: pups:" << pups::canonical_spec_body(b) << '\n';
-  os << "refinement error E: " << fmt(b.refinement_error) << '\n';
-  os << "extension l: " << b.design.extension << "\nshift: " << b.shift
-     << "\northogonality error: " << fmt(b.orthogonality_error) << '\n';
-  print_filter(os, "P", b.P);
-  print_filter(os, "A", b.A);
-  print_filter(os, "B", b.B);
-  print_filter(os, "Q", b.Q);
-}
-
 void emit(const FilterBank& bank, bool json) {
   if (json)
     std::cout << to_json(bank).dump(2) << '\n';
   else
-    print_bank(std::cout, bank);
+    print_bank(std::cout, bank, pups::BoundaryRule::wire_hss);
+}
+
+// The figures of a bank as JSON (for `filters show --json`).
+nlohmann::json merit_json(const merit::Merit& m) {
+  const merit::CodingVerdict v = merit::coding_verdict(m);
+  auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  return {{"coding_gain_db", number(m.coding_gain_db)},
+          {"interior_coding_gain_db", number(m.interior_coding_gain_db)},
+          {"condition", number(m.condition)},
+          {"condition_one_level", number(m.condition_one_level)},
+          {"coarse_gain", m.coarse_gain},
+          {"coarse_rms", m.coarse_rms},
+          {"analysis_moments", m.analysis_moments},
+          {"synthesis_moments", m.synthesis_moments},
+          {"dc_leak", number(m.dc_leak)},
+          {"coding", v.coding},
+          {"reason", v.reason}};
 }
 
 pups::DesignParams to_params(const DesignOptions& o) {
@@ -114,33 +113,77 @@ void add_design(CLI::App& filters) {
   cmd->callback([o] { run_design(*o); });
 }
 
+// Figures of every preset on two threads (each bank takes a few tenths of a second).
+std::vector<merit::Merit> preset_merits() {
+  const auto& all = pups::presets();
+  std::vector<merit::Merit> out(all.size());
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&] {
+    for (std::size_t i; (i = next++) < all.size();) try {
+        out[i] = merit::figures_of_merit(*make_pups_transform_from_spec(all[i].name));
+      } catch (...) {
+        const std::lock_guard lock(failure_mutex);
+        failure = std::current_exception();
+      }
+  };
+  std::thread helper(work);
+  work();
+  helper.join();
+  if (failure) std::rethrow_exception(failure);
+  return out;
+}
+
 void add_list(CLI::App& filters) {
-  auto* cmd = filters.add_subcommand("list", "List PUPs presets and transform specs");
+  auto* cmd = filters.add_subcommand("list", "List transform specs and PUPs presets with their figures of merit");
   cmd->callback([] {
     std::cout << "Transform specs:\n";
     std::vector<std::string> specs = transform_specs();
     for (auto& s : pups_transform_specs())
       if (std::find(specs.begin(), specs.end(), s) == specs.end()) specs.push_back(s);
     for (const auto& s : specs) std::cout << "  " << s << '\n';
-    std::cout << "PUPs presets (transform spec pups:<name>):\n";
-    for (const auto& p : pups::presets()) std::cout << "  " << p.name << "  " << p.description << '\n';
+    const merit::MeritOptions o;
+    std::cout << "PUPs presets (transform spec pups:<name>; figures for AR(1) rho = " << fmt(o.rho, 3) << ", "
+              << o.levels << " levels, N = " << o.n << "; CDF 9/7: "
+              << fmt(merit::coding_gain_db(*make_transform("cdf97"), o), 4) << " dB):\n";
+    const std::vector<merit::Merit> merits = preset_merits();
+    for (std::size_t i = 0; i < merits.size(); ++i) {
+      const auto& p = pups::presets()[i];
+      std::cout << "  " << p.name << "  " << p.description << "\n    " << merit_summary(merits[i])
+                << "\n    use: " << use_line(merits[i]) << '\n';
+    }
     std::cout << "Custom PUPs designs: pups:<weight>(key=value,...), e.g.\n"
                  "  pups:bspline(degree=3)  pups:cinpact(c=3,sigma=7.27,l=14)\n"
-                 "  pups:cinpact-interp(c=5,sigma=4.79,t=0.01)\n"
-                 "  pups:polynomial(coeffs=64:0:-48:0:12:0:-1,domain=-2:2)\n";
+                 "  pups:cinpact-interp(c=5,sigma=4.79,t=0.01,boundary=wss)\n"
+                 "  pups:polynomial(coeffs=64:0:-48:0:12:0:-1,domain=-2:2)\n"
+                 "Search designs: pupwave filters search --help\n";
   });
 }
 
 void add_show(CLI::App& filters) {
   auto name = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  auto* cmd = filters.add_subcommand("show", "Show a preset or a pups spec body in full");
+  auto* cmd = filters.add_subcommand("show", "Show a preset or a pups spec body in full, with its figures of merit");
   cmd->add_option("NAME", *name, "preset name or <weight>(...) spec body")->required();
   cmd->add_flag("--json", *json, "print JSON instead of a table");
   cmd->callback([name, json] {
     std::string body = *name;
     if (body.rfind("pups:", 0) == 0) body = body.substr(5);
-    emit(pups::design(pups::parse_design_spec(body)), *json);
+    const pups::DesignSpec spec = pups::parse_design_spec(body);
+    const FilterBank bank = pups::design(spec);
+    const merit::MeritOptions o;
+    const merit::Merit m =
+        merit::figures_of_merit(*make_pups_transform(bank, "pups:" + body, spec.boundary), o);
+    if (*json) {
+      nlohmann::json j = to_json(bank);
+      j["boundary"] = spec.boundary == pups::BoundaryRule::line_wss ? "wss" : "hss";
+      j["figures"] = merit_json(m);
+      std::cout << j.dump(2) << '\n';
+      return;
+    }
+    print_bank(std::cout, bank, spec.boundary);
+    print_merit(std::cout, m, o);
   });
 }
 
@@ -185,6 +228,7 @@ void add_filters_command(CLI::App& app) {
   add_list(*filters);
   add_show(*filters);
   add_condition(*filters);
+  add_search(*filters);
 }
 
 }  // namespace pupwave::cli
