@@ -1,17 +1,17 @@
 // `pupwave filters`: design PUPs filter banks, list the presets and transform specs with their
 // figures of merit, show one, condition numbers; `search` is in cmd_filters_search.cpp.
 #include <algorithm>
-#include <cmath>
 #include <atomic>
-#include <exception>
-#include <mutex>
-#include <thread>
+#include <cmath>
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tools/commands.h"
@@ -136,7 +136,8 @@ std::vector<merit::Merit> preset_merits() {
 }
 
 void add_list(CLI::App& filters) {
-  auto* cmd = filters.add_subcommand("list", "List transform specs and PUPs presets with their figures of merit");
+  auto* cmd =
+      filters.add_subcommand("list", "List transform specs and PUPs presets with their figures of merit");
   cmd->callback([] {
     std::cout << "Transform specs:\n";
     std::vector<std::string> specs = transform_specs();
@@ -145,8 +146,8 @@ void add_list(CLI::App& filters) {
     for (const auto& s : specs) std::cout << "  " << s << '\n';
     const merit::MeritOptions o;
     std::cout << "PUPs presets (transform spec pups:<name>; figures for AR(1) rho = " << fmt(o.rho, 3) << ", "
-              << o.levels << " levels, N = " << o.n << "; CDF 9/7: "
-              << fmt(merit::coding_gain_db(*make_transform("cdf97"), o), 4) << " dB):\n";
+              << o.levels << " levels, N = " << o.n
+              << "; CDF 9/7: " << fmt(merit::coding_gain_db(*make_transform("cdf97"), o), 4) << " dB):\n";
     const std::vector<merit::Merit> merits = preset_merits();
     for (std::size_t i = 0; i < merits.size(); ++i) {
       const auto& p = pups::presets()[i];
@@ -164,7 +165,8 @@ void add_list(CLI::App& filters) {
 void add_show(CLI::App& filters) {
   auto name = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  auto* cmd = filters.add_subcommand("show", "Show a preset or a pups spec body in full, with its figures of merit");
+  auto* cmd =
+      filters.add_subcommand("show", "Show a preset or a pups spec body in full, with its figures of merit");
   cmd->add_option("NAME", *name, "preset name or <weight>(...) spec body")->required();
   cmd->add_flag("--json", *json, "print JSON instead of a table");
   cmd->callback([name, json] {

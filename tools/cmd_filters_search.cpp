@@ -79,13 +79,15 @@ std::vector<Ranked> rank_by_coding_gain(const std::vector<std::string>& bodies) 
     std::cerr << "search: " << i + 1 << "/" << bodies.size() << " designs measured\r" << std::flush;
   }
   std::cerr << '\n';
-  std::stable_sort(out.begin(), out.end(),
-                   [](const Ranked& a, const Ranked& b) { return a.merit.coding_gain_db > b.merit.coding_gain_db; });
+  std::stable_sort(out.begin(), out.end(), [](const Ranked& a, const Ranked& b) {
+    return a.merit.coding_gain_db > b.merit.coding_gain_db;
+  });
   return out;
 }
 
 // The codec's rate-distortion curve of one image (in-process, rate control by bpp).
-std::vector<bench::RdPoint> codec_curve(const Image& image, const std::string& spec, const std::vector<double>& bpp) {
+std::vector<bench::RdPoint> codec_curve(const Image& image, const std::string& spec,
+                                        const std::vector<double>& bpp) {
   std::vector<bench::RdPoint> curve;
   for (double b : bpp) {
     EncodeOptions e;
@@ -147,7 +149,8 @@ void run_search(const SearchOptions& o) {
 void add_search(CLI::App& filters) {
   auto o = std::make_shared<SearchOptions>();
   auto* cmd = filters.add_subcommand(
-      "search", "Rank PUPs designs by coding gain (and optionally by the codec on images); prints transform specs");
+      "search",
+      "Rank PUPs designs by coding gain (and optionally by the codec on images); prints transform specs");
   cmd->add_option("--weight", o->weight, "weight family")
       ->capture_default_str()
       ->check(CLI::IsMember({"bspline", "polynomial", "cinpact", "cinpact-interp"}));
@@ -156,7 +159,8 @@ void add_search(CLI::App& filters) {
       ->delimiter(',');
   cmd->add_flag("--leak-free-sigma", o->leak_free_sigma, "instead: every sigma with B.1 = 0 (no DC leak)");
   cmd->add_option("--degree", o->degrees, "B-spline degrees")->delimiter(',');
-  cmd->add_option("--moments", o->moments, "polynomial: vanishing moments of the mask")->capture_default_str();
+  cmd->add_option("--moments", o->moments, "polynomial: vanishing moments of the mask")
+      ->capture_default_str();
   cmd->add_option("--mask-t", o->mask_t, "polynomial: mask parameters t")->delimiter(',');
   cmd->add_option("--poly-degree", o->poly_degree, "polynomial: degree of the weight")->capture_default_str();
   cmd->add_option("--l", o->extensions, "bandwidth extensions l (even)")->delimiter(',');
@@ -169,7 +173,9 @@ void add_search(CLI::App& filters) {
   cmd->add_option("--rerank", o->rerank, "how many of the best by coding gain to code")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  cmd->add_option("--top", o->top, "how many designs to print")->capture_default_str()->check(CLI::Range(1, 1000));
+  cmd->add_option("--top", o->top, "how many designs to print")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   cmd->callback([o] { run_search(*o); });
 }
 

@@ -8,8 +8,8 @@ namespace pupwave::cli {
 
 namespace {
 
-using pups::Filter;
 using pups::DesignParams;
+using pups::Filter;
 using pups::FilterBank;
 
 nlohmann::json filter_json(const Filter& f) { return {{"offset", f.offset}, {"taps", f.taps}}; }

@@ -37,7 +37,8 @@ void print_bank(std::ostream& os, const pups::FilterBank& b, pups::BoundaryRule 
   os << "extension l: " << b.design.extension << "\nshift: " << b.shift
      << "\northogonality error: " << fmt(b.orthogonality_error) << '\n';
   os << "boundary: "
-     << (boundary == pups::BoundaryRule::line_wss ? "whole-sample symmetric line (wss)" : "half-sample symmetric wires (hss)")
+     << (boundary == pups::BoundaryRule::line_wss ? "whole-sample symmetric line (wss)"
+                                                  : "half-sample symmetric wires (hss)")
      << '\n';
   print_filter(os, "P", b.P);
   print_filter(os, "A", b.A);
@@ -46,7 +47,8 @@ void print_bank(std::ostream& os, const pups::FilterBank& b, pups::BoundaryRule 
 }
 
 void print_merit(std::ostream& os, const merit::Merit& m, const merit::MeritOptions& o) {
-  os << "figures of merit (AR(1) rho = " << fmt(o.rho, 3) << ", " << o.levels << " levels, N = " << o.n << "):\n";
+  os << "figures of merit (AR(1) rho = " << fmt(o.rho, 3) << ", " << o.levels << " levels, N = " << o.n
+     << "):\n";
   os << "  coding gain: " << fmt(m.coding_gain_db, 4) << " dB (finite operator, boundaries included), "
      << fmt(m.interior_coding_gain_db, 4) << " dB (bi-infinite filters)\n";
   os << "  condition number (2-norm): " << fmt(m.condition, 4) << " (" << o.levels << " levels), "
@@ -56,9 +58,11 @@ void print_merit(std::ostream& os, const merit::Merit& m, const merit::MeritOpti
   os << "\n  coarse band RMS per level (AR(1), unit input):";
   for (double g : m.coarse_rms) os << ' ' << fmt(g, 4);
   os << "\n  vanishing moments: analysis " << moments(m.analysis_moments);
-  if (m.analysis_moments >= 0 && m.analysis_residual > 0) os << " (next: " << fmt(m.analysis_residual, 2) << ")";
+  if (m.analysis_moments >= 0 && m.analysis_residual > 0)
+    os << " (next: " << fmt(m.analysis_residual, 2) << ")";
   os << ", synthesis " << moments(m.synthesis_moments);
-  if (m.synthesis_moments >= 0 && m.synthesis_residual > 0) os << " (next: " << fmt(m.synthesis_residual, 2) << ")";
+  if (m.synthesis_moments >= 0 && m.synthesis_residual > 0)
+    os << " (next: " << fmt(m.synthesis_residual, 2) << ")";
   os << "\n  DC leak into the details: " << percent(m.dc_leak) << '\n';
   os << "  non-orthogonality (largest |h||g| of a band, orthogonal: 1): " << fmt(m.norm_product, 4) << '\n';
   os << "use: " << use_line(m) << '\n';
@@ -72,10 +76,9 @@ std::string use_line(const merit::Merit& m) {
 
 std::string merit_summary(const merit::Merit& m) {
   const std::string condition = m.condition > 0 ? ", condition " + fmt(m.condition, 3) : std::string();
-  return "coding gain " + fmt(m.coding_gain_db, 4) + " dB" + condition +
-         ", vanishing moments " + moments(m.analysis_moments) + "/" + moments(m.synthesis_moments) +
-         ", |h||g| " + fmt(m.norm_product, 3) +
-         ", DC leak " + percent(m.dc_leak) + ", coarse gain " +
+  return "coding gain " + fmt(m.coding_gain_db, 4) + " dB" + condition + ", vanishing moments " +
+         moments(m.analysis_moments) + "/" + moments(m.synthesis_moments) + ", |h||g| " +
+         fmt(m.norm_product, 3) + ", DC leak " + percent(m.dc_leak) + ", coarse gain " +
          (m.coarse_gain.empty() ? std::string("-")
                                 : fmt(m.coarse_gain.front(), 3) + ".." + fmt(m.coarse_gain.back(), 3));
 }

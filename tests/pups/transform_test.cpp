@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "transforms/pups/design.h"
@@ -146,9 +147,10 @@ struct CondBound {
   double one_norm, two_norm;
 };
 constexpr CondBound kCondBounds[] = {
-    {"chaikin", 7.0, 4.2},      {"cubic-bspline", 17, 8.0},      {"cinpact-c3", 105, 55},
-    {"cinpact-c3-ext", 92, 47}, {"cinpact-interp-c5", 9.3, 4.1}, {"cinpact-interp-c5-ext", 8.8, 3.6},
-    {"poly10", 15.1, 7.2},
+    {"chaikin", 7.0, 4.2},       {"cubic-bspline", 17, 8.0},      {"cinpact-c3", 105, 55},
+    {"cinpact-c3-ext", 92, 47},  {"cinpact-interp-c5", 9.3, 4.1}, {"cinpact-interp-c5-ext", 8.8, 3.6},
+    {"poly10", 15.1, 7.2},       {"chaikin-ext", 7.4, 3.2},       {"cinpact-interp-vm4", 8.6, 3.4},
+    {"poly16-vm4-cg", 8.2, 3.4},
 };
 
 TEST(PupsTransform, ConditionNumberIsBounded) {
@@ -173,6 +175,30 @@ TEST(PupsTransform, SpecsAreCanonicalAndRoundTrip) {
   EXPECT_EQ(make_pups_transform_from_spec("bspline(degree=3)")->spec(), "pups:bspline(degree=3,l=0)");
   for (const char* bad : {"", "chaikinn", "bspline(degree=3", "cinpact(c=3,sigma=7.27,l=-2)"})
     EXPECT_THROW(make_pups_transform_from_spec(bad), std::invalid_argument) << bad;
+}
+
+TEST(PupsTransform, BoundaryRuleIsPartOfTheSpec) {
+  const auto hss = make_pups_transform_from_spec("cinpact-interp(c=5,sigma=4.79,l=8)");
+  const auto wss = make_pups_transform_from_spec("cinpact-interp(c=5,sigma=4.79,l=8,boundary=wss)");
+  EXPECT_EQ(wss->spec(), "pups:cinpact-interp(c=5,sigma=4.79,l=8,boundary=wss)");
+  EXPECT_EQ(make_pups_transform_from_spec("cinpact-interp(c=5,sigma=4.79,l=8,boundary=hss)")->spec(),
+            hss->spec());
+  EXPECT_EQ(preset_transform("poly16-vm4-cg")->boundary(), BoundaryRule::line_wss);
+  // Same filters inside, different ends; both reconstruct (every preset is checked above).
+  std::vector<double> a = random_line(64, 3), b = a;
+  hss->analyze(std::span<double>(a));
+  wss->analyze(std::span<double>(b));
+  EXPECT_NEAR(a[16], b[16], 1e-9);
+  EXPECT_GT(std::abs(a[0] - b[0]), 1e-6);
+  EXPECT_THROW(make_pups_transform_from_spec("cinpact-interp(c=5,sigma=4.79,boundary=zero)"),
+               std::invalid_argument);
+}
+
+TEST(PupsTransform, SpecCacheIsBounded) {
+  for (int s = 200; s < 520; ++s)
+    make_pups_transform_from_spec("bspline(degree=1,samples=" + std::to_string(s) + ")");
+  EXPECT_LE(pups_transform_cache_size(), 256u);
+  EXPECT_GT(pups_transform_cache_size(), 0u);
 }
 
 TEST(PupsTransform, BankFromHeaderBytesGivesTheSameTransform) {

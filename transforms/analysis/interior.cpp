@@ -139,7 +139,8 @@ std::vector<double> norm_products(const InteriorFilters& f, int levels) {
   std::vector<double> a{1.0}, s{1.0}, out;
   for (int j = 1; j <= levels; ++j) {
     const std::size_t up = std::size_t(1) << (j - 1);
-    out.push_back(std::sqrt(energy(convolve(a, upsample(f.h1.c, up))) * energy(convolve(s, upsample(f.g1.c, up)))));
+    out.push_back(
+        std::sqrt(energy(convolve(a, upsample(f.h1.c, up))) * energy(convolve(s, upsample(f.g1.c, up)))));
     a = convolve(a, upsample(f.h0.c, up));
     s = convolve(s, upsample(f.g0.c, up));
   }

@@ -62,7 +62,7 @@ struct Merit {
   double coding_gain_db = 0;           // finite operator with boundaries, per coefficient
   double interior_coding_gain_db = 0;  // bi-infinite filters (the published definition)
   double condition = 0;                // 2-norm condition number of the levels-level operator
-  double condition_one_level = 0;      // same for one level (n samples)
+  double condition_one_level = 0;      // same for one level (min(n, 128) samples)
   // Coarse band after level j (j = 1..levels): largest gain ||C_j x|| / ||x|| over all
   // inputs (the 2-norm of the coarse rows of the j-level operator) ...
   std::vector<double> coarse_gain;
@@ -99,8 +99,8 @@ CodingVerdict coding_verdict(const Merit& m);
 // Thresholds of the verdict: below kMinCodingGainDb every bank measured more than 3 dB
 // (BD-PSNR) below OpenJPEG on the test photographs; above it, within 2.1 dB.
 inline constexpr double kMinCodingGainDb = 8.0;
-inline constexpr double kMaxDcLeak = 0.005;       // details carry more than 0.5% of the mean
-inline constexpr double kMaxCoarseGain = 2.0;     // worst-case coarse gain after `levels` levels
+inline constexpr double kMaxDcLeak = 0.005;         // details carry more than 0.5% of the mean
+inline constexpr double kMaxCoarseGain = 2.0;       // worst-case coarse gain after `levels` levels
 inline constexpr double kMaxConditionNumber = 100;  // multi-level 2-norm condition number
 inline constexpr double kMaxNormProduct = 1.2;      // CDF 9/7: 1.04, the best PUPs banks 1.03-1.10
 

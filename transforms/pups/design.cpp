@@ -37,6 +37,28 @@ DesignParams poly10_params() {
   return p;
 }
 
+// Degree-16 weight on [-3, 3] whose refinement is the 7-tap mask with 4 vanishing moments of
+// largest coding gain, 2 cos(w/2)^4 (1 + 2.75 sin(w/2)^2) (`filters search --weight polynomial
+// --moments 4`, t = 2.75; docs/pups.md). Only even powers are non-zero.
+DesignParams poly16_vm4_params() {
+  const double even[] = {4.920068656979502,   -11.297087199932182,    9.150327983296682,
+                         -3.902889015809956,  0.999589395428406,      -0.15935165785936276,
+                         0.01546976092278702, -0.0008354565659863358, 1.9205234231317668e-05};
+  DesignParams p;
+  p.weight = WeightKind::polynomial;
+  for (double a : even) p.coeffs.insert(p.coeffs.end(), {a, 0.0});
+  p.coeffs.pop_back();
+  p.domain_lo = -3;
+  p.domain_hi = 3;
+  p.extension = 8;
+  return p;
+}
+
+DesignParams with_extension(DesignParams p, int l) {
+  p.extension = l;
+  return p;
+}
+
 std::vector<Preset> make_presets() {
   const auto cin = WeightKind::cinpact, cinI = WeightKind::cinpact_interp;
   return {
@@ -51,6 +73,16 @@ std::vector<Preset> make_presets() {
       {"cinpact-interp-c5-ext", "interpolating CINPACT c=5 sigma=4.79, extended l=32 (Fig. 16)",
        cinpact_params(cinI, 5, 4.79, 32)},
       {"poly10", "degree-10 polynomial (u^2-4)^5 on [-2,2] (Table 1), minimal masks", poly10_params()},
+      // Coding presets found by `filters search` (docs/pups.md, Design search).
+      {"chaikin-ext", "quadratic B-spline, extended l=8: Chaikin made fit for coding",
+       with_extension(bspline_params(2), 8)},
+      {"cinpact-interp-vm4",
+       "interpolating CINPACT, (c, sigma) giving B 4 vanishing moments, l=16, JPEG 2000 boundaries",
+       cinpact_params(cinI, 4.9135160235465722, 4.9356708723649314, 16), BoundaryRule::line_wss},
+      {"poly16-vm4-cg",
+       "degree-16 polynomial refining to the 4-vanishing-moment 7-tap mask of largest coding gain, l=8, "
+       "JPEG 2000 boundaries",
+       poly16_vm4_params(), BoundaryRule::line_wss},
   };
 }
 

@@ -44,11 +44,11 @@ std::vector<double> to_monomial(const VectorXd& b, int degree, double h) {
   T[0][0] = 1;
   if (degree >= 1) T[1][1] = 1 / h;
   for (int m = 2; m <= degree; ++m)
-    for (int j = 0; j <= degree; ++j)
-      T[m][j] = -T[m - 2][j] + (j > 0 ? 2 / h * T[m - 1][j - 1] : 0.0);
+    for (int j = 0; j <= degree; ++j) T[m][j] = -T[m - 2][j] + (j > 0 ? 2 / h * T[m - 1][j - 1] : 0.0);
   std::vector<double> a(static_cast<std::size_t>(degree) + 1, 0.0);
   for (Eigen::Index k = 0; k < b.size(); ++k)
-    for (int j = 0; j <= degree; ++j) a[static_cast<std::size_t>(j)] += b(k) * T[static_cast<std::size_t>(2 * k)][j];
+    for (int j = 0; j <= degree; ++j)
+      a[static_cast<std::size_t>(j)] += b(k) * T[static_cast<std::size_t>(2 * k)][j];
   return a;
 }
 
@@ -83,7 +83,8 @@ VectorXd fit(const std::vector<double>& phi, int degree, double h, double* rel_e
   for (Eigen::Index i = 0; i < n; ++i) {
     const double x = -1 + 2.0 * static_cast<double>(i) / static_cast<double>(n - 1);
     y(i) = phi[static_cast<std::size_t>(i)];
-    for (Eigen::Index k = 0; k < A.cols(); ++k) A(i, k) = std::cos(2.0 * static_cast<double>(k) * std::acos(x));
+    for (Eigen::Index k = 0; k < A.cols(); ++k)
+      A(i, k) = std::cos(2.0 * static_cast<double>(k) * std::acos(x));
   }
   const VectorXd b = A.colPivHouseholderQr().solve(y);
   *rel_error = (A * b - y).norm() / y.norm();
@@ -99,14 +100,15 @@ std::vector<double> vanishing_moment_mask(int moments, double t) {
   if (!std::isfinite(t)) throw std::invalid_argument("mask parameter must be finite");
   std::vector<double> p{2.0};
   for (int k = 0; k < moments / 2; ++k) p = convolve(p, {0.25, 0.5, 0.25});  // cos(w/2)^2
-  return convolve(p, {-0.25 * t, 1 + 0.5 * t, -0.25 * t});                 // 1 + t sin(w/2)^2
+  return convolve(p, {-0.25 * t, 1 + 0.5 * t, -0.25 * t});                   // 1 + t sin(w/2)^2
 }
 
 MaskWeight polynomial_weight_for_mask(const std::vector<double>& mask, int degree, int samples) {
   if (mask.size() < 3 || mask.size() % 2 == 0 || mask.size() > 41)
     throw std::invalid_argument("mask must have an odd number of taps, 3..41");
   for (std::size_t i = 0; i < mask.size(); ++i)
-    if (std::abs(mask[i] - mask[mask.size() - 1 - i]) > 1e-12) throw std::invalid_argument("mask must be symmetric");
+    if (std::abs(mask[i] - mask[mask.size() - 1 - i]) > 1e-12)
+      throw std::invalid_argument("mask must be symmetric");
   if (degree < 4 || degree > 24 || degree % 2 != 0) throw std::invalid_argument("degree must be even, 4..24");
   const int h = static_cast<int>(mask.size() / 2);
   MaskWeight out;

@@ -17,9 +17,9 @@ namespace pupwave::pups {
 std::vector<double> vanishing_moment_mask(int moments, double t);
 
 struct MaskWeight {
-  DesignParams params;        // polynomial on [-h, h], even degree `degree`, samples as asked
-  double max_tap_error = 0;   // max |refine(params) - mask| over the taps, after the correction
-  double fit_error = 0;       // relative L2 error of the polynomial against the refinable function
+  DesignParams params;       // polynomial on [-h, h], even degree `degree`, samples as asked
+  double max_tap_error = 0;  // max |refine(params) - mask| over the taps, after the correction
+  double fit_error = 0;      // relative L2 error of the polynomial against the refinable function
 };
 
 // Finds the polynomial weight of even `degree` (4..24) on [-h, h] (mask of 2h+1 taps, centred)

@@ -82,7 +82,8 @@ void PupsTransform::synthesize(std::span<float> line) const { synthesize_impl(li
 
 }  // namespace pups
 
-Transform1DPtr make_pups_transform(const pups::FilterBank& bank, std::string spec, pups::BoundaryRule boundary) {
+Transform1DPtr make_pups_transform(const pups::FilterBank& bank, std::string spec,
+                                   pups::BoundaryRule boundary) {
   return std::make_shared<const pups::PupsTransform>(bank, std::move(spec), boundary);
 }
 

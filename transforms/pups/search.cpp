@@ -24,7 +24,8 @@ double leak(const DesignParams& p) {
 void check(const SearchSpace& s) {
   if (!(s.c_step > 0) || !(s.c_hi >= s.c_lo) || !(s.c_lo > 0) || (s.c_hi - s.c_lo) / s.c_step > 1000)
     throw std::invalid_argument("search: c needs 0 < lo <= hi and a step giving at most 1000 values");
-  if (s.extensions.empty() || s.boundaries.empty()) throw std::invalid_argument("search: no l or boundary given");
+  if (s.extensions.empty() || s.boundaries.empty())
+    throw std::invalid_argument("search: no l or boundary given");
   for (int l : s.extensions)
     if (l < 0 || l % 2 != 0 || l > 256) throw std::invalid_argument("search: every l must be even, 0..256");
 }
@@ -67,7 +68,9 @@ std::vector<DesignParams> weights(const SearchSpace& s, std::vector<std::string>
       break;
     case WeightKind::polynomial:
       for (double t : s.mask_params) try {
-          out.push_back(polynomial_weight_for_mask(vanishing_moment_mask(s.moments, t), s.poly_degree, s.samples).params);
+          out.push_back(
+              polynomial_weight_for_mask(vanishing_moment_mask(s.moments, t), s.poly_degree, s.samples)
+                  .params);
         } catch (const std::invalid_argument& e) {
           skip("mask t=" + std::to_string(t) + ": " + e.what());
         }

@@ -34,7 +34,8 @@ struct SearchSpace {
 // Every design of the space as a canonical spec body, in a stable order (weight parameters,
 // then l, then boundary). Parameter sets that cannot be designed (no refinable function, a
 // singular Eq. 41) are left out and described in *skipped when given.
-std::vector<std::string> search_candidates(const SearchSpace& space, std::vector<std::string>* skipped = nullptr);
+std::vector<std::string> search_candidates(const SearchSpace& space,
+                                           std::vector<std::string>* skipped = nullptr);
 
 // The sigmas in [lo, hi] at which the refinement of a CINPACT weight with this c has equal
 // sums over its even and odd taps (B . 1 = 0), by a log-grid scan and bisection.
