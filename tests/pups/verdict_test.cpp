@@ -32,7 +32,9 @@ TEST(Verdict, EveryPresetIsMarked) {
     const merit::CodingVerdict v = merit::coding_verdict(m);
     EXPECT_EQ(v.coding, e.coding) << e.preset << ": " << v.reason;
     EXPECT_NE(v.reason.find(e.reason_part), std::string::npos) << e.preset << ": " << v.reason;
-    if (!v.coding) EXPECT_NE(v.reason.find("coding gain"), std::string::npos) << e.preset;
+    if (!v.coding) {
+      EXPECT_NE(v.reason.find("coding gain"), std::string::npos) << e.preset;
+    }
   }
 }
 
