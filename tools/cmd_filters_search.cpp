@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -51,8 +52,17 @@ pups::SearchSpace to_space(const SearchOptions& o) {
   s.weight = pups::weight_kind_from_string(o.weight);
   std::vector<double> c;
   std::istringstream in(o.c);
-  for (std::string item; std::getline(in, item, ':');) c.push_back(std::stod(item));
-  if (c.size() != 3) throw std::invalid_argument("--c needs LO:HI:STEP");
+  for (std::string item; std::getline(in, item, ':');) {
+    std::size_t used = 0;
+    try {
+      c.push_back(std::stod(item, &used));
+    } catch (const std::logic_error&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size())
+      throw std::invalid_argument("--c needs LO:HI:STEP, got '" + o.c + "'");
+  }
+  if (c.size() != 3) throw std::invalid_argument("--c needs LO:HI:STEP, got '" + o.c + "'");
   s.c_lo = c[0], s.c_hi = c[1], s.c_step = c[2];
   s.sigma_scales = o.sigma_scales;
   s.leak_free_sigma = o.leak_free_sigma;
