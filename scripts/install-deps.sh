@@ -12,6 +12,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # anchors and helpers for the rate-distortion harness and volume comparisons
   libopenjp2-tools libjxl-tools zfp libopenvdb-tools gnuplot-nox
+  # the modern anchors of `pupwave bench rd`: AVIF (libaom), HEVC intra (ffmpeg + libx265), WebP
+  libavif-bin ffmpeg webp
   # sqrt(3) meshes: OpenMesh for the subdivision cross-check test, Draco and the CGAL sample
   # meshes for bench/mesh_vs_draco.py
   libopenmesh-dev draco libcgal-demo

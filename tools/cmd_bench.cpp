@@ -31,7 +31,7 @@ struct BenchOptions {
   std::vector<std::string> images;
   std::string transforms = "all";
   std::string bpps = "0.125,0.25,0.5,1,2";
-  std::string anchors = "openjpeg,jxl";
+  std::string anchors = "openjpeg,jxl,avif,hevc,webp";
   std::string levels = "1..5";
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   std::string out;
@@ -203,7 +203,10 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
       ->capture_default_str();
   if (rd) {
     cmd->add_option("--bpp", o.bpps, "comma list of target bits per pixel")->capture_default_str();
-    cmd->add_option("--anchors", o.anchors, "comma list of openjpeg, jxl, or 'none'")->capture_default_str();
+    cmd->add_option(
+           "--anchors", o.anchors,
+           "comma list of openjpeg, jxl, avif, hevc, webp, or 'none' (missing tools are skipped with a note)")
+        ->capture_default_str();
     cmd->add_option("--cli", o.cli, "pupwave binary to drive (default: this program)");
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();

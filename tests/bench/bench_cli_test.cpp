@@ -79,9 +79,10 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
   const fs::path out = dir_ / "rd";
   fs::create_directories(out / "plots");
   std::ofstream(out / "plots" / "stale.svg") << "<svg/>";  // from an earlier run on other images
-  const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97,cdf53",
-                            "--bpp", "0.5,2", "--jobs", "2", "--out", out.string()},
-                           dir_ / "log.txt", environment_path());
+  const CliRun r =
+      run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97,cdf53", "--bpp", "0.5,2",
+               "--anchors", "openjpeg,jxl", "--jobs", "2", "--out", out.string()},
+              dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "results.csv");
   ASSERT_EQ(rows.size(), 1u + 4 * 2) << "header + (2 transforms + 2 anchors) x 2 rates";
@@ -125,6 +126,39 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
   EXPECT_EQ(delta, 0.0);
 }
 
+// The modern anchors (AVIF, HEVC intra, WebP) reach the target rate by bisecting their quantiser
+// and are compared with both references: OpenJPEG and pupwave's cdf97.
+TEST_F(BenchCli, ModernAnchorsHitTheirRatesAndAreComparedWithCdf97) {
+  const fs::path out = dir_ / "rd";
+  const CliRun r =
+      run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97", "--bpp", "1,4",
+               "--anchors", "openjpeg,avif,hevc,webp", "--jobs", "2", "--out", out.string()},
+              dir_ / "log.txt", environment_path());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = read_csv(out / "results.csv");
+  ASSERT_EQ(rows.size(), 1u + 5 * 2) << "header + (cdf97 + 4 anchors) x 2 rates";
+  std::map<std::string, std::vector<double>> psnr_by_codec;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i][15], "ok") << rows[i][4];
+    const double target = std::stod(rows[i][6]), bpp = std::stod(rows[i][8]);
+    // Integer quantisers step the size by a few percent at these sizes; a miss of a third would
+    // mean the search ran the wrong way.
+    EXPECT_NEAR(bpp, target, 0.35 * target) << rows[i][4] << " at " << target << " bpp: " << rows[i][14];
+    psnr_by_codec[rows[i][4]].push_back(std::stod(rows[i][9]));
+  }
+  for (const char* codec : {"avif", "hevc", "webp"}) {
+    ASSERT_EQ(psnr_by_codec[codec].size(), 2u) << codec;
+    EXPECT_GT(psnr_by_codec[codec][0], 20.0) << codec;
+    EXPECT_LT(psnr_by_codec[codec][0], psnr_by_codec[codec][1]) << codec << ": more bits, higher PSNR";
+  }
+  const std::string summary = read_text(out / "summary.md");
+  EXPECT_NE(summary.find("| BD-rate (%) | BD-rate vs cdf97 (%) |"), std::string::npos);
+  // cdf97 against itself: 0.0 in its own column.
+  const auto row = summary.find("| cdf97 | " + fixed(psnr_by_codec["cdf97"][0], 2));
+  ASSERT_NE(row, std::string::npos) << summary;
+  EXPECT_NE(summary.substr(row, summary.find('\n', row) - row).find("| 0.0 |"), std::string::npos);
+}
+
 TEST_F(BenchCli, MissingAnchorToolsAreSkippedWithANote) {
   const fs::path out = dir_ / "rd", empty = dir_ / "empty-path";
   fs::create_directories(empty);
@@ -134,6 +168,8 @@ TEST_F(BenchCli, MissingAnchorToolsAreSkippedWithANote) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("anchor openjpeg skipped: opj_compress not found"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("anchor jxl skipped: cjxl not found"), std::string::npos) << r.output;
+  for (const char* anchor : {"avif", "hevc", "webp"})
+    EXPECT_NE(r.output.find(std::string("anchor ") + anchor + " skipped:"), std::string::npos) << anchor;
   const std::string summary = read_text(out / "summary.md");
   EXPECT_NE(summary.find("> Note: anchor openjpeg skipped"), std::string::npos);
   EXPECT_NE(summary.find("> Note: anchor jxl skipped"), std::string::npos);
@@ -167,7 +203,7 @@ TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
 TEST_F(BenchCli, BadArgumentsAreRejectedBeforeAnyWork) {
   const fs::path out = dir_ / "rd";
   for (const auto& bad : std::vector<std::vector<std::string>>{
-           {"--transforms", "no-such-transform"}, {"--bpp", "0"}, {"--bpp", "x"}, {"--anchors", "webp"}}) {
+           {"--transforms", "no-such-transform"}, {"--bpp", "0"}, {"--bpp", "x"}, {"--anchors", "bogus"}}) {
     std::vector<std::string> args = {"bench", "rd", "--images", image_.string(), "--out", out.string()};
     args.insert(args.end(), bad.begin(), bad.end());
     const CliRun r = run_cli(args, dir_ / "log.txt", environment_path());

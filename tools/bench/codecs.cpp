@@ -9,7 +9,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "tools/bench/modern_anchors.h"
 #include "tools/bench/process.h"
+#include "tools/bench/size_search.h"
 
 namespace pupwave::bench {
 namespace {
@@ -33,11 +35,6 @@ double run_checked(const std::vector<std::string>& argv, const fs::path& log, co
                              std::to_string(r.exit_code) + (tail.empty() ? ")" : "): " + tail));
   }
   return r.seconds;
-}
-
-std::uintmax_t target_bytes(const EncodeRequest& q) {
-  return static_cast<std::uintmax_t>(
-      std::llround(q.target_bpp * static_cast<double>(q.width * q.height) / 8.0));
 }
 
 class PupwaveCodec final : public RdCodec {
@@ -108,29 +105,13 @@ class JxlAnchor final : public RdCodec {
   std::string extension() const override { return ".jxl"; }
 
   EncodeOutcome encode(const EncodeRequest& q) const override {
-    const double target = static_cast<double>(std::max<std::uintmax_t>(1, target_bytes(q)));
-    double lo = std::log(kMinDistance), hi = std::log(kMaxDistance);
-    EncodeOutcome best;
-    double best_miss = INFINITY, best_distance = 0.0;
-    int trials = 0;
-    while (trials < kMaxTrials && best_miss > 0.01) {
-      // Start at the upper end: when even the coarsest setting is too big, stop there.
-      const double d = trials == 0 ? kMaxDistance : std::exp(0.5 * (lo + hi));
-      const fs::path trial = q.output.string() + ".trial";
-      const double seconds = run_checked(
-          {enc_.string(), q.input.string(), trial.string(), "-d", format_number(d, "%.4f")}, q.log, trial);
-      ++trials;
-      const auto bytes = fs::file_size(trial);
-      const double miss = std::abs(std::log(static_cast<double>(bytes) / target));
-      if (miss < best_miss) {
-        best_miss = miss, best_distance = d, best.bytes = bytes, best.seconds = seconds;
-        fs::rename(trial, q.output);
-      }
-      if (trials == 1 && static_cast<double>(bytes) >= target) break;
-      (static_cast<double>(bytes) > target ? lo : hi) = std::log(d);
-    }
-    best.setting = "-d " + format_number(best_distance, "%.4f") + " (" + std::to_string(trials) + " trials)";
-    return best;
+    const auto trial = [&](double d, const fs::path& product) {
+      return run_checked({enc_.string(), q.input.string(), product.string(), "-d", format_number(d, "%.4f")},
+                         q.log, product);
+    };
+    // 25 is the largest distance cjxl 0.7 accepts.
+    return search_parameter(q, {0.05, 25.0, false, true, true}, trial,
+                            [](double d) { return "-d " + format_number(d, "%.4f"); });
   }
 
   double decode(const fs::path& compressed, const fs::path& decoded, const fs::path& log) const override {
@@ -138,9 +119,6 @@ class JxlAnchor final : public RdCodec {
   }
 
  private:
-  static constexpr double kMinDistance = 0.05;
-  static constexpr double kMaxDistance = 25.0;  // the largest distance cjxl 0.7 accepts
-  static constexpr int kMaxTrials = 16;
   fs::path enc_, dec_;
 };
 
@@ -151,31 +129,47 @@ RdCodecPtr make_pupwave_codec(const fs::path& cli, const std::string& spec) {
 }
 
 const std::vector<std::string>& anchor_names() {
-  static const std::vector<std::string> names = {"openjpeg", "jxl"};
+  static const std::vector<std::string> names = {"openjpeg", "jxl", "avif", "hevc", "webp"};
   return names;
 }
 
+namespace {
+
+// The programs each anchor runs and the Debian package that ships them.
+struct AnchorTools {
+  std::vector<std::string> programs;
+  const char* package;
+};
+
+AnchorTools anchor_tools(const std::string& name) {
+  if (name == "openjpeg") return {{"opj_compress", "opj_decompress"}, "libopenjp2-tools"};
+  if (name == "jxl") return {{"cjxl", "djxl"}, "libjxl-tools"};
+  if (name == "avif") return {{"avifenc", "avifdec", "ffmpeg"}, "libavif-bin and ffmpeg"};
+  if (name == "hevc") return {{"ffmpeg"}, "ffmpeg"};
+  if (name == "webp") return {{"cwebp", "dwebp", "ffmpeg"}, "webp and ffmpeg"};
+  throw std::invalid_argument("unknown anchor '" + name + "' (known: openjpeg, jxl, avif, hevc, webp)");
+}
+
+}  // namespace
+
 RdCodecPtr make_anchor(const std::string& name, const std::string& search_path, std::string& missing_note) {
-  std::vector<std::string> tools;
-  if (name == "openjpeg")
-    tools = {"opj_compress", "opj_decompress"};
-  else if (name == "jxl")
-    tools = {"cjxl", "djxl"};
-  else
-    throw std::invalid_argument("unknown anchor '" + name + "' (known: openjpeg, jxl)");
+  const AnchorTools tools = anchor_tools(name);
   std::vector<fs::path> found;
-  for (const std::string& tool : tools) {
+  for (const std::string& tool : tools.programs) {
     const auto path = find_tool(tool, search_path);
     if (!path) {
       missing_note = "anchor " + name + " skipped: " + tool + " not found in PATH (Debian package " +
-                     (name == "openjpeg" ? "libopenjp2-tools" : "libjxl-tools") + ")";
+                     tools.package + ")";
       return nullptr;
     }
     found.push_back(*path);
   }
   missing_note.clear();
   if (name == "openjpeg") return std::make_shared<OpenJpegAnchor>(found[0], found[1]);
-  return std::make_shared<JxlAnchor>(found[0], found[1]);
+  if (name == "jxl") return std::make_shared<JxlAnchor>(found[0], found[1]);
+  if (name == "avif") return make_avif_anchor(found[0], found[1], found[2]);
+  if (name == "hevc") return make_hevc_anchor(found[0]);
+  return make_webp_anchor(found[0], found[1], found[2]);
 }
 
 namespace {
@@ -203,6 +197,12 @@ std::string anchor_versions(const std::string& search_path) {
     parts.push_back("opj_compress (" + version_line(*opj, "-h", "openjp2 library") + ")");
   if (const auto cjxl = find_tool("cjxl", search_path))
     parts.push_back(version_line(*cjxl, "--version", "cjxl v"));
+  if (const auto avifenc = find_tool("avifenc", search_path))
+    parts.push_back("avifenc " + version_line(*avifenc, "--version", "Version: "));
+  if (const auto ffmpeg = find_tool("ffmpeg", search_path))
+    parts.push_back(version_line(*ffmpeg, "-version", "ffmpeg version"));
+  if (const auto cwebp = find_tool("cwebp", search_path))
+    parts.push_back("cwebp " + version_line(*cwebp, "-version", ""));
   std::string joined;
   for (const std::string& p : parts) joined += (joined.empty() ? "" : ", ") + p;
   return joined;
