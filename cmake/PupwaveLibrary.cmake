@@ -69,7 +69,7 @@ endif()
 if(PUPWAVE_BUILD_TESTS)
   # The C API from a C program, against the shared library.
   add_executable(c_api_test ${PROJECT_SOURCE_DIR}/tests/api/c_api_test.c)
-  target_link_libraries(c_api_test PRIVATE pupwave_shared)
+  target_link_libraries(c_api_test PRIVATE pupwave_shared m)
   set_target_properties(c_api_test PROPERTIES C_STANDARD 99 C_STANDARD_REQUIRED ON)
   target_compile_definitions(c_api_test PRIVATE PUPWAVE_TESTIMAGES_DIR="${PUPWAVE_TESTIMAGES_DIR}")
   add_test(NAME api.c_api COMMAND c_api_test)

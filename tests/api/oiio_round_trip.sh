@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ctest oiio_plugin.round_trip: OpenImageIO's own tools read and write .pw through the plugin
 # pw.imageio.so: oiiotool writes the CLI's exact bytes for the same settings, iinfo describes
-# the file with its MIP levels, oiiotool decodes to EXR/PNG exactly as the CLI decodes, a
+# the file, resolution levels read as MIP levels (--iconfig pupwave:mip 1), oiiotool decodes to EXR/PNG exactly as the CLI decodes, a
 # reduced level reads as a MIP level, lossless survives, and a corrupt file is an error.
 # Usage: oiio_round_trip.sh PLUGIN_DIR PUPWAVE_CLI TESTIMAGES WORK_DIR
 set -euo pipefail
@@ -16,7 +16,8 @@ cmp "$work/oiio.pw" "$work/cli.pw" || fail "oiiotool's .pw differs from the CLI'
 
 iinfo -v "$work/oiio.pw" | tee "$work/iinfo.txt"
 grep -Eq "451 x +300, 3 channel, uint8 pw" "$work/iinfo.txt" || fail "iinfo does not describe the .pw file"
-grep -q "MIP-map levels" "$work/iinfo.txt" || fail "iinfo shows no MIP levels"
+oiiotool --info -v --iconfig pupwave:mip 1 "$work/oiio.pw" | tee "$work/mip.txt"
+grep -q "MIP-map levels: 451x300 226x150 113x75" "$work/mip.txt" || fail "no MIP levels with --iconfig pupwave:mip 1"
 
 oiiotool "$work/oiio.pw" -o "$work/oiio.exr"
 oiiotool "$work/oiio.pw" -o "$work/oiio.png"
@@ -25,7 +26,7 @@ idiff -a "$work/oiio.png" "$work/cli.png" || fail "oiiotool decodes differently 
 idiff -fail 0.02 -failpercent 100 -warnpercent 100 -warn 1 "$work/oiio.exr" "$work/oiio.png" > /dev/null ||
   fail "EXR and PNG decodes differ"
 
-oiiotool "$work/oiio.pw" --selectmip 1 -o "$work/half.png"
+oiiotool --iconfig pupwave:mip 1 "$work/oiio.pw" --selectmip 1 -o "$work/half.png"
 "$cli" decompress "$work/cli.pw" "$work/cli_half.png" --level 1 > /dev/null
 idiff -a "$work/half.png" "$work/cli_half.png" || fail "MIP level 1 differs from the CLI's --level 1"
 iinfo "$work/half.png" | grep -Eq "226 x +150" || fail "MIP level 1 is not 226 x 150"

@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -34,6 +35,16 @@ TypeDesc oiio_type(api::SampleType type) {
   return TypeDesc::FLOAT;
 }
 
+// A numeric attribute of any type (oiiotool --attrib stores "1" as int, "1.5" as float); 0 if absent.
+float number(const ImageSpec& spec, const char* name) {
+  const ParamValue* p = spec.find_attribute(name);
+  if (!p) return 0.0f;
+  if (p->type() == TypeInt) return float(*static_cast<const int*>(p->data()));
+  if (p->type() == TypeFloat) return *static_cast<const float*>(p->data());
+  if (p->type() == TypeString) return std::strtof(p->get_string().c_str(), nullptr);
+  return 0.0f;
+}
+
 bool has_signature(const std::string& path) {
   char sig[4] = {};
   std::ifstream in(path, std::ios::binary);
@@ -47,21 +58,16 @@ class PwInput final : public ImageInput {
   bool valid_file(const std::string& filename) const override { return has_signature(filename); }
 
   bool open(const std::string& name, ImageSpec& newspec) override {
-    std::ifstream in(name, std::ios::binary);
-    if (!in) return fail("cannot open " + name);
-    bytes_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (bytes_.size() < 4 || std::memcmp(bytes_.data(), "PUPW", 4) != 0)
-      return fail(name +
-                  " is not a Pupwave image stream (volume streams are read with `pupwave decompress`)");
-    try {
-      info_ = api::info(bytes_);
-    } catch (const std::exception& e) {
-      return fail(name + ": " + e.what());
-    }
-    levels_.clear();
-    if (!seek_subimage(0, 0)) return false;
-    newspec = spec();
-    return true;
+    mip_ = false;
+    return open_stream(name, newspec);
+  }
+
+  // Config "pupwave:mip" = 1 (oiiotool --iconfig pupwave:mip 1) exposes the reduced
+  // resolutions as MIP levels. Off by default: oiiotool copies every MIP level of an input
+  // to its output, which scanline EXR and PNG cannot hold (`oiiotool x.pw -o y.exr` fails).
+  bool open(const std::string& name, ImageSpec& newspec, const ImageSpec& config) override {
+    mip_ = number(config, "pupwave:mip") != 0.0f;
+    return open_stream(name, newspec);
   }
 
   bool close() override {
@@ -74,7 +80,38 @@ class PwInput final : public ImageInput {
   int current_miplevel() const override { return miplevel_; }
 
   bool seek_subimage(int subimage, int miplevel) override {
-    if (subimage != 0 || miplevel < 0 || miplevel > info_.levels) return false;
+    if (subimage != 0 || miplevel < 0 || miplevel > (mip_ ? info_.levels : 0)) return false;
+    return miplevel == miplevel_ && m_spec.width > 0 ? true : seek_level(miplevel);
+  }
+
+  bool read_native_scanline(int subimage, int miplevel, int y, int /*z*/, void* data) override {
+    if (!seek_subimage(subimage, miplevel) || y < 0 || y >= m_spec.height) return false;
+    const api::Image& image = level(miplevel);
+    const std::size_t row = image.width * image.channels * api::bytes_per_sample(image.type);
+    std::memcpy(data, image.data.data() + std::size_t(y) * row, row);
+    return true;
+  }
+
+ private:
+  bool open_stream(const std::string& name, ImageSpec& newspec) {
+    std::ifstream in(name, std::ios::binary);
+    if (!in) return fail("cannot open " + name);
+    bytes_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (bytes_.size() < 4 || std::memcmp(bytes_.data(), "PUPW", 4) != 0)
+      return fail(name +
+                  " is not a Pupwave image stream (volume streams are read with `pupwave decompress`)");
+    try {
+      info_ = api::info(bytes_);
+    } catch (const std::exception& e) {
+      return fail(name + ": " + e.what());
+    }
+    levels_.clear();
+    if (!seek_level(0)) return false;
+    newspec = spec();
+    return true;
+  }
+
+  bool seek_level(int miplevel) {
     const api::Image& image = level(miplevel);
     if (image.width == 0) return false;
     miplevel_ = miplevel;
@@ -88,15 +125,6 @@ class PwInput final : public ImageInput {
     return true;
   }
 
-  bool read_native_scanline(int subimage, int miplevel, int y, int /*z*/, void* data) override {
-    if (!seek_subimage(subimage, miplevel) || y < 0 || y >= m_spec.height) return false;
-    const api::Image& image = level(miplevel);
-    const std::size_t row = image.width * image.channels * api::bytes_per_sample(image.type);
-    std::memcpy(data, image.data.data() + std::size_t(y) * row, row);
-    return true;
-  }
-
- private:
   // The decoded image of a resolution level, decoded on first use (empty on failure).
   const api::Image& level(int miplevel) {
     auto it = levels_.find(miplevel);
@@ -119,6 +147,7 @@ class PwInput final : public ImageInput {
   api::StreamInfo info_;
   std::map<int, api::Image> levels_;
   int miplevel_ = 0;
+  bool mip_ = false;  // reduced resolutions exposed as MIP levels
 };
 
 class PwOutput final : public ImageOutput {
@@ -177,18 +206,18 @@ class PwOutput final : public ImageOutput {
   api::ImageOptions options() const {
     api::ImageOptions o;
     const std::string compression = m_spec.get_string_attribute("compression");
-    if (const float bpp = m_spec.get_float_attribute("pupwave:bpp", 0.0f); bpp != 0.0f) {
+    if (const float bpp = number(m_spec, "pupwave:bpp"); bpp != 0.0f) {
       o.rate = api::ImageRate::bpp, o.target = bpp;
-    } else if (const float psnr = m_spec.get_float_attribute("pupwave:psnr", 0.0f); psnr != 0.0f) {
+    } else if (const float psnr = number(m_spec, "pupwave:psnr"); psnr != 0.0f) {
       o.rate = api::ImageRate::psnr, o.target = psnr;
-    } else if (const float step = m_spec.get_float_attribute("pupwave:step", 0.0f); step != 0.0f) {
+    } else if (const float step = number(m_spec, "pupwave:step"); step != 0.0f) {
       o.rate = api::ImageRate::step, o.target = step;
-    } else if (m_spec.get_int_attribute("pupwave:lossless", 0) != 0 || compression == "lossless" ||
+    } else if (number(m_spec, "pupwave:lossless") != 0.0f || compression == "lossless" ||
                compression == "pupwave:lossless") {
       o.rate = api::ImageRate::lossless;
     }
     o.transform = m_spec.get_string_attribute("pupwave:transform");
-    o.levels = m_spec.get_int_attribute("pupwave:levels", -1);
+    o.levels = m_spec.find_attribute("pupwave:levels") ? int(number(m_spec, "pupwave:levels")) : -1;
     return o;
   }
 
