@@ -17,6 +17,8 @@ packages=(
   # sqrt(3) meshes: OpenMesh for the subdivision cross-check test, Draco and the CGAL sample
   # meshes for bench/mesh_vs_draco.py
   libopenmesh-dev draco libcgal-demo
+  # the Python module and its tests (docs/api.md)
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
 )
 
 missing=()
