@@ -36,7 +36,7 @@ row() {
   echo "Input: \`testimages/forest_hdr.exr\` (512x256 half RGB, a real HDR photograph, luminance up to"
   echo "~600; provenance in testimages/README.md; raw half RGB = 786432 bytes, the zip EXR $(stat -c %s "$in") bytes)."
   echo "Made by \`bench/hdr_compare.sh\` on $(date -u +%Y-%m-%d) ($(nproc) cores, machine shared with other jobs;"
-  echo "sizes and errors do not depend on load). Tools: $(oiiotool --version 2>&1 | head -1), cjxl $(cjxl --version 2>&1 | head -1 | cut -d' ' -f2)."
+  echo "sizes and errors do not depend on load). Tools: OpenImageIO $(oiiotool --version 2>&1 | head -1), cjxl $(cjxl --version 2>&1 | head -1 | cut -d' ' -f2)."
   echo
   echo "Columns: whole-file bytes and bits per pixel; PSNR against the value range (what \`--psnr\`"
   echo "meant for float images before the log transfer); log-PSNR (PSNR with peak 1 over log2(1 + x/2^-14),"
@@ -70,5 +70,12 @@ row() {
     oiiotool "$tmp/d$d.pfm" -d half -o "$tmp/d$d.exr"
     row "JPEG XL" "cjxl -d $d (PFM in/out)" "$tmp/d$d.jxl" "$tmp/d$d.exr"
   done
+  echo
+  echo "Notes: the EXR sizes are whole files written by oiiotool (DWAA/DWAB level 45 is OpenEXR's"
+  echo "default). cjxl 0.7 (Debian) reads no EXR, so it codes the same float samples from a PFM"
+  echo 'declared linear sRGB (`--dec-hints=color_space=RGB_D65_SRG_Rel_Lin`, and djxl decodes to the same'
+  echo "space); without that hint its output clips the highlights at about 8.8. The input itself was"
+  echo "DWAB-coded by Blender's packagers before it was resized, so it carries fine DWAB artefacts and"
+  echo "photographic noise, which no codec here removes cheaply."
 } >"$out"
 cat "$out"
