@@ -246,6 +246,13 @@ std::string describe(const fs::path& path) {
   s << "), " << spec.format.c_str();
   if (spec.depth > 1) s << ", depth " << spec.depth;
   if (spec.alpha_channel >= 0) s << ", alpha in channel " << spec.alpha_channel;
+  // What compress keeps besides the pixels (Image::metadata): windows and attributes.
+  const ImageMetadata m = metadata_of(spec, in->format_name());
+  if (m.x != 0 || m.y != 0) s << ", data window origin " << m.x << "," << m.y;
+  if (m.full_width > 0)
+    s << ", display window " << m.full_width << "x" << m.full_height << " at " << m.full_x << "," << m.full_y;
+  if (!m.attributes.empty()) s << "\n  " << m.attributes.size() << " attribute(s) kept by compress:";
+  for (std::size_t k = 0; k < m.attributes.size(); ++k) s << (k ? ", " : " ") << m.attributes[k].name;
   return s.str();
 }
 
