@@ -207,7 +207,9 @@ void add_compress_command(CLI::App& app) {
   auto* bpp =
       cmd->add_option("--bpp", opt->bpp, "target bits per pixel (whole file)")->check(CLI::PositiveNumber);
   auto* psnr =
-      cmd->add_option("--psnr", opt->psnr, "target PSNR in dB (all channels)")->check(CLI::PositiveNumber);
+      cmd->add_option("--psnr", opt->psnr,
+                      "target PSNR in dB (all channels; log-PSNR for half/float images, see --transfer)")
+          ->check(CLI::PositiveNumber);
   auto* step = cmd->add_option("--step", opt->step, "fixed quantizer base step (sample units)")
                    ->check(CLI::PositiveNumber);
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
