@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "codec/image/image_codec.h"
+#include "codec/rate/metrics.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
@@ -33,6 +34,8 @@ struct CompressOptions {
   EntropyCoder entropy = EntropyCoder::ebcot;
   unsigned threads = 0;
   bool report_psnr = false;
+  bool keep_nonfinite = false;
+  Transfer transfer = Transfer::log2;
   // volumes
   std::string dims, dtype, grid;
   double bpv = 0.0, max_error = 0.0, max_error_rel = 0.0;
@@ -140,6 +143,23 @@ void set_rate(const CompressOptions& opt, EncodeOptions& enc) {
   }
 }
 
+// ", PSNR x dB" when measured; for a float image coded in the log domain the metric the
+// target used (log-PSNR) and, beside it, ordinary PSNR of the decoded image, and the count of
+// non-finite samples kept.
+std::string quality_text(const Image& image, const EncodeResult& r) {
+  if (std::isnan(r.psnr)) return "";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, ", %s %.3f dB", r.metric.c_str(), r.psnr);
+  std::string text = buf;
+  if (r.metric != "PSNR") {
+    const ImageError e = compare_images(image, decode_image(r.bytes));
+    std::snprintf(buf, sizeof buf, " (PSNR %.3f dB)", e.overall.psnr);
+    text += buf;
+  }
+  if (r.nonfinite > 0) text += ", " + std::to_string(r.nonfinite) + " non-finite sample(s) kept exactly";
+  return text;
+}
+
 void run_compress(const CompressOptions& opt) {
   check_output_path(opt.output);
   if (is_volume_input(opt)) return run_compress_volume(opt);
@@ -155,15 +175,16 @@ void run_compress(const CompressOptions& opt) {
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
   enc.measure_psnr = opt.report_psnr;
+  enc.keep_nonfinite = opt.keep_nonfinite;
+  enc.transfer = opt.transfer;
   set_rate(opt, enc);
   const auto start = std::chrono::steady_clock::now();
   const EncodeResult r = encode_image(image, enc);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_bytes_atomically(opt.output, r.bytes);
-  char psnr[48] = "";  // only when measured
-  if (!std::isnan(r.psnr)) std::snprintf(psnr, sizeof psnr, ", PSNR %.3f dB", r.psnr);
+  const std::string psnr = quality_text(image, r);
   std::printf("%s: %zu bytes, %.4f bpp%s, %.3f s (%zux%zu, %zu channel(s), %s)\n", opt.output.c_str(),
-              r.bytes.size(), r.bpp, psnr, seconds, image.width, image.height, image.channels,
+              r.bytes.size(), r.bpp, psnr.c_str(), seconds, image.width, image.height, image.channels,
               to_string(image.type).c_str());
 }
 
@@ -186,7 +207,9 @@ void add_compress_command(CLI::App& app) {
   auto* bpp =
       cmd->add_option("--bpp", opt->bpp, "target bits per pixel (whole file)")->check(CLI::PositiveNumber);
   auto* psnr =
-      cmd->add_option("--psnr", opt->psnr, "target PSNR in dB (all channels)")->check(CLI::PositiveNumber);
+      cmd->add_option("--psnr", opt->psnr,
+                      "target PSNR in dB (all channels; log-PSNR for half/float images, see --transfer)")
+          ->check(CLI::PositiveNumber);
   auto* step = cmd->add_option("--step", opt->step, "fixed quantizer base step (sample units)")
                    ->check(CLI::PositiveNumber);
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
@@ -214,6 +237,14 @@ void add_compress_command(CLI::App& app) {
                                                    {"zstd", EntropyCoder::zstd}};
   cmd->add_option("--entropy", opt->entropy, "entropy coder: ebcot (bit-plane, default) or zstd")
       ->transform(CLI::CheckedTransformer(coders, CLI::ignore_case));
+  cmd->add_flag("--keep-nonfinite", opt->keep_nonfinite,
+                "float images: code NaN and infinite samples exactly in a side list (default: refuse them)");
+  const std::map<std::string, Transfer> transfers{{"log", Transfer::log2}, {"linear", Transfer::linear}};
+  cmd->add_option(
+         "--transfer", opt->transfer,
+         "float images: coding domain, log (default: log2 of the value, --psnr is log-PSNR with peak "
+         "1 stop) or linear (--psnr against the value range)")
+      ->transform(CLI::CheckedTransformer(transfers, CLI::ignore_case));
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_flag("--report-psnr", opt->report_psnr,
                 "images: decode the stream in memory and report its PSNR against the input (costs about "

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
@@ -28,6 +29,15 @@ void print_row(const std::string& name, const ChannelError& e) {
   std::printf("%-8s %14.6f %10s %12.6g\n", name.c_str(), e.mse, format_psnr(e.psnr).c_str(), e.max_abs);
 }
 
+// Relative luminance error per decade: what a log-domain coder keeps even and a linear one does not.
+void print_decades(const HdrError& e) {
+  std::printf("luminance decade   pixels  median relative error\n");
+  for (const DecadeError& d : e.decades)
+    std::printf("[1e%+d, 1e%+d) %8.2f%% %10.3f%%\n", d.decade, d.decade + 1, 100.0 * d.share,
+                100.0 * d.median_rel);
+  std::printf("sign flips (reference >= 0, test < 0): %zu\n", e.sign_flips);
+}
+
 void run_psnr(const PsnrOptions& opt) {
   const Image a = read_image(opt.reference);
   Image b = read_image(opt.test);
@@ -35,12 +45,22 @@ void run_psnr(const PsnrOptions& opt) {
   const ImageError err = compare_images(a, b);
   static const char* rgba[] = {"R", "G", "B", "A"};
   static const char* grey[] = {"Y", "A"};
+  const auto& names = a.metadata.channel_names;
   std::printf("peak %.6g (%s)\n", err.peak, to_string(a.type).c_str());
   std::printf("%-8s %14s %10s %12s\n", "channel", "MSE", "PSNR(dB)", "max_abs_err");
   for (std::size_t c = 0; c < err.channels.size(); ++c)
-    print_row(a.channels <= 2 ? grey[c] : rgba[c], err.channels[c]);
+    print_row(names.size() == a.channels ? names[c]
+              : a.channels <= 2          ? grey[c]
+              : c < 4                    ? rgba[c]
+                                         : "c" + std::to_string(c),
+              err.channels[c]);
   print_row("all", err.overall);
   if (err.has_luma) print_row("luma", err.luma);
+  // Float images are coded (and their targets stated) in the log domain: the same metric here.
+  if (!is_integer(a.type))
+    std::printf("%-8s %14s %10s   (log2 domain, peak 1 stop; see docs/bitstream.md)\n", "log-PSNR", "",
+                format_psnr(transfer_psnr(a, b, Transfer::log2)).c_str());
+  if (!is_integer(a.type)) print_decades(hdr_error(a, b));
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ Image convert_sample_type(const Image& image, SampleType target) {
 }
 
 void write_image(const Image& image, const fs::path& path, SampleType* stored_as) {
-  if (image.channels < 1 || image.channels > 4 || image.width == 0 || image.height == 0 ||
+  if (image.channels < 1 || image.channels > kMaxImageChannels || image.width == 0 || image.height == 0 ||
       image.samples.size() != image.plane_size() * image.channels)
     throw std::invalid_argument("write_image: malformed image");
   check_output_path(path);
@@ -77,10 +77,18 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
     if (stored_as) *stored_as = image.type;
     return;
   }
-  const SampleType target = storable_type(path, image.type);
+  SampleType target = storable_type(path, image.type);
+  // OpenImageIO writes PNM with 8 bits only; the binary writer takes the 1- and 3-channel cases.
+  if (oiio_module().format_name(path) == "pnm" && image.channels != 1 && image.channels != 3)
+    target = SampleType::u8;
   std::optional<Image> converted;  // only when the type changes: a copy is 4 bytes per sample
   if (target != image.type) converted = convert_sample_type(image, target);
   const Image& stored = converted ? *converted : image;
+  if (binary_pnm_writable(path, stored)) {  // a float image converted to 16 bits for a .ppm
+    write_atomically(path, [&](const fs::path& tmp) { write_binary_pnm(stored, tmp); });
+    if (stored_as) *stored_as = stored.type;
+    return;
+  }
   write_atomically(path, [&](const fs::path& tmp) { oiio_module().write(stored, path, tmp); });
   if (stored_as) *stored_as = stored.type;
 }

@@ -13,10 +13,14 @@ namespace pupwave::cli {
 // Largest image accepted on read (samples over all channels), so a hostile header cannot make
 // us allocate without bound.
 inline constexpr std::size_t kMaxImageSamples = std::size_t(1) << 31;
+// Most channels an image file may have (the codec's limit, kMaxChannels).
+inline constexpr int kMaxImageChannels = 64;
 
 // Reads the first subimage of an image file (PNG, JPEG, TIFF, PNM, EXR and whatever else
-// OpenImageIO reads) exactly: 8/16-bit integer, half and float samples, 1 to 4 channels.
-// Alpha is kept unassociated (as stored). Throws std::runtime_error with the reason.
+// OpenImageIO reads) exactly: 8/16-bit integer, half and float samples, 1 to 64 channels,
+// with channel names, data/display windows and string/int/float attributes (Image::metadata).
+// Alpha is kept unassociated (as stored). CMYK files are refused (never converted to RGB). Throws
+// std::runtime_error with the reason.
 Image read_image(const std::filesystem::path& path);
 
 // Describes an image file without decoding its pixels (format, size, channels, type).

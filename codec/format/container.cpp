@@ -8,6 +8,7 @@
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
 #include "codec/format/chunks.h"
+#include "codec/format/container_extras.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 
@@ -32,6 +33,8 @@ std::vector<std::uint8_t> header_payload(const StreamHeader& h) {
   w.str16(h.spec);
   w.u32(std::uint32_t(h.steps.size()));
   for (float s : h.steps) w.f32(s);
+  w.u8(std::uint8_t(h.transfer));
+  w.u8(h.nonnegative ? 1 : 0);
   return p;
 }
 
@@ -39,7 +42,7 @@ void validate_shape(const StreamHeader& h) {
   for (std::size_t d : h.dims)
     require_stream(d >= 1 && d <= kMaxAxisExtent,
                    [&] { return "dimension " + std::to_string(d) + " outside [1, 65536]"; });
-  require_stream(h.channels >= 1 && h.channels <= 4,
+  require_stream(h.channels >= 1 && h.channels <= kMaxChannels,
                  [&] { return "channel count " + std::to_string(h.channels); });
   require_stream(h.dims[0] * h.dims[1] * h.dims[2] * h.channels <= kMaxTotalSamples,
                  "image too large (over 2^31 samples)");
@@ -50,6 +53,7 @@ void validate_coding(const StreamHeader& h) {
   require_stream(h.colour != ColourTransform::ict || !h.reversible, "ICT in a reversible stream");
   require_stream(h.colour != ColourTransform::rct || h.reversible, "RCT in an irreversible stream");
   require_stream(!h.reversible || is_integer(h.type), "reversible coding of float samples");
+  require_stream(h.transfer == Transfer::linear || !is_integer(h.type), "transfer on integer samples");
   require_stream(h.levels >= 0 && h.levels <= kMaxStreamLevels,
                  [&] { return "level count " + std::to_string(h.levels); });
   std::size_t block = 1;
@@ -87,6 +91,10 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
   require_stream(step_count <= h.channels * (7u * kMaxStreamLevels + 1u), "step count");
   h.steps.resize(step_count);
   for (auto& s : h.steps) s = r.f32();
+  const std::uint32_t transfer = r.u8(), nonnegative = r.u8();
+  require_stream(transfer <= 1 && nonnegative <= 1, "transfer or flags field");
+  h.transfer = Transfer(transfer);
+  h.nonnegative = nonnegative != 0;
   require_stream(r.remaining() == 0, "HEAD chunk has trailing bytes");
   validate_coding(h);
   return h;
@@ -131,6 +139,8 @@ std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<
   std::vector<std::uint8_t> out;
   write_signature(out, kSignature, kStreamVersion);
   write_chunk(out, "HEAD", header_payload(header));
+  if (!header.metadata.empty()) write_chunk(out, "META", metadata_payload(header.metadata));
+  if (!header.nonfinite.empty()) write_chunk(out, "NFIN", nonfinite_payload(header.nonfinite));
   const auto coded = encode_index(index);
   std::vector<std::uint8_t> index_payload;
   index_payload.reserve(4 + coded.size());
@@ -144,8 +154,11 @@ std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<
 
 std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, std::size_t data_bytes) {
   const std::size_t chunks = 2 + std::size_t(header.levels) + 1;
+  std::size_t extras = 0;
+  if (!header.metadata.empty()) extras += kChunkOverhead + metadata_payload(header.metadata).size();
+  if (!header.nonfinite.empty()) extras += kChunkOverhead + nonfinite_payload(header.nonfinite).size();
   return kSignatureBytes + chunks * kChunkOverhead + header_payload(header).size() + 4 + index_bytes +
-         data_bytes;
+         data_bytes + extras;
 }
 
 ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels) {
@@ -154,7 +167,21 @@ ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_level
   s.header = parse_header(chunks.expect("HEAD").payload);
   s.bands = header_bands(s.header);
   s.blocks = partition_blocks(s.bands, s.header.levels, s.header.channels, s.header.block_size());
-  const auto index_chunk = chunks.expect("INDX").payload;
+  require_stream(!chunks.at_end(), "pupwave stream: missing chunk INDX");
+  Chunk next = chunks.next();
+  if (next.is("META")) {
+    s.header.metadata = parse_metadata(next.payload, s.header.channels);
+    require_stream(!chunks.at_end(), "pupwave stream: missing chunk INDX");
+    next = chunks.next();
+  }
+  if (next.is("NFIN")) {
+    require_stream(!is_integer(s.header.type), "NFIN chunk in an integer stream");
+    s.header.nonfinite = parse_nonfinite(next.payload, s.header);
+    require_stream(!chunks.at_end(), "pupwave stream: missing chunk INDX");
+    next = chunks.next();
+  }
+  require_stream(next.is("INDX"), [&] { return "expected chunk INDX, found " + next.name(); });
+  const auto index_chunk = next.payload;
   ByteReader ir(index_chunk, "INDX chunk");
   require_stream(ir.u32() == s.blocks.size(), "block count does not match the image geometry");
   s.index = decode_index(index_chunk.subspan(4), s.blocks.size());

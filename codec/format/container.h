@@ -18,27 +18,43 @@
 
 namespace pupwave {
 
-inline constexpr std::uint8_t kStreamVersion = 1;
+// Version 2: HEAD gained the transfer and flags bytes; optional META and NFIN chunks.
+inline constexpr std::uint8_t kStreamVersion = 2;
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxAxisExtent = std::size_t(1) << 16;
 inline constexpr std::size_t kMaxTotalSamples = std::size_t(1) << 31;
 inline constexpr std::size_t kMaxSpecLength = 4096;
+inline constexpr std::uint32_t kMaxChannels = 64;
 
 enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1 };
 const char* to_string(EntropyCoder coder);
 
+// Domain the samples are coded in (float images): see codec/image/transfer.h.
+enum class Transfer : std::uint8_t { linear = 0, log2 = 1 };
+
+// A sample the coded planes cannot hold (NaN, +-infinity), restored exactly after decoding.
+struct NonFiniteSample {
+  std::uint32_t channel = 0;
+  std::uint64_t index = 0;  // y * width + x
+  std::uint32_t bits = 0;   // binary32 bits of the value
+};
+
 struct StreamHeader {
   Extent dims{1, 1, 1};        // width, height, depth (depth 1 for images)
-  std::uint32_t channels = 1;  // 1..4
+  std::uint32_t channels = 1;  // 1..kMaxChannels
   SampleType type = SampleType::u8;
   ColourTransform colour = ColourTransform::none;
   EntropyCoder entropy = EntropyCoder::ebcot;
   bool reversible = false;  // integer transform, no quantization: lossless
   int levels = 0;
-  Extent block_log2{6, 6, 0};  // code-block extent 2^k per axis
-  double delta = 0.375;        // reconstruction offset in a bin (index units), [0, 1)
-  std::string spec;            // transform spec for make_transform
-  std::vector<float> steps;    // quantizer step per (component, band): c * bands + b
+  Extent block_log2{6, 6, 0};              // code-block extent 2^k per axis
+  double delta = 0.375;                    // reconstruction offset in a bin (index units), [0, 1)
+  std::string spec;                        // transform spec for make_transform
+  std::vector<float> steps;                // quantizer step per (component, band): c * bands + b
+  Transfer transfer = Transfer::linear;    // float images: coded as transfer(x), inverted on decode
+  bool nonnegative = false;                // every input sample was >= 0: decoded values are clamped at 0
+  ImageMetadata metadata;                  // META chunk (written when not empty)
+  std::vector<NonFiniteSample> nonfinite;  // NFIN chunk (written when not empty)
 
   Extent block_size() const {
     return {std::size_t(1) << block_log2[0], std::size_t(1) << block_log2[1],

@@ -18,6 +18,36 @@ bool is_integer(SampleType type);
 // Largest representable value for integer types (255, 65535); 1.0 for float types (nominal range).
 double nominal_max(SampleType type);
 
+// A named attribute of an image file kept through compression (EXR header attributes and the
+// like): a string, an integer or a float.
+struct ImageAttribute {
+  enum class Kind : std::uint8_t { string = 0, integer = 1, real = 2 };
+  std::string name;
+  Kind kind = Kind::string;
+  std::string text;          // Kind::string
+  std::int64_t integer = 0;  // Kind::integer
+  double real = 0.0;         // Kind::real
+
+  bool operator==(const ImageAttribute&) const = default;
+};
+
+// What an image file says about its pixels besides the samples: channel names, the data
+// window's origin and the display window (OpenEXR's dataWindow/displayWindow), attributes.
+// Empty names / zero display size mean "not given" (the writer's defaults apply).
+struct ImageMetadata {
+  std::vector<std::string> channel_names;         // empty or one per channel
+  std::int32_t x = 0, y = 0;                      // origin of the data window
+  std::int32_t full_x = 0, full_y = 0;            // display window origin
+  std::uint32_t full_width = 0, full_height = 0;  // display window size; 0: same as the data window
+  std::vector<ImageAttribute> attributes;
+
+  bool empty() const {
+    return channel_names.empty() && x == 0 && y == 0 && full_x == 0 && full_y == 0 && full_width == 0 &&
+           full_height == 0 && attributes.empty();
+  }
+  bool operator==(const ImageMetadata&) const = default;
+};
+
 // A planar image: channel c occupies samples[c*width*height, (c+1)*width*height), rows of
 // `width` samples top to bottom. Every supported sample type is held exactly in float:
 // integers up to 65535 and half floats are exact in binary32.
@@ -27,6 +57,7 @@ struct Image {
   std::size_t channels = 0;
   SampleType type = SampleType::u8;
   std::vector<float> samples;
+  ImageMetadata metadata;
 
   Image() = default;
   Image(std::size_t w, std::size_t h, std::size_t c, SampleType t)

@@ -35,6 +35,15 @@ struct EncodeOptions {
   // Decode the result to report its PSNR. Costs about a full decode and a decoded image's
   // memory; PSNR targets measure it anyway.
   bool measure_psnr = true;
+  // Float images: the domain they are coded in (transfer.h). Rate targets (--psnr) and the
+  // reported PSNR are stated in it (log-PSNR for log2). Ignored for integer images.
+  Transfer transfer = Transfer::log2;
+  // Float images: NaN and infinite samples are coded exactly through a side list (NFIN chunk)
+  // instead of refused.
+  bool keep_nonfinite = false;
+  // Channel names, windows and attributes stored in the stream (META chunk); null: none
+  // (the Image overload of encode_image passes the image's own).
+  const ImageMetadata* metadata = nullptr;
 };
 
 struct EncodeResult {
@@ -42,17 +51,21 @@ struct EncodeResult {
   double bpp = 0.0;                 // bits per pixel of the whole file
   double psnr = 0.0;       // of the decoded image against the input, all channels (dB); NaN if not measured
   double base_step = 0.0;  // quantizer base step used (1 for lossless)
+  std::string metric = "PSNR";  // what `psnr` measures: "PSNR", or "log-PSNR" for float images coded in log2
+  std::size_t nonfinite = 0;    // non-finite samples kept in the side list
 };
 
 // Compresses an image. Throws std::invalid_argument for bad options (unknown transform, a
 // non-reversible transform for lossless, lossless float samples, a non-positive target) and
 // EncodeError for images the format cannot hold (empty, over 2^16 per axis or 2^31 samples,
-// more than 4 channels, non-finite samples).
+// more than 64 channels, non-finite samples unless keep_nonfinite).
 // The image is read through a typed strided view (image_view.h), never copied whole; a view
 // that cannot be read throws std::invalid_argument.
 EncodeResult encode_image(const ImageView& image, const EncodeOptions& options);
 inline EncodeResult encode_image(const Image& image, const EncodeOptions& options) {
-  return encode_image(view_of(image), options);
+  EncodeOptions with_metadata = options;
+  if (with_metadata.metadata == nullptr && !image.metadata.empty()) with_metadata.metadata = &image.metadata;
+  return encode_image(view_of(image), with_metadata);
 }
 
 // Decodes a stream, at full resolution (level 0) or at 1/2^level resolution, reading only

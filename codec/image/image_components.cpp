@@ -45,7 +45,8 @@ void write_planes(std::vector<std::vector<T>>& planes, Image& out) {
 // Squared error of every sample against the reference, summed in compare_images' order
 // (channel by channel, sample by sample) so the PSNR is the same to the last bit.
 template <class T>
-double components_psnr_after_colour(const ImageView& reference, const std::vector<std::vector<T>>& planes) {
+double components_psnr_after_colour(const ImageView& reference, const std::vector<std::vector<T>>& planes,
+                                    bool clamp_at_zero = false) {
   const double shift = level_shift(reference.type);
   const std::size_t w = reference.width;
   std::vector<float> row(w);
@@ -55,7 +56,9 @@ double components_psnr_after_colour(const ImageView& reference, const std::vecto
       reference.read_row(c, y, row.data());
       const T* b = planes[c].data() + y * w;
       for (std::size_t x = 0; x < w; ++x) {
-        const double d = double(row[x]) - double(finish_sample(double(b[x]) + shift, reference.type));
+        float v = finish_sample(double(b[x]) + shift, reference.type);
+        if (clamp_at_zero && v < 0.0f) v = 0.0f;  // as the decoder of a non-negative float stream does
+        const double d = double(row[x]) - double(v);
         sum_sq += d * d;
       }
     }
@@ -182,10 +185,10 @@ void finish_image_in_place(Image& image, ColourTransform colour, const Executor&
 }
 
 double components_psnr(const ImageView& reference, std::vector<std::vector<float>>& planes,
-                       ColourTransform colour) {
+                       ColourTransform colour, bool clamp_at_zero) {
   if (colour == ColourTransform::ict)
     inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
-  return components_psnr_after_colour(reference, planes);
+  return components_psnr_after_colour(reference, planes, clamp_at_zero);
 }
 
 double components_psnr(const ImageView& reference, std::vector<std::vector<std::int32_t>>& planes,

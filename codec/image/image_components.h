@@ -52,8 +52,10 @@ void finish_image_in_place(Image& image, ColourTransform colour, const Executor&
 // component planes laid out over the reference's extent, without building the decoded
 // image: undoes colour and level shift, rounds and clamps like image_from_components.
 // Consumes `planes` (the colour transform is undone in place).
+// clamp_at_zero: decoded values below 0 count as 0 (a float stream of non-negative input,
+// StreamHeader::nonnegative; the clamp commutes with the sign-preserving transfer).
 double components_psnr(const ImageView& reference, std::vector<std::vector<float>>& planes,
-                       ColourTransform colour);
+                       ColourTransform colour, bool clamp_at_zero = false);
 double components_psnr(const ImageView& reference, std::vector<std::vector<std::int32_t>>& planes,
                        ColourTransform colour);
 

@@ -10,6 +10,7 @@
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
 #include "codec/image/image_plan.h"
+#include "codec/image/transfer.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 
@@ -79,10 +80,19 @@ Image decode_full_float(const ParsedStream& s, const Transform1D& t, const Execu
   return out;
 }
 
-}  // namespace
+// The decoded image in sample units with what the stream keeps besides the samples: the
+// inverse transfer and non-finite samples of float images, channel names, windows, attributes.
+Image finish_decoded(Image image, const StreamHeader& h, int level) {
+  if (!is_integer(h.type)) from_coded_domain(image, h, level == 0);
+  image.metadata = h.metadata;
+  if (level > 0) {  // windows are those of the full-size image
+    image.metadata.x = image.metadata.y = image.metadata.full_x = image.metadata.full_y = 0;
+    image.metadata.full_width = image.metadata.full_height = 0;
+  }
+  return image;
+}
 
-Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executor& ex) {
-  const ParsedStream s = parse_container(bytes, level);
+Image decode_in_domain(const ParsedStream& s, int level, const Executor& ex) {
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
   const auto t = make_transform(h.spec);
@@ -96,6 +106,13 @@ Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executo
   auto planes = decode_planes<float>(s, ex);
   for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level, ex);
   return image_from_components(planes, h.dims, size, h.type, h.colour, coarse_gain(*t, h.dims, level));
+}
+
+}  // namespace
+
+Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executor& ex) {
+  const ParsedStream s = parse_container(bytes, level);
+  return finish_decoded(decode_in_domain(s, level, ex), s.header, level);
 }
 
 // The encoder's check of a stream: decodes it at full resolution and compares it with the
@@ -115,7 +132,7 @@ double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes,
   }
   auto planes = decode_planes<float>(s, ex);
   for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0, ex);
-  return components_psnr(image, planes, h.colour);
+  return components_psnr(image, planes, h.colour, h.nonnegative);
 }
 
 }  // namespace pupwave

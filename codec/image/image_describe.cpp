@@ -14,6 +14,33 @@ struct ResolutionSummary {
   std::size_t bytes = 0;
 };
 
+const char* to_string(Transfer t) {
+  return t == Transfer::log2
+             ? "log2 (coded as log2(1 + |x| / 2^-14), signed; targets in log-PSNR, peak 1 stop)"
+             : "linear";
+}
+
+// The META chunk: channel names, windows, attributes.
+void describe_metadata(std::ostringstream& out, const ImageMetadata& m, const Extent& dims) {
+  if (!m.channel_names.empty()) {
+    out << "  channels    ";
+    for (std::size_t c = 0; c < m.channel_names.size(); ++c) out << (c ? "," : "") << m.channel_names[c];
+    out << "\n";
+  }
+  if (m.x != 0 || m.y != 0 || m.full_width > 0)
+    out << "  data window " << dims[0] << "x" << dims[1] << (m.x < 0 ? "" : "+") << m.x
+        << (m.y < 0 ? "" : "+") << m.y << "\n";
+  if (m.full_width > 0)
+    out << "  display window " << m.full_width << "x" << m.full_height << (m.full_x < 0 ? "" : "+")
+        << m.full_x << (m.full_y < 0 ? "" : "+") << m.full_y << "\n";
+  for (const ImageAttribute& a : m.attributes) {
+    out << "  attribute   " << a.name << " = ";
+    if (a.kind == ImageAttribute::Kind::string) out << '"' << a.text << "\" (string)\n";
+    if (a.kind == ImageAttribute::Kind::integer) out << a.integer << " (int)\n";
+    if (a.kind == ImageAttribute::Kind::real) out << a.real << " (float)\n";
+  }
+}
+
 }  // namespace
 
 std::string describe_stream(std::span<const std::uint8_t> bytes) {
@@ -25,6 +52,11 @@ std::string describe_stream(std::span<const std::uint8_t> bytes) {
   if (h.dims[2] > 1) out << " x " << h.dims[2];
   out << ", " << h.channels << " channel(s), " << to_string(h.type) << "\n";
   out << "  colour      " << to_string(h.colour) << "\n";
+  if (!is_integer(h.type))
+    out << "  transfer    " << to_string(h.transfer) << (h.nonnegative ? ", non-negative input" : "") << "\n";
+  if (!h.nonfinite.empty())
+    out << "  non-finite  " << h.nonfinite.size() << " sample(s) kept exactly (NFIN)\n";
+  describe_metadata(out, h.metadata, h.dims);
   out << "  transform   " << h.spec << ", " << h.levels << " level(s), " << s.bands.size() << " subbands\n";
   out << "  coding      " << (h.reversible ? "reversible (lossless)" : "irreversible (lossy)") << ", entropy "
       << to_string(h.entropy) << ", code-blocks " << h.block_size()[0] << "x" << h.block_size()[1];
@@ -44,7 +76,9 @@ std::string describe_stream(std::span<const std::uint8_t> bytes) {
     r.coded += s.index[i].passes > 0;
     r.bytes += s.index[i].length;
   }
-  out << "  chunks      HEAD, INDX (" << s.blocks.size() << " code-blocks), DATA x " << res.size() << "\n";
+  out << "  chunks      HEAD, " << (h.metadata.empty() ? "" : "META, ")
+      << (h.nonfinite.empty() ? "" : "NFIN, ") << "INDX (" << s.blocks.size() << " code-blocks), DATA x "
+      << res.size() << "\n";
   for (std::size_t r = 0; r < res.size(); ++r)
     out << "    DATA " << r << (r == 0 ? " (coarse band)" : "") << ": " << res[r].bytes << " bytes, "
         << res[r].coded << " of " << res[r].blocks << " blocks coded\n";

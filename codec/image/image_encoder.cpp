@@ -6,8 +6,10 @@
 
 #include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_encoder.h"
+#include "codec/error.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"
+#include "codec/image/transfer.h"
 #include "codec/rate/pcrd.h"
 #include "codec/rate/rate_guess.h"
 #include "transforms/separable.h"
@@ -183,8 +185,19 @@ EncodeResult encode_for_psnr(const ImageView& image, ImagePlan& plan, double psn
   }
 }
 
-EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& options) {
+// What the stream records about the coded domain of a float image (transfer.h).
+struct CodedDomain {
+  Transfer transfer = Transfer::linear;
+  bool nonnegative = false;
+  std::vector<NonFiniteSample> nonfinite;
+};
+
+EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& options,
+                                const CodedDomain& domain) {
   ImagePlan plan = plan_image(image, options);
+  plan.header.transfer = domain.transfer;
+  plan.header.nonnegative = domain.nonnegative;
+  plan.header.nonfinite = domain.nonfinite;
   if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
   switch (options.mode) {
     case RateMode::lossless: {
@@ -202,22 +215,42 @@ EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& opt
   throw std::invalid_argument("unknown rate mode");
 }
 
-}  // namespace
-
-EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) {
-  if (options.levels >= 0 || options.entropy == EntropyCoder::zstd) return encode_with_levels(image, options);
+EncodeResult encode_in_domain(const ImageView& image, const EncodeOptions& options,
+                              const CodedDomain& domain) {
+  if (options.levels >= 0 || options.entropy == EntropyCoder::zstd)
+    return encode_with_levels(image, options, domain);
   // Unstable banks (pups:cinpact-c3) amplify the coarse band at every level until quantization
   // indices leave the block coder's range; with default levels, use fewer instead of failing.
   EncodeOptions fewer = options;
   fewer.levels = default_levels({image.width, image.height, 1});
   for (;;) {
     try {
-      return encode_with_levels(image, fewer);
+      return encode_with_levels(image, fewer, domain);
     } catch (const IndexRangeError&) {
       if (fewer.levels <= 1) throw;
       --fewer.levels;
     }
   }
+}
+
+}  // namespace
+
+EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) {
+  if (is_integer(image.type)) return encode_in_domain(image, options, CodedDomain{});
+  // Float images are coded in the transfer domain, from a copy (non-finite samples taken out).
+  check_view(image);
+  if (image.channels > kMaxChannels || image.width > kMaxAxisExtent || image.height > kMaxAxisExtent ||
+      image.plane_size() * image.channels > kMaxTotalSamples)
+    throw EncodeError("image exceeds 65536 per axis, 64 channels or 2^31 samples");
+  CodedDomainImage coded = to_coded_domain(image, options.transfer, options.keep_nonfinite);
+  ImageView view = view_of(coded.image);
+  if (options.transfer == Transfer::log2) view.peak = 1.0;  // log-PSNR: peak 1 stop
+  CodedDomain domain{options.transfer, coded.nonnegative, std::move(coded.nonfinite)};
+  const std::size_t kept = domain.nonfinite.size();
+  EncodeResult r = encode_in_domain(view, options, domain);
+  r.metric = metric_name(options.transfer);
+  r.nonfinite = kept;
+  return r;
 }
 
 }  // namespace pupwave

@@ -19,7 +19,8 @@ void validate_image(const ImageView& image) {
   if (image.width == 0 || image.height == 0) throw EncodeError("cannot encode an empty image");
   if (image.width > kMaxAxisExtent || image.height > kMaxAxisExtent)
     throw EncodeError("image dimensions exceed 65536 per axis");
-  if (image.channels < 1 || image.channels > 4) throw EncodeError("images must have 1 to 4 channels");
+  if (image.channels < 1 || image.channels > kMaxChannels)
+    throw EncodeError("images must have 1 to " + std::to_string(kMaxChannels) + " channels");
   if (image.plane_size() * image.channels > kMaxTotalSamples) throw EncodeError("image exceeds 2^31 samples");
   check_view(image);
   if (is_integer(image.type) && image.storage != StorageType::f32 && image.storage != StorageType::f16)
@@ -47,6 +48,18 @@ void validate_options(const ImageView& image, const EncodeOptions& o) {
   if (o.mode != RateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   if (o.levels < -1 || o.levels > 32) throw std::invalid_argument("levels must be in [0, 32]");
+  if (o.metadata && !o.metadata->channel_names.empty() && o.metadata->channel_names.size() != image.channels)
+    throw std::invalid_argument("metadata names " + std::to_string(o.metadata->channel_names.size()) +
+                                " channels for an image of " + std::to_string(image.channels));
+}
+
+// The colour transform decorrelates R, G, B: images of 3 or 4 channels, or more channels of
+// which the first three are named R, G, B (an EXR with extra layers).
+ColourTransform colour_of(const ImageView& image, const EncodeOptions& o, bool reversible) {
+  if (image.channels <= 4) return colour_for(image.channels, reversible);
+  const auto* names = o.metadata ? &o.metadata->channel_names : nullptr;
+  const bool rgb = names && !names->empty() && (*names)[0] == "R" && (*names)[1] == "G" && (*names)[2] == "B";
+  return rgb ? colour_for(3, reversible) : ColourTransform::none;
 }
 
 Extent block_log2(const Extent& size) {
@@ -76,7 +89,8 @@ ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   h.dims = {image.width, image.height, 1};
   h.channels = std::uint32_t(image.channels);
   h.type = image.type;
-  h.colour = colour_for(image.channels, reversible);
+  h.colour = colour_of(image, o, reversible);
+  if (o.metadata) h.metadata = *o.metadata;
   h.entropy = o.entropy;
   h.reversible = reversible;
   h.levels = o.levels < 0 ? default_levels(h.dims) : o.levels;

@@ -36,6 +36,9 @@ struct ImageView {
   std::ptrdiff_t channel_stride = 0;
   std::ptrdiff_t pixel_stride = 0;
   std::ptrdiff_t row_stride = 0;
+  // PSNR peak of these samples if > 0 (a float image in the log transfer domain: 1 stop);
+  // 0: derived from the type and the samples (psnr_peak).
+  double peak = 0.0;
 
   std::size_t plane_size() const { return width * height; }
   // Sample (c, x, y) as float (exact for every supported type).

@@ -12,6 +12,7 @@ double psnr_from_mse(double mse, double peak) {
 }
 
 double psnr_peak(const ImageView& reference) {
+  if (reference.peak > 0.0) return reference.peak;
   if (is_integer(reference.type)) return nominal_max(reference.type);
   if (reference.plane_size() * reference.channels == 0) return 1.0;
   std::vector<float> row(reference.width);

@@ -3,6 +3,7 @@
 // format change is deliberate, bump kStreamVersion, update docs/bitstream.md and these values.
 // The --bpp stream also pins rate control (which base step and truncation points the encoder
 // picks): an encoder-only change there updates its value without a version bump.
+// Version 2 (transfer and flags bytes in HEAD, optional META/NFIN chunks) changed all five.
 #include <gtest/gtest.h>
 
 #include "codec/format/crc32.h"
@@ -25,20 +26,20 @@ std::uint32_t stream_crc(const Image& img, RateMode mode, double target, const c
 TEST(GoldenStream, LosslessStreamsAreUnchanged) {
   EXPECT_EQ(
       stream_crc(testing::synthetic_image(61, 47, 3, SampleType::u8, 21), RateMode::lossless, 0, "cdf53"),
-      2820971335u);
+      4081870178u);
   EXPECT_EQ(
       stream_crc(testing::synthetic_image(40, 33, 1, SampleType::u16, 22), RateMode::lossless, 0, "cdf53"),
-      1645359441u);
+      2758300729u);
   EXPECT_EQ(stream_crc(testing::synthetic_image(61, 47, 4, SampleType::u8, 23), RateMode::lossless, 0,
                        "cdf53", EntropyCoder::zstd),
-            1154943846u);
+            1328093661u);
 }
 
 TEST(GoldenStream, LossyStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97"),
-            1440751195u);
+            3411201148u);
   EXPECT_EQ(stream_crc(testing::synthetic_image(50, 30, 1, SampleType::u8, 25), RateMode::step, 4.0, "cdf53"),
-            1053958514u);
+            2131280122u);
 }
 
 }  // namespace

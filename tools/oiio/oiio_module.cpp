@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <Imath/half.h>
+#include <algorithm>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -63,9 +64,16 @@ void check_image_spec(const OIIO::ImageSpec& spec, const fs::path& path) {
   const std::string name = path.string();
   if (spec.width <= 0 || spec.height <= 0) throw std::runtime_error("cannot read " + name + ": empty image");
   if (spec.depth > 1) throw std::runtime_error("cannot read " + name + ": 3-D images are not supported");
-  if (spec.nchannels < 1 || spec.nchannels > 4)
+  if (spec.nchannels < 1 || spec.nchannels > kMaxImageChannels)
     throw std::runtime_error("cannot read " + name + ": " + std::to_string(spec.nchannels) +
-                             " channels (1 to 4 supported)");
+                             " channels (1 to " + std::to_string(kMaxImageChannels) + " supported)");
+  // OpenImageIO turns CMYK into RGB on read; that would silently drop the file's colours.
+  const bool cmyk = spec.get_int_attribute("tiff:PhotometricInterpretation", 0) == 5 ||
+                    spec.get_string_attribute("tiff:ColorSpace") == "CMYK" ||
+                    spec.get_string_attribute("jpeg:ColorSpace") == "CMYK";
+  if (cmyk)
+    throw std::runtime_error("cannot read " + name +
+                             ": CMYK images are not supported (convert to RGB first, e.g. with oiiotool)");
   const auto samples = std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels);
   if (samples > kMaxImageSamples) throw std::runtime_error("cannot read " + name + ": image too large");
 }
@@ -86,6 +94,82 @@ void read_pixels(OIIO::ImageInput& in, Image& image, const fs::path& path) {
   if (!in.read_image(0, 0, 0, int(image.channels), oiio_type(image.type), buffer.data()))
     throw std::runtime_error("cannot read " + path.string() + ": " + in.geterror());
   deinterleave(buffer, image);
+}
+
+// Channel names a file of this many channels gets when none are given (and which need not be stored).
+std::vector<std::string> default_channel_names(std::size_t channels) {
+  static const char* grey[] = {"Y", "A"};
+  static const char* rgba[] = {"R", "G", "B", "A"};
+  std::vector<std::string> names;
+  for (std::size_t c = 0; c < channels; ++c)
+    names.emplace_back(channels <= 2 ? grey[c] : c < 4 ? rgba[c] : "channel" + std::to_string(c));
+  return names;
+}
+
+// Attributes that describe the file's encoding or OpenImageIO's reading of it, not the image.
+bool is_encoding_attribute(const std::string& name) {
+  return name.rfind("oiio:", 0) == 0 || name.rfind("openexr:", 0) == 0 || name == "compression" ||
+         name == "planarconfig";
+}
+
+// Channel names, windows and (for EXR files) scalar string/int/float attributes.
+ImageMetadata metadata_of(const OIIO::ImageSpec& spec, const std::string& format) {
+  ImageMetadata m;
+  std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
+  if (names.size() == std::size_t(spec.nchannels) && names != default_channel_names(names.size()))
+    m.channel_names = names;
+  m.x = spec.x;
+  m.y = spec.y;
+  if (spec.full_x != 0 || spec.full_y != 0 || spec.full_width != spec.width ||
+      spec.full_height != spec.height) {
+    m.full_x = spec.full_x;
+    m.full_y = spec.full_y;
+    m.full_width = std::uint32_t(std::max(spec.full_width, 0));
+    m.full_height = std::uint32_t(std::max(spec.full_height, 0));
+  }
+  if (format != "openexr") return m;
+  for (const OIIO::ParamValue& p : spec.extra_attribs) {
+    const std::string name = p.name().string();
+    if (is_encoding_attribute(name) || p.nvalues() != 1) continue;
+    ImageAttribute a;
+    a.name = name;
+    const TypeDesc t = p.type();
+    if (t == OIIO::TypeString) {
+      a.kind = ImageAttribute::Kind::string;
+      a.text = p.get_string();
+    } else if (t == OIIO::TypeInt || t == OIIO::TypeUInt) {
+      a.kind = ImageAttribute::Kind::integer;
+      a.integer = p.get_int();
+    } else if (t == OIIO::TypeFloat || t == TypeDesc::DOUBLE || t == TypeDesc::HALF) {
+      a.kind = ImageAttribute::Kind::real;
+      a.real = p.get_float();
+    } else {
+      continue;  // vectors, matrices, timecodes...: not kept (see README)
+    }
+    m.attributes.push_back(std::move(a));
+  }
+  return m;
+}
+
+void apply_metadata(const ImageMetadata& m, OIIO::ImageSpec& spec) {
+  spec.x = m.x;
+  spec.y = m.y;
+  if (m.full_width > 0 && m.full_height > 0) {
+    spec.full_x = m.full_x;
+    spec.full_y = m.full_y;
+    spec.full_width = int(m.full_width);
+    spec.full_height = int(m.full_height);
+  } else {
+    spec.full_x = m.x;
+    spec.full_y = m.y;
+  }
+  for (const ImageAttribute& a : m.attributes) {
+    switch (a.kind) {
+      case ImageAttribute::Kind::string: spec.attribute(a.name, a.text); break;
+      case ImageAttribute::Kind::integer: spec.attribute(a.name, int(a.integer)); break;
+      case ImageAttribute::Kind::real: spec.attribute(a.name, float(a.real)); break;
+    }
+  }
 }
 
 template <class T>
@@ -111,12 +195,13 @@ std::string format_name_for(const fs::path& path) {
 
 OIIO::ImageSpec output_spec(const Image& image, const std::string& format) {
   OIIO::ImageSpec spec(int(image.width), int(image.height), int(image.channels), oiio_type(image.type));
-  static const char* grey[] = {"Y", "A"};
-  static const char* rgba[] = {"R", "G", "B", "A"};
-  spec.channelnames.clear();
-  for (std::size_t c = 0; c < image.channels; ++c)
-    spec.channelnames.emplace_back(image.channels <= 2 ? grey[c] : rgba[c]);
-  if (image.channels == 2 || image.channels == 4) spec.alpha_channel = int(image.channels) - 1;
+  const auto& given = image.metadata.channel_names;
+  const auto names = given.size() == image.channels ? given : default_channel_names(image.channels);
+  spec.channelnames.assign(names.begin(), names.end());
+  spec.alpha_channel = -1;
+  for (std::size_t c = 0; c < names.size(); ++c)
+    if (names[c] == "A") spec.alpha_channel = int(c);
+  apply_metadata(image.metadata, spec);
   spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: the writer must not divide
   if (format == "jpeg") spec.attribute("Compression", "jpeg:95");  // TIFF would read it too
   return spec;
@@ -147,6 +232,7 @@ Image read(const fs::path& path) {
     case SampleType::f16: read_pixels<Imath::half>(*in, image, path); break;
     case SampleType::f32: read_pixels<float>(*in, image, path); break;
   }
+  image.metadata = metadata_of(spec, in->format_name());
   return image;
 }
 
@@ -160,6 +246,13 @@ std::string describe(const fs::path& path) {
   s << "), " << spec.format.c_str();
   if (spec.depth > 1) s << ", depth " << spec.depth;
   if (spec.alpha_channel >= 0) s << ", alpha in channel " << spec.alpha_channel;
+  // What compress keeps besides the pixels (Image::metadata): windows and attributes.
+  const ImageMetadata m = metadata_of(spec, in->format_name());
+  if (m.x != 0 || m.y != 0) s << ", data window origin " << m.x << "," << m.y;
+  if (m.full_width > 0)
+    s << ", display window " << m.full_width << "x" << m.full_height << " at " << m.full_x << "," << m.full_y;
+  if (!m.attributes.empty()) s << "\n  " << m.attributes.size() << " attribute(s) kept by compress:";
+  for (std::size_t k = 0; k < m.attributes.size(); ++k) s << (k ? ", " : " ") << m.attributes[k].name;
   return s.str();
 }
 
