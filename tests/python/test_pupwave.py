@@ -70,7 +70,7 @@ def test_image_bytes_identical_to_cli(cli, real_image, tmp_path):
 
 
 def test_volume_max_error_on_wmag91(wmag):
-    for bound in (0.5, 2.0):
+    for bound in (0.5,):
         data = pupwave.compress_volume(wmag, max_error=bound)
         back = pupwave.decompress_volume(data)
         assert back.dtype == np.float32 and back.shape == wmag.shape
@@ -85,6 +85,7 @@ def test_volume_max_error_on_wmag91(wmag):
 
 
 def test_volume_dtypes_bpv_levels(wmag):
+    wmag = wmag[:40, :50, :60]  # a non-cubic crop keeps the test fast and checks the axis order
     d = wmag.astype(np.float64)
     back = pupwave.decompress_volume(pupwave.compress_volume(d, max_error=0.01))
     assert back.dtype == np.float64 and np.abs(back - d).max() <= 0.01
@@ -94,16 +95,17 @@ def test_volume_dtypes_bpv_levels(wmag):
     assert np.array_equal(pupwave.decompress_volume(pupwave.compress_volume(u8)), u8)  # default lossless
     small = pupwave.compress_volume(wmag, bpv=0.5)
     assert len(small) * 8 <= 0.5 * wmag.size + 64
-    assert pupwave.decompress_volume(small, level=1).shape == (46, 46, 46)
+    assert pupwave.decompress_volume(small, level=1).shape == (20, 25, 30)
 
 
 def test_volume_bytes_identical_to_cli(cli, wmag, tmp_path):
+    wmag = np.ascontiguousarray(wmag[:48, :64, :80])  # (z, y, x): --dims 80,64,48
     raw = tmp_path / "volume.raw"  # the CLI names a raw grid after the file; the API calls it "volume"
     wmag.astype("<f4").tofile(raw)
     for flags, kwargs in [(["--max-error", "0.5"], {"max_error": 0.5}),
                           (["--max-error-rel", "0.001"], {"max_error_rel": 1e-3}), (["--bpv", "1"], {"bpv": 1})]:
         out = tmp_path / "cli.pw"
-        subprocess.run([cli, "compress", str(raw), str(out), "--dims", "91,91,91", "--dtype", "f32", *flags],
+        subprocess.run([cli, "compress", str(raw), str(out), "--dims", "80,64,48", "--dtype", "f32", *flags],
                        check=True, capture_output=True)
         assert out.read_bytes() == pupwave.compress_volume(wmag, **kwargs), flags
 
@@ -117,14 +119,16 @@ def test_non_contiguous_arrays_are_handled(real_image, wmag):
     assert pupwave.compress(planar, lossless=True) == pupwave.compress(a, lossless=True)
     flipped = a[::-1]
     assert np.array_equal(pupwave.decompress(pupwave.compress(flipped, lossless=True)), flipped)
-    vol = wmag[:, ::2, ::3]
+    vol = wmag[:50, ::2, ::3]
     assert pupwave.compress_volume(vol, max_error=1) == pupwave.compress_volume(np.ascontiguousarray(vol), max_error=1)
-    fortran = np.asfortranarray(wmag)
-    assert pupwave.compress_volume(fortran, max_error=1) == pupwave.compress_volume(wmag, max_error=1)
+    crop = wmag[:30, :40, :50]
+    fortran = np.asfortranarray(crop)
+    assert pupwave.compress_volume(fortran, max_error=1) == pupwave.compress_volume(crop, max_error=1)
 
 
 def test_two_threads_give_serial_results(real_image, wmag):
     a = real_image("chelsea", "ppm")
+    wmag = wmag[:48, :48, :48]
     expected = [pupwave.compress(a, bpp=1), pupwave.compress_volume(wmag, max_error=0.5)]
     results = [None, None]
 
