@@ -231,3 +231,26 @@ def test_gil_is_released_while_coding(real_image):
     worker.join()
     assert result == [expected]
     assert longest < 0.5 * serial, (longest, serial)
+
+
+def test_absurd_parameters_give_a_stream_or_value_error(wmag):
+    """Extreme targets either code (and decode) or raise ValueError; never crash or hang."""
+    a = (np.random.default_rng(3).random((48, 40, 3)) * 255).astype(np.uint8)
+    for kwargs in [{"psnr": 1e6}, {"psnr": 1e-9}, {"step": 1e-30}, {"step": 1e30}, {"bpp": 1e-9},
+                   {"bpp": 1e300}, {"levels": 32}, {"levels": 0}]:
+        try:
+            data = pupwave.compress(a, **kwargs)
+        except ValueError:
+            continue
+        assert pupwave.decompress(data).shape == a.shape, kwargs
+    v = np.ascontiguousarray(wmag[:16, :16, :16])
+    for kwargs in [{"max_error": 1e-30}, {"max_error": 1e30}, {"bpv": 1e-9}, {"bpv": 1e9},
+                   {"max_error_rel": 1e-300}, {"max_error_rel": 1e9}]:
+        try:
+            data = pupwave.compress_volume(v, **kwargs)
+        except ValueError:
+            continue
+        back = pupwave.decompress_volume(data)
+        assert back.shape == v.shape, kwargs
+        if "max_error" in kwargs:
+            assert np.abs(back.astype(np.float64) - v).max() <= kwargs["max_error"]
