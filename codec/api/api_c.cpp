@@ -30,6 +30,8 @@ struct pupwave_decoded {
   std::size_t dims[3] = {0, 0, 0};
   std::size_t channels = 1;
   std::vector<std::byte> data;
+  std::int64_t origin[3] = {0, 0, 0};
+  std::vector<std::uint8_t> active;  // sparse volumes only
 };
 
 namespace {
@@ -225,6 +227,12 @@ size_t pupwave_decoded_dim(const pupwave_decoded* d, int axis) {
 size_t pupwave_decoded_channels(const pupwave_decoded* d) { return d ? d->channels : 0; }
 const void* pupwave_decoded_data(const pupwave_decoded* d) { return d ? d->data.data() : nullptr; }
 size_t pupwave_decoded_size(const pupwave_decoded* d) { return d ? d->data.size() : 0; }
+int64_t pupwave_decoded_origin(const pupwave_decoded* d, int axis) {
+  return d && axis >= 0 && axis < 3 ? d->origin[axis] : 0;
+}
+const uint8_t* pupwave_decoded_active(const pupwave_decoded* d) {
+  return d && !d->active.empty() ? d->active.data() : nullptr;
+}
 void pupwave_decoded_destroy(pupwave_decoded* d) { delete d; }
 
 pupwave_status pupwave_decompress_image(const void* stream, size_t size, int level, unsigned threads,
@@ -258,6 +266,26 @@ pupwave_status pupwave_compress_volume(const pupwave_options* options, const voi
   });
 }
 
+pupwave_status pupwave_compress_sparse_volume(const pupwave_options* options, const pupwave_brick* bricks,
+                                              size_t count, pupwave_type type, double background,
+                                              pupwave_stream** out) {
+  return guarded([&] {
+    require(out != nullptr, "out is null");
+    *out = nullptr;
+    require(bricks != nullptr || count == 0, "bricks is null");
+    const pupwave::api::VoxelType vt = voxel_type(type);
+    std::vector<pupwave::api::BrickView> views(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const pupwave_brick& b = bricks[i];
+      views[i] = {
+          {b.origin[0], b.origin[1], b.origin[2]}, {b.data, {b.dims[0], b.dims[1], b.dims[2]}, vt}, b.active};
+    }
+    auto stream = std::make_unique<pupwave_stream>();
+    stream->bytes = pupwave::api::compress_sparse_volume(views, background, volume_options(options));
+    *out = stream.release();
+  });
+}
+
 pupwave_status pupwave_decompress_volume(const void* stream, size_t size, int level, unsigned threads,
                                          pupwave_decoded** out) {
   return guarded([&] {
@@ -267,7 +295,9 @@ pupwave_status pupwave_decompress_volume(const void* stream, size_t size, int le
     auto d = std::make_unique<pupwave_decoded>();
     d->type = c_type(v.type);
     std::copy(v.dims.begin(), v.dims.end(), d->dims);
+    std::copy(v.origin.begin(), v.origin.end(), d->origin);
     d->data = std::move(v.data);
+    d->active = std::move(v.active);
     *out = d.release();
   });
 }

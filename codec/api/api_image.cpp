@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "codec/api/api_errors.h"
+#include "codec/format/container.h"
 #include "codec/image/image_codec.h"
 #include "pupwave/pupwave.hpp"
 
@@ -95,6 +96,17 @@ EncodeOptions encode_options(const ImageOptions& options) {
   return enc;
 }
 
+// Never hand out a stream the decoder rejects: extreme targets (e.g. step 1e30, whose band
+// steps overflow the header's floats) made the encoder write one. Parsing costs a CRC pass.
+void check_decodable(std::span<const std::uint8_t> bytes) {
+  try {
+    parse_container(bytes, 0);
+  } catch (const DecodeError& e) {
+    throw Error(Status::unsupported, std::string("these settings give a stream the decoder rejects (") +
+                                         e.what() + "); use a less extreme target");
+  }
+}
+
 }  // namespace
 
 std::size_t bytes_per_sample(SampleType type) {
@@ -127,7 +139,9 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOpti
     view.channel_stride = image.channel_stride;
     view.pixel_stride = image.pixel_stride;
     view.row_stride = image.row_stride;
-    return encode_image(view, enc).bytes;
+    std::vector<std::uint8_t> bytes = encode_image(view, enc).bytes;
+    check_decodable(bytes);
+    return bytes;
   });
 }
 

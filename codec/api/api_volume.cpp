@@ -154,6 +154,7 @@ std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bric
     std::fill(v.samples.begin(), v.samples.end(), background);
     v.active.assign(v.count(), 0);
     v.background = background;
+    std::vector<std::uint8_t> covered(v.count(), 0);  // by some brick (masked voxels included)
     std::vector<double> row;
     for (const BrickView& b : bricks) {
       const auto& d = b.voxels.dims;
@@ -168,7 +169,8 @@ std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bric
               v.index(std::size_t(b.origin[0] - lo[0]), std::size_t(b.origin[1] - lo[1]) + y,
                       std::size_t(b.origin[2] - lo[2]) + z);
           for (std::size_t x = 0; x < d[0]; ++x) {
-            if (v.active[dst + x]) detail::fail("bricks overlap");
+            if (covered[dst + x]) detail::fail("bricks overlap");
+            covered[dst + x] = 1;
             const bool on = !b.active || b.active[src + x] != 0;
             v.active[dst + x] = on ? 1 : 0;
             v.samples[dst + x] = on ? row[x] : background;

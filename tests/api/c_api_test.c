@@ -138,6 +138,46 @@ static void test_volume_double_levels(void) {
   free(v);
 }
 
+/* A sparse grid from two bricks (one with a mask): inactive voxels come back exactly. */
+static void test_sparse_bricks(void) {
+  float a[4 * 4 * 4], b[2 * 2 * 2];
+  uint8_t mask[8] = {1, 1, 1, 0, 1, 1, 1, 1};
+  pupwave_brick bricks[2] = {{{10, 0, 0}, {4, 4, 4}, NULL, NULL}, {{20, 2, 2}, {2, 2, 2}, NULL, NULL}};
+  pupwave_options* o = pupwave_options_create();
+  pupwave_stream* s = NULL;
+  pupwave_decoded* d = NULL;
+  const float* v;
+  const uint8_t* active;
+  size_t i, nx;
+  for (i = 0; i < 64; ++i) a[i] = (float)sin(0.3 * (double)i);
+  for (i = 0; i < 8; ++i) b[i] = 5.0f + (float)i;
+  bricks[0].data = a;
+  bricks[1].data = b;
+  bricks[1].active = mask;
+  CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_MAX_ERROR, 1e-3) == PUPWAVE_OK);
+  CHECK(pupwave_compress_sparse_volume(o, bricks, 2, PUPWAVE_F32, -1.0, &s) == PUPWAVE_OK);
+  CHECK(pupwave_decompress_volume(pupwave_stream_data(s), pupwave_stream_size(s), 0, 0, &d) == PUPWAVE_OK);
+  if (!d) return;
+  nx = pupwave_decoded_dim(d, 0);
+  CHECK(nx == 12 && pupwave_decoded_dim(d, 1) == 4 && pupwave_decoded_dim(d, 2) == 4);
+  CHECK(pupwave_decoded_origin(d, 0) == 10 && pupwave_decoded_origin(d, 1) == 0);
+  v = pupwave_decoded_data(d);
+  active = pupwave_decoded_active(d);
+  CHECK(active != NULL);
+  if (active) {
+    CHECK(active[0] == 1 && fabs(v[0] - a[0]) <= 1e-3);
+    CHECK(active[5] == 0 && v[5] == -1.0f);                                         /* between the bricks */
+    CHECK(active[10 + nx * (2 + 4 * 2)] == 1);                                      /* b's voxel (0, 0, 0) */
+    CHECK(active[11 + nx * (3 + 4 * 2)] == 0 && v[11 + nx * (3 + 4 * 2)] == -1.0f); /* mask[3] */
+  }
+  pupwave_decoded_destroy(d);
+  pupwave_stream_destroy(s);
+  CHECK(pupwave_compress_sparse_volume(o, bricks, 0, PUPWAVE_F32, 0.0, &s) == PUPWAVE_ERROR_ARGUMENT);
+  bricks[1].origin[0] = 12; /* overlaps the first brick */
+  CHECK(pupwave_compress_sparse_volume(o, bricks, 2, PUPWAVE_F32, 0.0, &s) == PUPWAVE_ERROR_ARGUMENT);
+  pupwave_options_destroy(o);
+}
+
 static void test_bad_input(void) {
   unsigned char junk[64];
   float one = 1.0f;
@@ -177,6 +217,7 @@ int main(void) {
   test_image_rates();
   test_volume_max_error();
   test_volume_double_levels();
+  test_sparse_bricks();
   test_bad_input();
   if (failures)
     fprintf(stderr, "%d check(s) failed\n", failures);

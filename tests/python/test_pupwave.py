@@ -3,6 +3,7 @@ real volume, bytes identical to the CLI's, levels, info, threads, and bad input.
 
 import subprocess
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -70,7 +71,7 @@ def test_image_bytes_identical_to_cli(cli, real_image, tmp_path):
 
 
 def test_volume_max_error_on_wmag91(wmag):
-    for bound in (0.5, 2.0):
+    for bound in (0.5,):
         data = pupwave.compress_volume(wmag, max_error=bound)
         back = pupwave.decompress_volume(data)
         assert back.dtype == np.float32 and back.shape == wmag.shape
@@ -85,6 +86,7 @@ def test_volume_max_error_on_wmag91(wmag):
 
 
 def test_volume_dtypes_bpv_levels(wmag):
+    wmag = wmag[:40, :50, :60]  # a non-cubic crop keeps the test fast and checks the axis order
     d = wmag.astype(np.float64)
     back = pupwave.decompress_volume(pupwave.compress_volume(d, max_error=0.01))
     assert back.dtype == np.float64 and np.abs(back - d).max() <= 0.01
@@ -94,16 +96,17 @@ def test_volume_dtypes_bpv_levels(wmag):
     assert np.array_equal(pupwave.decompress_volume(pupwave.compress_volume(u8)), u8)  # default lossless
     small = pupwave.compress_volume(wmag, bpv=0.5)
     assert len(small) * 8 <= 0.5 * wmag.size + 64
-    assert pupwave.decompress_volume(small, level=1).shape == (46, 46, 46)
+    assert pupwave.decompress_volume(small, level=1).shape == (20, 25, 30)
 
 
 def test_volume_bytes_identical_to_cli(cli, wmag, tmp_path):
+    wmag = np.ascontiguousarray(wmag[:48, :64, :80])  # (z, y, x): --dims 80,64,48
     raw = tmp_path / "volume.raw"  # the CLI names a raw grid after the file; the API calls it "volume"
     wmag.astype("<f4").tofile(raw)
     for flags, kwargs in [(["--max-error", "0.5"], {"max_error": 0.5}),
                           (["--max-error-rel", "0.001"], {"max_error_rel": 1e-3}), (["--bpv", "1"], {"bpv": 1})]:
         out = tmp_path / "cli.pw"
-        subprocess.run([cli, "compress", str(raw), str(out), "--dims", "91,91,91", "--dtype", "f32", *flags],
+        subprocess.run([cli, "compress", str(raw), str(out), "--dims", "80,64,48", "--dtype", "f32", *flags],
                        check=True, capture_output=True)
         assert out.read_bytes() == pupwave.compress_volume(wmag, **kwargs), flags
 
@@ -117,14 +120,16 @@ def test_non_contiguous_arrays_are_handled(real_image, wmag):
     assert pupwave.compress(planar, lossless=True) == pupwave.compress(a, lossless=True)
     flipped = a[::-1]
     assert np.array_equal(pupwave.decompress(pupwave.compress(flipped, lossless=True)), flipped)
-    vol = wmag[:, ::2, ::3]
+    vol = wmag[:50, ::2, ::3]
     assert pupwave.compress_volume(vol, max_error=1) == pupwave.compress_volume(np.ascontiguousarray(vol), max_error=1)
-    fortran = np.asfortranarray(wmag)
-    assert pupwave.compress_volume(fortran, max_error=1) == pupwave.compress_volume(wmag, max_error=1)
+    crop = wmag[:30, :40, :50]
+    fortran = np.asfortranarray(crop)
+    assert pupwave.compress_volume(fortran, max_error=1) == pupwave.compress_volume(crop, max_error=1)
 
 
 def test_two_threads_give_serial_results(real_image, wmag):
     a = real_image("chelsea", "ppm")
+    wmag = wmag[:48, :48, :48]
     expected = [pupwave.compress(a, bpp=1), pupwave.compress_volume(wmag, max_error=0.5)]
     results = [None, None]
 
@@ -207,3 +212,45 @@ def test_corrupted_bytes_raise(real_image, wmag):
     with pytest.raises(TypeError):
         pupwave.decompress(12345)
     assert np.array_equal(pupwave.decompress(memoryview(bytearray(image))), pupwave.decompress(image))
+
+
+def test_gil_is_released_while_coding(real_image):
+    """While one thread encodes, the main thread keeps running Python code: the longest pause
+    it sees is far shorter than the encode (it would be the whole encode with the GIL held)."""
+    a = np.tile(real_image("chelsea", "ppm"), (3, 2, 1))  # 900 x 902 RGB
+    start = time.perf_counter()
+    expected = pupwave.compress(a, lossless=True)
+    serial = time.perf_counter() - start
+    result = []
+    worker = threading.Thread(target=lambda: result.append(pupwave.compress(a, lossless=True)))
+    worker.start()
+    longest, last = 0.0, time.perf_counter()
+    while worker.is_alive():
+        now = time.perf_counter()
+        longest, last = max(longest, now - last), now
+    worker.join()
+    assert result == [expected]
+    assert longest < 0.5 * serial, (longest, serial)
+
+
+def test_absurd_parameters_give_a_stream_or_value_error(wmag):
+    """Extreme targets either code (and decode) or raise ValueError; never crash or hang."""
+    a = (np.random.default_rng(3).random((48, 40, 3)) * 255).astype(np.uint8)
+    for kwargs in [{"psnr": 1e6}, {"psnr": 1e-9}, {"step": 1e-30}, {"step": 1e30}, {"bpp": 1e-9},
+                   {"bpp": 1e300}, {"levels": 32}, {"levels": 0}]:
+        try:
+            data = pupwave.compress(a, **kwargs)
+        except ValueError:
+            continue
+        assert pupwave.decompress(data).shape == a.shape, kwargs
+    v = np.ascontiguousarray(wmag[:16, :16, :16])
+    for kwargs in [{"max_error": 1e-30}, {"max_error": 1e30}, {"bpv": 1e-9}, {"bpv": 1e9},
+                   {"max_error_rel": 1e-300}, {"max_error_rel": 1e9}]:
+        try:
+            data = pupwave.compress_volume(v, **kwargs)
+        except ValueError:
+            continue
+        back = pupwave.decompress_volume(data)
+        assert back.shape == v.shape, kwargs
+        if "max_error" in kwargs:
+            assert np.abs(back.astype(np.float64) - v).max() <= kwargs["max_error"]

@@ -97,6 +97,10 @@ size_t pupwave_decoded_dim(const pupwave_decoded* decoded, int axis);
 size_t pupwave_decoded_channels(const pupwave_decoded* decoded); /* 1 for volumes */
 const void* pupwave_decoded_data(const pupwave_decoded* decoded);
 size_t pupwave_decoded_size(const pupwave_decoded* decoded); /* bytes */
+/* Volumes: index-space position of voxel (0, 0, 0) along axis; 0 for images. */
+int64_t pupwave_decoded_origin(const pupwave_decoded* decoded, int axis);
+/* Sparse volumes: one byte per voxel (1 active, 0 inactive); NULL for dense data and images. */
+const uint8_t* pupwave_decoded_active(const pupwave_decoded* decoded);
 void pupwave_decoded_destroy(pupwave_decoded* decoded);
 
 /* Decodes an image stream at level (0 full size, k: 1/2^k). threads as above. */
@@ -106,6 +110,23 @@ pupwave_status pupwave_decompress_image(const void* stream, size_t size, int lev
 /* Compresses a dense volume of nx * ny * nz voxels (x fastest). */
 pupwave_status pupwave_compress_volume(const pupwave_options* options, const void* data, pupwave_type type,
                                        size_t nx, size_t ny, size_t nz, pupwave_stream** out);
+/* One brick of a sparse grid: dims[0] * dims[1] * dims[2] voxels (x fastest) at integer
+ * position origin, optionally with an activity mask (one byte per voxel, nonzero = active;
+ * NULL: all active). */
+typedef struct pupwave_brick {
+  int64_t origin[3];
+  size_t dims[3];
+  const void* data;
+  const uint8_t* active;
+} pupwave_brick;
+/* Compresses a sparse grid given as `count` non-overlapping bricks of one voxel type: only
+ * active voxels are coded; inactive voxels and the box around the bricks (value `background`)
+ * are restored exactly. Decode with pupwave_decompress_volume: the decoded box starts at
+ * pupwave_decoded_origin and pupwave_decoded_active gives its mask. */
+pupwave_status pupwave_compress_sparse_volume(const pupwave_options* options, const pupwave_brick* bricks,
+                                              size_t count, pupwave_type type, double background,
+                                              pupwave_stream** out);
+
 /* Decodes the (single) grid of a volume stream at level; streams with several grids (from a
  * .vdb) are refused with PUPWAVE_ERROR_UNSUPPORTED (use the C++ API or the CLI). Inactive
  * voxels of a sparse grid hold their stored values. */
