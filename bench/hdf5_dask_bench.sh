@@ -6,7 +6,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build=${1:-$root/build} work=${2:-$(mktemp -d)} shape=${3:-1024,1024,256}
-export HDF5_PLUGIN_PATH=$build/lib/hdf5/plugins PYTHONPATH=$root/tools/python
+export HDF5_PLUGIN_PATH=$build/lib/hdf5/plugins PYTHONPATH=$build/python
 for workers in 1 2; do
   /usr/bin/python3 "$root/tests/dask/dask_zarr.py" "$work/bench.zarr" --shape "$shape" --chunk 128 \
     --workers "$workers" --max-error-rel 1e-3

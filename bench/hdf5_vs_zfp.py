@@ -6,7 +6,7 @@ the value range. Reports ratio, max error over every value, write and read throu
 ratio lost to chunking against `pupwave compress` of the whole volume. Writes a markdown table.
 
     HDF5_PLUGIN_PATH=build/lib/hdf5/plugins:/usr/lib/x86_64-linux-gnu/hdf5/serial/plugins \
-      PYTHONPATH=tools/python /usr/bin/python3 bench/hdf5_vs_zfp.py --cli build/tools/pupwave \
+      PYTHONPATH=build/python /usr/bin/python3 bench/hdf5_vs_zfp.py --cli build/tools/pupwave \
       --out bench/results/hdf5_vs_zfp.md
 """
 import argparse

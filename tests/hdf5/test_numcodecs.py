@@ -70,3 +70,14 @@ def f_read(path):
     import h5py
     with h5py.File(path, "r") as f:
         return f["x"][...]
+
+
+def test_chunk_payload_is_the_pupwave_volume_stream(wmag91):
+    """After the 4-byte header a coded chunk is a plain volume stream: the library's Python module
+    (pupwave.decompress_volume, docs/api.md) decodes it to the codec's values."""
+    import pupwave
+    data = wmag91[:40, :50, :60].copy()
+    stored = Pupwave(max_error=0.01).encode(data)
+    assert stored[:4] == b"PW\x01\x05"  # kind 1 (volume stream), type 5 (float32)
+    assert pupwave.info(stored[4:])["shape"] == data.shape
+    assert np.array_equal(pupwave.decompress_volume(stored[4:]), Pupwave(max_error=0.01).decode(stored).reshape(data.shape))

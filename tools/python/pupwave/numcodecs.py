@@ -4,7 +4,7 @@ the HDF5 filter does (docs/hdf5.md, "Chunk format"), through the plugin library'
 
 The library is looked up in ``PUPWAVE_HDF5_PLUGIN`` (a file), then in each directory of
 ``HDF5_PLUGIN_PATH``, then in the install prefix (``P/lib/hdf5/plugins`` beside
-``P/lib/python3/dist-packages/pupwave``).
+``P/lib/python3/dist-packages/pupwave``), then in the build tree (``build/lib/hdf5/plugins``).
 """
 
 import ctypes
@@ -30,7 +30,8 @@ def _candidates():
         if folder:
             yield os.path.join(folder, _LIBRARY_NAME)
     here = os.path.dirname(os.path.abspath(__file__))
-    yield os.path.normpath(os.path.join(here, "..", "..", "..", "hdf5", "plugins", _LIBRARY_NAME))
+    yield os.path.normpath(os.path.join(here, "..", "..", "..", "hdf5", "plugins", _LIBRARY_NAME))  # P/lib/python3/dist-packages
+    yield os.path.normpath(os.path.join(here, "..", "..", "lib", "hdf5", "plugins", _LIBRARY_NAME))  # build/python
 
 
 def _library():

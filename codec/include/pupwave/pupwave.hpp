@@ -1,0 +1,171 @@
+#pragma once
+// Pupwave's public C++20 API: images and volumes in, .pw bytes out; bytes in, samples out at
+// any resolution level; stream description. Self-contained (no internal header is included or
+// installed); the C API for FFI is pupwave/pupwave.h. docs/api.md has examples.
+//
+// Errors: every function throws pupwave::api::Error (a std::runtime_error) carrying a Status
+// and the library's message: Status::invalid_argument for bad parameters or views,
+// Status::unsupported for input the format cannot hold, Status::corrupt_stream for bytes that
+// are truncated, corrupted or not a Pupwave stream. std::bad_alloc passes through.
+//
+// Thread safety: independent calls on different threads are safe (no global mutable state;
+// parallel work runs on the process's shared thread pool, limited per call by `threads`).
+// Output never depends on `threads`.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pupwave::api {
+
+enum class Status : int {
+  ok = 0,
+  invalid_argument = 1,
+  unsupported = 2,
+  corrupt_stream = 3,
+  out_of_memory = 4
+};
+
+class Error : public std::runtime_error {
+ public:
+  Error(Status status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  Status status() const { return status_; }
+
+ private:
+  Status status_;
+};
+
+// ---- images ----------------------------------------------------------------------------------
+
+// Sample types: 8/16-bit unsigned integers, IEEE binary16 (as uint16 bits) and binary32.
+enum class SampleType : std::uint8_t { u8 = 0, u16 = 1, f16 = 2, f32 = 3 };
+std::size_t bytes_per_sample(SampleType type);
+
+// A read-only, typed, strided view of the caller's samples: sample (c, x, y) is the element at
+//   data + c * channel_stride + x * pixel_stride + y * row_stride   (strides in ELEMENTS).
+// Planar, interleaved and padded-row buffers are all views; nothing is copied to encode.
+struct ImageView {
+  const void* data = nullptr;
+  std::size_t width = 0, height = 0, channels = 0;  // channels 1..4 (grey, grey+alpha, RGB, RGBA)
+  SampleType type = SampleType::u8;
+  std::ptrdiff_t channel_stride = 0, pixel_stride = 0, row_stride = 0;
+};
+// Interleaved (RGBRGB...) rows of row_stride elements (0: width * channels).
+ImageView interleaved_view(const void* data, std::size_t width, std::size_t height, std::size_t channels,
+                           SampleType type, std::ptrdiff_t row_stride = 0);
+// Planar (plane after plane, rows of width elements).
+ImageView planar_view(const void* data, std::size_t width, std::size_t height, std::size_t channels,
+                      SampleType type);
+
+// The CLI's rate modes (pupwave compress --psnr/--bpp/--step/--lossless).
+enum class ImageRate : std::uint8_t {
+  psnr,      // smallest stream whose PSNR (dB, all channels) reaches target
+  bpp,       // best quality within target bits per pixel (whole stream)
+  step,      // fixed quantizer base step target (sample units)
+  lossless,  // bit exact (integer samples only; reversible transform)
+};
+
+struct ImageOptions {
+  ImageRate rate = ImageRate::psnr;
+  double target = 40.0;   // dB, bits per pixel or step; ignored for lossless
+  std::string transform;  // transform spec (cdf97, cdf53, pups:..., kobbelt:...); "": cdf97, cdf53 lossless
+  int levels = -1;        // decomposition levels, -1: from the image size
+  bool zstd = false;      // entropy coder: false = bit-plane coder (default), true = zstd
+  unsigned threads = 0;   // most worker threads (0: all cores, 1: the calling thread)
+};
+
+// Compresses an image to a complete .pw stream.
+std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOptions& options = {});
+
+// A decoded image: interleaved samples (pixel after pixel, channels adjacent) of `type`.
+struct Image {
+  std::size_t width = 0, height = 0, channels = 0;
+  SampleType type = SampleType::u8;
+  std::vector<std::byte> data;  // width * height * channels * bytes_per_sample(type)
+};
+
+// Decodes at full size (level 0) or 1/2^level size (ceil per halving), reading only that data.
+Image decompress_image(std::span<const std::uint8_t> stream, int level = 0, unsigned threads = 0);
+
+// ---- volumes ---------------------------------------------------------------------------------
+
+enum class VoxelType : std::uint8_t { u8 = 0, u16 = 1, f32 = 2, f64 = 3 };
+std::size_t bytes_per_voxel(VoxelType type);
+
+// A dense 3-D array, x fastest: voxel (x, y, z) is element x + dims[0] * (y + dims[1] * z)
+// (a C-order numpy array of shape (z, y, x)).
+struct VolumeView {
+  const void* data = nullptr;
+  std::array<std::size_t, 3> dims{0, 0, 0};
+  VoxelType type = VoxelType::f32;
+};
+
+// One brick of a sparse grid: a dense box of voxels at integer position `origin`, optionally
+// with an activity mask (one byte per voxel, nonzero = active; null: all active).
+struct BrickView {
+  std::array<std::int64_t, 3> origin{0, 0, 0};
+  VolumeView voxels;
+  const std::uint8_t* active = nullptr;
+};
+
+// The CLI's volume rate modes (pupwave compress --max-error/--max-error-rel/--bpv/--psnr/--step/--lossless).
+enum class VolumeRate : std::uint8_t {
+  max_error,      // every voxel within target (absolute) of its original, guaranteed
+  max_error_rel,  // the same with bound target * (max - min) of the data
+  bpv,            // best quality within target bits per voxel
+  psnr,           // smallest stream reaching target dB (peak = value range), estimated
+  step,           // fixed quantizer base step target
+  lossless,       // bit exact (u8/u16 only)
+};
+
+struct VolumeOptions {
+  VolumeRate rate = VolumeRate::max_error_rel;
+  double target = 1e-3;
+  std::string transform;   // "": cdf97, cdf53 for lossless
+  int levels = -1;         // per brick, -1: default
+  std::size_t brick = 64;  // brick edge (power of two, 8..256)
+  unsigned threads = 0;    // as ImageOptions::threads
+};
+
+std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const VolumeOptions& options = {});
+// A sparse grid from bricks (same voxel type; bricks may not overlap): only active voxels are
+// coded; the box outside the bricks is inactive with value `background`, restored exactly.
+std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bricks, double background,
+                                                 const VolumeOptions& options = {});
+
+// A decoded grid: dims voxels (x fastest) of `type` starting at `origin` (halved per level).
+struct Volume {
+  std::string name;
+  std::array<std::int64_t, 3> origin{0, 0, 0};
+  std::array<std::size_t, 3> dims{0, 0, 0};
+  VoxelType type = VoxelType::f32;
+  std::vector<std::byte> data;       // dims product * bytes_per_voxel(type)
+  std::vector<std::uint8_t> active;  // one byte per voxel (1 active) for sparse grids; empty if dense
+  double background = 0.0;           // value of inactive voxels outside the box
+};
+
+// Decodes every grid of a volume stream (a stream from the CLI may hold several).
+std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int level = 0,
+                                      unsigned threads = 0);
+
+// ---- description -----------------------------------------------------------------------------
+
+struct StreamInfo {
+  bool volume = false;                // "PUPV" volume stream, else "PUPW" image stream
+  std::array<std::size_t, 3> dims{};  // width, height, 1 (images) or x, y, z (first grid)
+  std::size_t channels = 1;           // images; grids for volumes
+  std::string type;                   // "u8", "u16", "f16", "f32", "f64"
+  int levels = 0;
+  std::string transform;
+  bool lossless = false;
+  double max_error = 0.0;   // volumes coded with a point-wise bound (0: none)
+  bool sparse = false;      // volumes: first grid is sparse
+  std::string description;  // `pupwave info` text; every checksum verified
+};
+StreamInfo info(std::span<const std::uint8_t> stream);
+
+}  // namespace pupwave::api

@@ -1,0 +1,260 @@
+// pupwave._pupwave: numpy bindings over the public C++ API (pupwave/pupwave.hpp). Arrays are
+// handed to the codec as strided views (no copy); the GIL is released while coding; the
+// library's errors become ValueError, unsupported dtypes and non-arrays TypeError.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pupwave/pupwave.hpp"
+
+namespace py = pybind11;
+namespace api = pupwave::api;
+
+namespace {
+
+// A contiguous read-only view of a bytes-like object, released on scope exit.
+class ByteView {
+ public:
+  explicit ByteView(const py::object& obj) {
+    if (PyObject_GetBuffer(obj.ptr(), &view_, PyBUF_SIMPLE) != 0) {
+      PyErr_Clear();
+      throw py::type_error("expected a bytes-like object (bytes, bytearray, contiguous memoryview)");
+    }
+  }
+  ~ByteView() { PyBuffer_Release(&view_); }
+  ByteView(const ByteView&) = delete;
+  ByteView& operator=(const ByteView&) = delete;
+  std::span<const std::uint8_t> bytes() const {
+    return {static_cast<const std::uint8_t*>(view_.buf), std::size_t(view_.len)};
+  }
+
+ private:
+  Py_buffer view_{};
+};
+
+py::array as_array(const py::object& obj) {
+  if (!py::isinstance<py::array>(obj))
+    throw py::type_error("expected a numpy.ndarray, got " +
+                         obj.get_type().attr("__name__").cast<std::string>());
+  return py::reinterpret_borrow<py::array>(obj);
+}
+
+api::SampleType image_type(const py::array& a) {
+  const py::dtype dt = a.dtype();
+  if (dt.equal(py::dtype("uint8"))) return api::SampleType::u8;
+  if (dt.equal(py::dtype("uint16"))) return api::SampleType::u16;
+  if (dt.equal(py::dtype("float16"))) return api::SampleType::f16;
+  if (dt.equal(py::dtype("float32"))) return api::SampleType::f32;
+  throw py::type_error("unsupported image dtype " + dt.attr("name").cast<std::string>() +
+                       "; expected uint8, uint16, float16 or float32");
+}
+
+api::VoxelType voxel_type(const py::array& a) {
+  const py::dtype dt = a.dtype();
+  if (dt.equal(py::dtype("uint8"))) return api::VoxelType::u8;
+  if (dt.equal(py::dtype("uint16"))) return api::VoxelType::u16;
+  if (dt.equal(py::dtype("float32"))) return api::VoxelType::f32;
+  if (dt.equal(py::dtype("float64"))) return api::VoxelType::f64;
+  throw py::type_error("unsupported volume dtype " + dt.attr("name").cast<std::string>() +
+                       "; expected float32, float64, uint8 or uint16");
+}
+
+// Element stride of axis `axis` (numpy strides are bytes).
+std::ptrdiff_t element_stride(const py::array& a, int axis) {
+  const std::ptrdiff_t s = a.strides(axis);
+  if (s % std::ptrdiff_t(a.itemsize()) != 0)
+    throw py::value_error("array strides must be multiples of the item size");
+  return s / std::ptrdiff_t(a.itemsize());
+}
+
+py::dtype numpy_dtype(const std::string& name) { return py::dtype(name); }
+
+const char* dtype_name(api::SampleType t) {
+  constexpr const char* names[] = {"uint8", "uint16", "float16", "float32"};
+  return names[int(t) & 3];
+}
+const char* dtype_name(api::VoxelType t) {
+  constexpr const char* names[] = {"uint8", "uint16", "float32", "float64"};
+  return names[int(t) & 3];
+}
+
+// A numpy array owning `data` (moved to the heap, freed with the array).
+py::array owning_array(std::vector<std::byte>&& data, const std::string& dtype,
+                       std::vector<py::ssize_t> shape) {
+  auto* owner = new std::vector<std::byte>(std::move(data));
+  py::capsule free_owner(owner, [](void* p) { delete static_cast<std::vector<std::byte>*>(p); });
+  return py::array(numpy_dtype(dtype), shape, owner->data(), free_owner);
+}
+
+py::bytes to_bytes(const std::vector<std::uint8_t>& v) {
+  return py::bytes(reinterpret_cast<const char*>(v.data()), v.size());
+}
+
+int count_set(std::initializer_list<bool> flags) {
+  int n = 0;
+  for (bool f : flags) n += f ? 1 : 0;
+  return n;
+}
+
+py::bytes compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
+                   std::optional<double> step, bool lossless, const std::string& transform,
+                   std::optional<int> levels) {
+  const py::array a = as_array(obj);
+  const api::SampleType type = image_type(a);
+  if (a.ndim() != 2 && a.ndim() != 3)
+    throw py::value_error("expected a 2-D (height, width) or 3-D (height, width, channels) array, got " +
+                          std::to_string(a.ndim()) + "-D");
+  api::ImageView view;
+  view.data = a.data();
+  view.type = type;
+  view.height = std::size_t(a.shape(0));
+  view.width = std::size_t(a.shape(1));
+  view.channels = a.ndim() == 3 ? std::size_t(a.shape(2)) : 1;
+  view.row_stride = element_stride(a, 0);
+  view.pixel_stride = element_stride(a, 1);
+  view.channel_stride = a.ndim() == 3 ? element_stride(a, 2) : 0;
+  if (count_set({bpp.has_value(), psnr.has_value(), step.has_value(), lossless}) > 1)
+    throw py::value_error("give at most one of bpp, psnr, step and lossless");
+  api::ImageOptions options;
+  if (bpp) options.rate = api::ImageRate::bpp, options.target = *bpp;
+  if (psnr) options.rate = api::ImageRate::psnr, options.target = *psnr;
+  if (step) options.rate = api::ImageRate::step, options.target = *step;
+  if (lossless) options.rate = api::ImageRate::lossless;
+  // The default transform becomes the reversible cdf53 for lossless, as in the CLI.
+  options.transform = lossless && transform == "cdf97" ? "cdf53" : transform;
+  options.levels = levels.value_or(-1);
+  std::vector<std::uint8_t> out;
+  {
+    py::gil_scoped_release release;
+    out = api::compress_image(view, options);
+  }
+  return to_bytes(out);
+}
+
+py::array decompress(const py::object& data, int level) {
+  api::Image image;
+  {
+    const ByteView bytes(data);
+    py::gil_scoped_release release;
+    image = api::decompress_image(bytes.bytes(), level);
+  }
+  std::vector<py::ssize_t> shape{py::ssize_t(image.height), py::ssize_t(image.width)};
+  if (image.channels > 1) shape.push_back(py::ssize_t(image.channels));
+  return owning_array(std::move(image.data), dtype_name(image.type), shape);
+}
+
+py::bytes compress_volume(const py::object& obj, std::optional<double> max_error,
+                          std::optional<double> max_error_rel, std::optional<double> bpv, bool lossless) {
+  py::array a = as_array(obj);
+  const api::VoxelType type = voxel_type(a);
+  if (a.ndim() != 3)
+    throw py::value_error("expected a 3-D (z, y, x) array, got " + std::to_string(a.ndim()) + "-D");
+  // The codec reads voxels x fastest; a non-contiguous array is copied once into that order.
+  if (!(a.flags() & py::array::c_style))
+    a = py::module_::import("numpy").attr("ascontiguousarray")(a).cast<py::array>();
+  if (count_set({max_error.has_value(), max_error_rel.has_value(), bpv.has_value(), lossless}) > 1)
+    throw py::value_error("give at most one of max_error, max_error_rel, bpv and lossless");
+  api::VolumeOptions options;
+  const bool integer = type == api::VoxelType::u8 || type == api::VoxelType::u16;
+  if (lossless || (integer && !max_error && !max_error_rel && !bpv))
+    options.rate = api::VolumeRate::lossless;  // the CLI's default for integer volumes
+  else if (max_error)
+    options.rate = api::VolumeRate::max_error, options.target = *max_error;
+  else if (bpv)
+    options.rate = api::VolumeRate::bpv, options.target = *bpv;
+  else
+    options.rate = api::VolumeRate::max_error_rel, options.target = max_error_rel.value_or(1e-3);
+  const api::VolumeView view{
+      a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
+  std::vector<std::uint8_t> out;
+  {
+    py::gil_scoped_release release;
+    out = api::compress_volume(view, options);
+  }
+  return to_bytes(out);
+}
+
+py::array decompress_volume(const py::object& data, int level) {
+  std::vector<api::Volume> grids;
+  {
+    const ByteView bytes(data);
+    py::gil_scoped_release release;
+    grids = api::decompress_volume(bytes.bytes(), level);
+  }
+  if (grids.size() != 1)
+    throw py::value_error("the stream holds " + std::to_string(grids.size()) +
+                          " grids; decompress_volume returns single-grid streams (use `pupwave decompress`)");
+  api::Volume& v = grids[0];
+  return owning_array(std::move(v.data), dtype_name(v.type),
+                      {py::ssize_t(v.dims[2]), py::ssize_t(v.dims[1]), py::ssize_t(v.dims[0])});
+}
+
+py::dict info(const py::object& data) {
+  api::StreamInfo s;
+  std::size_t size = 0;
+  {
+    const ByteView bytes(data);
+    size = bytes.bytes().size();
+    py::gil_scoped_release release;
+    s = api::info(bytes.bytes());
+  }
+  static const std::map<std::string, std::string> numpy_names{
+      {"u8", "uint8"}, {"u16", "uint16"}, {"f16", "float16"}, {"f32", "float32"}, {"f64", "float64"}};
+  py::dict d;
+  d["kind"] = s.volume ? "volume" : "image";
+  d["dtype"] = numpy_names.at(s.type);
+  if (s.volume) {
+    d["shape"] = py::make_tuple(s.dims[2], s.dims[1], s.dims[0]);
+    d["grids"] = s.channels;
+    d["max_error"] = s.max_error;
+    d["sparse"] = s.sparse;
+  } else {
+    d["width"] = s.dims[0];
+    d["height"] = s.dims[1];
+    d["channels"] = s.channels;
+    d["shape"] = s.channels > 1 ? py::make_tuple(s.dims[1], s.dims[0], s.channels)
+                                : py::make_tuple(s.dims[1], s.dims[0]);
+  }
+  d["levels"] = s.levels;
+  d["transform"] = s.transform;
+  d["lossless"] = s.lossless;
+  d["bytes"] = size;
+  d["description"] = s.description;
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_pupwave, m) {
+  m.doc() = "Pupwave wavelet codec (compiled part; use the pupwave package)";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const api::Error& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+  m.attr("__version__") = PUPWAVE_VERSION_STRING;
+  m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
+        py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = "cdf97",
+        py::arg("levels") = py::none(),
+        "Compress a 2-D (grey) or HxWxC (C 1..4) array of uint8/uint16/float16/float32 to .pw bytes. At most "
+        "one of bpp, psnr, step, lossless (default psnr=40).");
+  m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0,
+        "Decode .pw image bytes to an array of the original dtype and shape (halved per level).");
+  m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),
+        py::arg("max_error_rel") = py::none(), py::arg("bpv") = py::none(), py::arg("lossless") = false,
+        "Compress a (z, y, x) array of float32/float64 (or uint8/uint16) to .pw volume bytes. Default: "
+        "lossless for integers, max_error_rel=1e-3 for floats.");
+  m.def("decompress_volume", &decompress_volume, py::arg("data"), py::arg("level") = 0,
+        "Decode .pw volume bytes to a (z, y, x) array (halved per level).");
+  m.def("info", &info, py::arg("data"), "Describe .pw bytes (every checksum verified) as a dict.");
+}

@@ -1,0 +1,15 @@
+"""Pupwave wavelet codec for numpy arrays (docs/api.md).
+
+compress(array, bpp=None, psnr=None, step=None, lossless=False, transform="cdf97", levels=None) -> bytes
+decompress(data, level=0) -> numpy.ndarray
+compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False) -> bytes
+decompress_volume(data, level=0) -> numpy.ndarray
+info(data) -> dict
+
+Bad arguments raise ValueError or TypeError with the library's message. The GIL is released
+while coding, and independent calls on different threads are safe.
+"""
+
+from ._pupwave import compress, compress_volume, decompress, decompress_volume, info, __version__
+
+__all__ = ["compress", "decompress", "compress_volume", "decompress_volume", "info", "__version__"]
