@@ -1,0 +1,106 @@
+"""pupwave.numcodecs.Pupwave: numcodecs registration, config round trip, Zarr v2 arrays, and the
+same chunk bytes as the HDF5 filter."""
+import numcodecs
+import numpy as np
+import pytest
+import zarr
+
+import pupwave.numcodecs  # noqa: F401  (registers "pupwave")
+from conftest import value_range
+from pupwave.numcodecs import Pupwave
+
+
+@pytest.mark.parametrize("kwargs", [dict(max_error=0.25), dict(bpv=3.0), dict(lossless=True)])
+def test_config_round_trips_through_get_codec(kwargs):
+    codec = Pupwave(**kwargs)
+    config = codec.get_config()
+    assert config["id"] == "pupwave"
+    again = numcodecs.get_codec(config)
+    assert isinstance(again, Pupwave) and again.get_config() == config
+
+
+@pytest.mark.parametrize("kwargs", [dict(), dict(max_error=1.0, bpv=2.0), dict(max_error=0.0),
+                                    dict(max_error=float("nan")), dict(bpv=-1.0)])
+def test_bad_settings_raise_value_error(kwargs):
+    with pytest.raises(ValueError):
+        Pupwave(**kwargs)
+
+
+def test_bad_dtypes_and_corrupt_bytes_raise():
+    with pytest.raises(TypeError):
+        Pupwave(max_error=1.0).encode(np.zeros((4, 4), dtype=np.int32))
+    with pytest.raises(ValueError):
+        Pupwave(lossless=True).encode(np.zeros((4, 4), dtype=np.float32))
+    with pytest.raises(ValueError, match="cannot decode chunk"):
+        Pupwave(max_error=1.0).decode(b"PW\x01\x05garbage")
+
+
+def test_zarr_array_holds_the_bound(tmp_path, wmag91):
+    bound = 1e-3 * value_range(wmag91)
+    z = zarr.open(str(tmp_path / "w.zarr"), mode="w", shape=wmag91.shape, chunks=(48, 48, 48), dtype="f4",
+                  compressor=Pupwave(max_error=bound))
+    z[...] = wmag91
+    again = zarr.open(str(tmp_path / "w.zarr"), mode="r")
+    assert isinstance(again.compressor, Pupwave) and again.compressor.max_error == bound
+    back = again[...]
+    assert np.abs(back.astype(np.float64) - wmag91).max() <= bound
+    assert again.nbytes_stored < wmag91.nbytes / 4
+
+
+def test_zarr_lossless_u16_is_exact(tmp_path, wmag91):
+    data = np.round((wmag91 - wmag91.min()) / value_range(wmag91) * 65535).astype(np.uint16)
+    z = zarr.array(data, chunks=(32, 91, 91), compressor=Pupwave(lossless=True), store=str(tmp_path / "u.zarr"))
+    assert np.array_equal(zarr.open(str(tmp_path / "u.zarr"), mode="r")[...], data)
+    assert z.nbytes_stored < data.nbytes
+
+
+def test_chunks_are_the_hdf5_filter_chunks(tmp_path, wmag91):
+    h5py = pytest.importorskip("h5py")
+    from pupwave.hdf5 import hdf5_filter
+    data = wmag91[:64, :64, :64].copy()
+    with h5py.File(tmp_path / "s.h5", "w") as f:
+        f.create_dataset("x", data=data, chunks=data.shape, **hdf5_filter(max_error=0.01))
+    with h5py.File(tmp_path / "s.h5", "r") as f:
+        _, stored = f["x"].id.read_direct_chunk((0, 0, 0))
+    assert bytes(stored) == Pupwave(max_error=0.01).encode(data)
+    assert np.array_equal(Pupwave(max_error=0.01).decode(stored).reshape(data.shape), f_read(tmp_path / "s.h5"))
+
+
+def f_read(path):
+    import h5py
+    with h5py.File(path, "r") as f:
+        return f["x"][...]
+
+
+def test_chunk_payload_is_the_pupwave_volume_stream(wmag91):
+    """After the 4-byte header a coded chunk is a plain volume stream: the library's Python module
+    (pupwave.decompress_volume, docs/api.md) decodes it to the codec's values."""
+    import pupwave
+    data = wmag91[:40, :50, :60].copy()
+    stored = Pupwave(max_error=0.01).encode(data)
+    assert stored[:4] == b"PW\x01\x05"  # kind 1 (volume stream), type 5 (float32)
+    assert pupwave.info(stored[4:])["shape"] == data.shape
+    assert np.array_equal(pupwave.decompress_volume(stored[4:]), Pupwave(max_error=0.01).decode(stored).reshape(data.shape))
+
+
+def test_damaged_chunks_are_refused_not_crashing(wmag91):
+    """Flipped bytes and truncations anywhere in a chunk: a clean ValueError naming the chunk,
+    never a crash (the stream's checks catch nearly all; a flip of the kind byte to "raw" cannot
+    be caught here, the HDF5 filter then refuses the size, Zarr the shape)."""
+    data = wmag91[:32, :32, :32].copy()
+    codec = Pupwave(max_error=0.01)
+    stored = codec.encode(data)
+    rng = np.random.default_rng(3)
+    refused = 0
+    for i in range(150):
+        damaged = bytearray(stored)
+        for _ in range(int(rng.integers(1, 4))):
+            damaged[int(rng.integers(0, len(damaged)))] ^= int(rng.integers(1, 256))
+        if i % 5 == 0:
+            damaged = damaged[: int(rng.integers(0, len(damaged)))]
+        try:
+            codec.decode(bytes(damaged))
+        except ValueError as e:
+            assert "cannot decode chunk" in str(e)
+            refused += 1
+    assert refused >= 140

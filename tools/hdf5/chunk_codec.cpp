@@ -1,0 +1,133 @@
+#include "tools/hdf5/chunk_codec.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "codec/error.h"
+#include "codec/volume/volume_codec.h"
+#include "tools/hdf5/chunk_format.h"
+
+namespace pupwave::h5 {
+namespace {
+
+// Largest chunk the filter codes (HDF5 itself caps chunks at 4 GiB).
+constexpr std::uint64_t kMaxChunkElements = std::uint64_t(1) << 32;
+
+template <typename T>
+void widen(std::span<const std::uint8_t> raw, std::vector<double>& out, double offset) {
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    T v;
+    std::memcpy(&v, raw.data() + i * sizeof(T), sizeof(T));
+    out[i] = double(v) + offset;
+  }
+}
+
+// The chunk as a volume grid; signed integers are offset into the unsigned type the codec holds.
+VolumeGrid to_grid(const ChunkParams& p, std::span<const std::uint8_t> raw) {
+  VolumeGrid grid;
+  grid.name = "chunk";
+  grid.volume = Volume(p.dims, stored_voxel_type(p.type));
+  std::vector<double>& s = grid.volume.samples;
+  switch (p.type) {
+    case ChunkType::u8: widen<std::uint8_t>(raw, s, 0.0); break;
+    case ChunkType::i8: widen<std::int8_t>(raw, s, kSignedOffset8); break;
+    case ChunkType::u16: widen<std::uint16_t>(raw, s, 0.0); break;
+    case ChunkType::i16: widen<std::int16_t>(raw, s, kSignedOffset16); break;
+    case ChunkType::f32: widen<float>(raw, s, 0.0); break;
+    case ChunkType::f64: widen<double>(raw, s, 0.0); break;
+  }
+  return grid;
+}
+
+VolumeEncodeOptions volume_options(const ChunkParams& p) {
+  VolumeEncodeOptions o;
+  switch (p.mode) {
+    case Mode::max_error: o.mode = VolumeRateMode::max_error; break;
+    case Mode::bpv: o.mode = VolumeRateMode::bpv; break;
+    case Mode::lossless:
+      o.mode = VolumeRateMode::lossless;
+      o.transform = "cdf53";  // the reversible integer transform
+      break;
+  }
+  o.target = p.mode == Mode::lossless ? 0.0 : p.bound;
+  return o;
+}
+
+std::vector<std::uint8_t> stored_raw(ChunkType type, std::span<const std::uint8_t> raw) {
+  return stored_chunk(ChunkKind::raw, type, raw);
+}
+
+}  // namespace
+
+std::size_t element_size(ChunkType type) {
+  switch (type) {
+    case ChunkType::u8:
+    case ChunkType::i8: return 1;
+    case ChunkType::u16:
+    case ChunkType::i16: return 2;
+    case ChunkType::f32: return 4;
+    case ChunkType::f64: return 8;
+  }
+  return 0;
+}
+
+bool is_valid_type(std::uint32_t code) { return code >= 1 && code <= 6; }
+
+std::string check_params(std::uint32_t mode, double bound, ChunkType type) {
+  const bool is_float = type == ChunkType::f32 || type == ChunkType::f64;
+  switch (Mode(mode)) {
+    case Mode::max_error:
+      if (!(std::isfinite(bound) && bound > 0.0 && bound < 1e300))
+        return "max_error must be a finite positive number, got " + std::to_string(bound);
+      return {};
+    case Mode::bpv:
+      if (!(bound > 0.0 && bound <= double(8 * element_size(type))))
+        return "bits per value must be in (0, " + std::to_string(8 * element_size(type)) + "], got " +
+               std::to_string(bound);
+      return {};
+    case Mode::lossless:
+      if (is_float) return "lossless mode needs 8- or 16-bit integers; for floats use max_error";
+      return {};
+  }
+  return "unknown mode " + std::to_string(mode) + " (1 = max_error, 2 = bpv, 3 = lossless)";
+}
+
+Extent extent_from_shape(std::span<const unsigned long long> c_order_dims) {
+  if (c_order_dims.empty()) throw std::invalid_argument("chunk has no dimensions");
+  Extent e{1, 1, 1};
+  std::size_t kept = 0;
+  std::uint64_t count = 1;
+  // C order: the last dimension varies fastest, so it becomes x (e[0]).
+  for (std::size_t i = c_order_dims.size(); i-- > 0;) {
+    const std::uint64_t d = c_order_dims[i];
+    if (d == 0) throw std::invalid_argument("chunk dimension of size 0");
+    if (d == 1) continue;
+    if (kept == 3) throw std::invalid_argument("chunks with more than 3 dimensions larger than 1");
+    if (d > kMaxChunkElements / count) throw std::invalid_argument("chunk larger than 2^32 elements");
+    count *= d;
+    e[kept++] = std::size_t(d);
+  }
+  return e;
+}
+
+std::vector<std::uint8_t> encode_chunk(const ChunkParams& params, std::span<const std::uint8_t> raw) {
+  if (raw.size() != params.count() * element_size(params.type))
+    throw std::invalid_argument("chunk holds " + std::to_string(raw.size()) + " bytes, expected " +
+                                std::to_string(params.count() * element_size(params.type)));
+  if (const std::string why = check_params(std::uint32_t(params.mode), params.bound, params.type);
+      !why.empty())
+    throw std::invalid_argument(why);
+  VolumeEncodeResult coded;
+  try {
+    coded = encode_volumes({to_grid(params, raw)}, volume_options(params));
+  } catch (const EncodeError&) {
+    // Data the codec cannot hold (NaN, Inf, a bound below the type's precision): keep it raw.
+    return stored_raw(params.type, raw);
+  }
+  if (coded.bytes.size() >= raw.size()) return stored_raw(params.type, raw);
+  return stored_chunk(ChunkKind::volume, params.type, coded.bytes);
+}
+
+}  // namespace pupwave::h5

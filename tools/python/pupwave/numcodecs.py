@@ -1,0 +1,109 @@
+"""``pupwave.numcodecs.Pupwave``: a numcodecs codec (Zarr v2, Dask) storing every chunk exactly as
+the HDF5 filter does (docs/hdf5.md, "Chunk format"), through the plugin library's C entry points
+``pupwave_chunk_encode`` / ``pupwave_chunk_decode`` (ctypes). Registered as ``"pupwave"`` on import.
+
+The library is looked up in ``PUPWAVE_HDF5_PLUGIN`` (a file), then in each directory of
+``HDF5_PLUGIN_PATH``, then in the install prefix (``P/lib/hdf5/plugins`` beside
+``P/lib/python3/dist-packages/pupwave``), then in the build tree (``build/lib/hdf5/plugins``).
+"""
+
+import ctypes
+import os
+
+import numpy as np
+from numcodecs.abc import Codec
+from numcodecs.compat import ensure_contiguous_ndarray, ndarray_copy
+from numcodecs.registry import register_codec
+
+from pupwave.hdf5 import filter_mode
+
+_LIBRARY_NAME = "libh5pupwave.so"
+_TYPE_CODES = {"u1": 1, "i1": 2, "u2": 3, "i2": 4, "f4": 5, "f8": 6}
+_CODE_TYPES = {code: np.dtype(name) for name, code in _TYPE_CODES.items()}
+_lib = None
+
+
+def _candidates():
+    if os.environ.get("PUPWAVE_HDF5_PLUGIN"):
+        yield os.environ["PUPWAVE_HDF5_PLUGIN"]
+    for folder in os.environ.get("HDF5_PLUGIN_PATH", "").split(":"):
+        if folder:
+            yield os.path.join(folder, _LIBRARY_NAME)
+    here = os.path.dirname(os.path.abspath(__file__))
+    yield os.path.normpath(os.path.join(here, "..", "..", "..", "hdf5", "plugins", _LIBRARY_NAME))  # P/lib/python3/dist-packages
+    yield os.path.normpath(os.path.join(here, "..", "..", "lib", "hdf5", "plugins", _LIBRARY_NAME))  # build/python
+
+
+def _library():
+    global _lib
+    if _lib is None:
+        path = next((p for p in _candidates() if os.path.isfile(p)), None)
+        if path is None:
+            raise OSError(f"pupwave: {_LIBRARY_NAME} not found (set HDF5_PLUGIN_PATH or PUPWAVE_HDF5_PLUGIN)")
+        lib = ctypes.CDLL(path)
+        size_p = ctypes.POINTER(ctypes.c_size_t)
+        lib.pupwave_chunk_encode.argtypes = [ctypes.c_uint, ctypes.c_double, ctypes.c_uint, ctypes.c_uint,
+                                             ctypes.POINTER(ctypes.c_ulonglong), ctypes.c_void_p, ctypes.c_size_t,
+                                             ctypes.POINTER(ctypes.c_void_p), size_p, ctypes.c_char_p, ctypes.c_size_t]
+        lib.pupwave_chunk_decode.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_void_p), size_p,
+                                             ctypes.POINTER(ctypes.c_uint), ctypes.c_char_p, ctypes.c_size_t]
+        lib.pupwave_chunk_free.argtypes = [ctypes.c_void_p]
+        _lib = lib
+    return _lib
+
+
+def _take(lib, out, size, dtype=np.dtype(np.uint8)):
+    """Copies a buffer the library allocated into a new (writable) array and frees it."""
+    try:
+        arr = np.empty(size.value // dtype.itemsize, dtype=dtype)
+        ctypes.memmove(arr.ctypes.data, out, size.value)
+        return arr
+    finally:
+        lib.pupwave_chunk_free(out)
+
+
+class Pupwave(Codec):
+    """Error-bounded wavelet coding of float32/float64 chunks of 1 to 3 dimensions (larger ranks
+    are fine when at most 3 dimensions exceed 1), or lossless 8/16-bit integers. Give exactly one
+    of ``max_error`` (absolute, every value), ``bpv`` (bits per value) or ``lossless=True``."""
+
+    codec_id = "pupwave"
+
+    def __init__(self, max_error=None, bpv=None, lossless=False):
+        self._mode, self._bound = filter_mode(max_error, bpv, lossless)
+        self.max_error = None if max_error is None else float(max_error)
+        self.bpv = None if bpv is None else float(bpv)
+        self.lossless = bool(lossless)
+
+    def encode(self, buf):
+        arr = np.ascontiguousarray(buf)
+        if arr.dtype.byteorder == ">":
+            raise ValueError(f"pupwave: big-endian arrays are not supported ({arr.dtype})")
+        code = _TYPE_CODES.get(arr.dtype.kind + str(arr.dtype.itemsize))
+        if code is None:
+            raise TypeError(f"pupwave: dtype must be float32, float64 or an 8/16-bit integer, got {arr.dtype}")
+        shape = arr.shape if arr.ndim > 0 else (1,)
+        dims = (ctypes.c_ulonglong * len(shape))(*shape)
+        lib, out, size, err = _library(), ctypes.c_void_p(), ctypes.c_size_t(), ctypes.create_string_buffer(512)
+        rc = lib.pupwave_chunk_encode(self._mode, self._bound, code, len(shape), dims, arr.ctypes.data, arr.nbytes,
+                                      ctypes.byref(out), ctypes.byref(size), err, len(err))
+        if rc != 0:
+            raise ValueError("pupwave: " + err.value.decode(errors="replace"))
+        return _take(lib, out, size).tobytes()
+
+    def decode(self, buf, out=None):
+        data = ensure_contiguous_ndarray(buf).view(np.uint8)
+        lib, res, size, code = _library(), ctypes.c_void_p(), ctypes.c_size_t(), ctypes.c_uint()
+        err = ctypes.create_string_buffer(512)
+        rc = lib.pupwave_chunk_decode(data.ctypes.data, data.nbytes, ctypes.byref(res), ctypes.byref(size),
+                                      ctypes.byref(code), err, len(err))
+        if rc != 0:
+            raise ValueError("pupwave: cannot decode chunk: " + err.value.decode(errors="replace"))
+        arr = _take(lib, res, size, _CODE_TYPES[code.value])
+        return ndarray_copy(arr, out) if out is not None else arr
+
+    def __repr__(self):
+        return f"Pupwave(max_error={self.max_error!r}, bpv={self.bpv!r}, lossless={self.lossless!r})"
+
+
+register_codec(Pupwave)
