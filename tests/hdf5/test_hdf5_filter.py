@@ -146,3 +146,10 @@ def test_h5dump_and_h5ls_show_and_decode_the_filter(tmp_path, wmag91):
     listing = subprocess.run(["h5ls", "-v", str(path) + "/x"], capture_output=True, text=True, check=True,
                              env=os.environ, timeout=60).stdout
     assert "pupwave" in listing and "Filter-0" in listing
+
+
+def test_hdf5_filter_is_on_the_package():
+    import pupwave
+
+    assert pupwave.hdf5_filter is hdf5_filter
+    assert pupwave.hdf5_filter(max_error=0.5)["compression"] == FILTER_ID
