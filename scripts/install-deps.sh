@@ -15,6 +15,8 @@ packages=(
   # sqrt(3) meshes: OpenMesh for the subdivision cross-check test, Draco and the CGAL sample
   # meshes for bench/mesh_vs_draco.py
   libopenmesh-dev draco libcgal-demo
+  # fuzzing and sanitizers (scripts/sanitize.sh, docs/fuzzing.md): clang with libFuzzer
+  clang libclang-rt-dev
 )
 
 missing=()
