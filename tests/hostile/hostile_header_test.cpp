@@ -118,6 +118,11 @@ TEST(HostileHeader, HugeEmptyImageIsRefusedByTheDecodeLimit) {
   const auto r = run_cli_bounded({"decompress", scratch("huge.pw"), scratch("huge.pgm"), "--threads", "2"});
   expect_refused(r, "exceeds the decode limit of 268435456");
   EXPECT_FALSE(fs::exists(scratch("huge.pgm")));
+  // info makes no output: it describes the stream within the bounds, without a limit.
+  const auto info = run_cli_bounded({"info", scratch("huge.pw")});
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("65536 x 32768"), std::string::npos) << info.output;
+  EXPECT_LT(info.seconds, 5.0);
   // --max-pixels raises the limit; a lower one refuses a smaller image.
   save(scratch("small.pw"), empty_image_stream(300, 200, 3));
   expect_refused(
