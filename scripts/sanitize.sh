@@ -13,7 +13,9 @@ jobs=$(nproc)
 # runners; tests/hostile is not built (ASan cannot run under an address-space limit).
 asan_tests="codec_tests volcodec_tests cli_tests fuzz_image fuzz_image_level fuzz_volume fuzz_info fuzz_pnm
   fuzz_spec fuzz_mesh"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DPUPWAVE_SANITIZE=ON -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
+# -O1: sanitizer builds compile about twice as fast as at -O3 and still run the tests quickly.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+  -DPUPWAVE_SANITIZE=ON -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
 # shellcheck disable=SC2086
 cmake --build build-asan -j"$jobs" --target pupwave $asan_tests
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
@@ -23,8 +25,8 @@ ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 -E '_NOT
 
 # libFuzzer targets, two at a time, each from a scratch copy of its corpus (new inputs stay
 # out of the repository) with the dictionaries.
-cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
-  -DPUPWAVE_BUILD_FUZZERS=ON -DPUPWAVE_BUILD_TESTS=OFF -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
+cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPUPWAVE_BUILD_FUZZERS=ON -DPUPWAVE_BUILD_TESTS=OFF -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
 targets="image image_level volume info pnm spec mesh"
 cmake --build build-fuzz -j"$jobs" --target $(printf 'fuzz_%s ' $targets)
 dict_for() {
