@@ -12,6 +12,14 @@ using namespace pupwave;
 
 namespace {
 
+// Same shape and values (-0 equals +0: a decoder rounds small negatives of an integer image
+// to -0, which every writer stores as 0; fuzz finding 1, docs/fuzzing.md).
+bool same_values(const Image& a, const Image& b) {
+  return a.width == b.width && a.height == b.height && a.channels == b.channels && a.type == b.type &&
+         a.samples == b.samples;
+}
+
+// Bit-identical: a decode is deterministic.
 bool same_pixels(const Image& a, const Image& b) {
   return a.width == b.width && a.height == b.height && a.channels == b.channels && a.type == b.type &&
          std::memcmp(a.samples.data(), b.samples.data(), a.samples.size() * sizeof(float)) == 0;
@@ -38,7 +46,7 @@ void check_reencodes(const Image& image) {
   }
   const Image back = decode_image(stream, 0, serial_executor(), fuzz::kFuzzLimits);
   FUZZ_CHECK(back.width == image.width && back.height == image.height && back.channels == image.channels);
-  if (is_integer(image.type)) FUZZ_CHECK(same_pixels(back, image));
+  if (is_integer(image.type)) FUZZ_CHECK(same_values(back, image));
 }
 
 }  // namespace
