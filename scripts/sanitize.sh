@@ -40,7 +40,7 @@ run_target() {
   local t=$1 work=build-fuzz/work/$1 found=build-fuzz/findings/$1
   rm -rf "$work" "$found"
   mkdir -p "$work" "$found"
-  ASAN_OPTIONS=detect_leaks=1 build-fuzz/tests/fuzz/fuzz_"$t" -max_total_time="$seconds" -timeout=10 \
+  ASAN_OPTIONS=detect_leaks=1 build-fuzz/tests/fuzz/fuzz_"$t" -max_total_time="$seconds" -timeout=25 \
     -rss_limit_mb=2048 -print_final_stats=1 -dict="$(dict_for "$t")" -artifact_prefix="$found/" \
     "$work" tests/fuzz/corpus/"$t" > build-fuzz/findings/"$t".log 2>&1
 }
