@@ -20,10 +20,20 @@ std::filesystem::path input_path() {
   return dir / ("pupwave_fuzz_pnm_" + std::to_string(::getpid()) + ".pgm");
 }
 
+// The per-process input file, removed when the process ends.
+struct InputFile {
+  std::filesystem::path path = input_path();
+  ~InputFile() {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  }
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::filesystem::path path = input_path();
+  static const InputFile file;
+  const std::filesystem::path& path = file.path;
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (f == nullptr) return 0;
   std::fwrite(data, 1, size, f);
