@@ -22,6 +22,8 @@ packages=(
   # the HDF5 filter plugin, numcodecs codec and their MPI/Dask tests and bench (docs/hdf5.md)
   libhdf5-dev libhdf5-openmpi-dev hdf5-tools python3-h5py python3-h5py-mpi openmpi-bin python3-mpi4py
   python3-zarr python3-numcodecs python3-dask python3-distributed hdf5-filter-plugin-zfp-serial
+  # fuzzing and sanitizers (scripts/sanitize.sh, docs/fuzzing.md): clang with libFuzzer
+  clang libclang-rt-dev
 )
 
 missing=()

@@ -24,6 +24,7 @@ struct DecompressOptions {
   int level = 0;
   unsigned threads = 0;
   std::string grid;
+  DecodeLimits limits;  // --max-pixels
 };
 
 // Grids of a volume stream to .vdb, or one grid (--grid, or the only one) to raw.
@@ -41,7 +42,7 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
 
 void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
-  auto grids = decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads));
+  auto grids = decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_volume_output(grids, opt);
   for (const VolumeGrid& g : grids)
@@ -56,7 +57,7 @@ void run_decompress(const DecompressOptions& opt) {
   if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
   const auto start = std::chrono::steady_clock::now();
-  const Image image = decode_image(bytes, opt.level, *make_pool_executor(opt.threads));
+  const Image image = decode_image(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   SampleType stored = image.type;
   write_image(image, opt.output, &stored);
@@ -77,6 +78,10 @@ void add_decompress_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_option("--grid", opt->grid, "volume streams: only the grids of this name");
+  cmd->add_option("--max-pixels", opt->limits.max_pixels,
+                  "refuse a stream whose decoded pixels (images, at --level) or voxels (volumes, all grids) "
+                  "exceed this (default 2^28)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([opt] { run_decompress(*opt); });
 }
 

@@ -27,6 +27,19 @@ std::vector<std::string> transform_specs() {
   return specs;
 }
 
+void check_stream_spec(std::string_view spec) {
+  if (spec == "cdf97" || spec == "cdf53") return;
+  if (spec.starts_with(kKobbeltPrefix)) {
+    make_kobbelt_transform_from_spec(spec.substr(kKobbeltPrefix.size()));  // a name: nothing designed
+    return;
+  }
+  if (spec.starts_with(kPupsPrefix)) {
+    pups::check_stream_design_bounds(pups::parse_design_spec(spec.substr(kPupsPrefix.size())));
+    return;
+  }
+  make_transform(spec);  // throws the unknown-spec message
+}
+
 Transform1DPtr make_transform(std::string_view spec) {
   if (spec == "cdf97") return make_cdf97();
   if (spec == "cdf53") return make_cdf53();

@@ -100,18 +100,35 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
   return h;
 }
 
-// Checks the transform spec and returns the subbands it implies.
+// Checks the transform spec (bounded, nothing designed: docs/bitstream.md, Decoder bounds)
+// and returns the subbands it implies.
 std::vector<Subband> header_bands(const StreamHeader& h) {
   try {
-    const auto t = make_transform(h.spec);
-    require_stream(!h.reversible || t->is_reversible(),
-                   [&] { return "transform " + h.spec + " is not reversible"; });
+    check_stream_spec(h.spec);
   } catch (const std::invalid_argument& e) {
     throw DecodeError(std::string("corrupt or unsupported stream: transform spec: ") + e.what());
   }
   auto bands = subbands(h.dims, h.levels);
   require_stream(h.steps.size() == bands.size() * h.channels, "step count does not match the subbands");
   return bands;
+}
+
+// Blocks partition_blocks would make, counted without making them.
+std::size_t block_count(const std::vector<Subband>& bands, std::size_t channels, const Extent& block) {
+  std::size_t n = 0;
+  for (const Subband& b : bands)
+    n += ((b.size[0] + block[0] - 1) / block[0]) * ((b.size[1] + block[1] - 1) / block[1]) *
+         ((b.size[2] + block[2] - 1) / block[2]);
+  return n * channels;
+}
+
+// The bands of resolutions 0..last: a prefix of subbands() (coarse band first, then levels
+// from coarsest to finest), so their blocks are the prefix of the full partition.
+std::vector<Subband> bands_up_to(const std::vector<Subband>& bands, int levels, int last) {
+  std::vector<Subband> kept;
+  for (const Subband& b : bands)
+    if (band_resolution(b, levels) <= last) kept.push_back(b);
+  return kept;
 }
 
 // Offsets of every codeword in its DATA payload; the lengths of a resolution must add up to
@@ -161,12 +178,20 @@ std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, 
          data_bytes + extras;
 }
 
-ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels) {
+ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels,
+                             const DecodeLimits& limits) {
   ChunkReader chunks(bytes, kSignature, kStreamVersion, "pupwave stream");
   ParsedStream s;
   s.header = parse_header(chunks.expect("HEAD").payload);
-  s.bands = header_bands(s.header);
-  s.blocks = partition_blocks(s.bands, s.header.levels, s.header.channels, s.header.block_size());
+  const StreamHeader& h = s.header;
+  s.bands = header_bands(h);
+  if (drop_levels < 0 || drop_levels > h.levels)
+    throw std::invalid_argument("level " + std::to_string(drop_levels) + " outside [0, " +
+                                std::to_string(h.levels) + "] (the stream's levels)");
+  const Extent out = level_extent(h.dims, drop_levels);
+  check_decode_limit(out[0] * out[1] * out[2], limits, "pupwave stream: decoded size in pixels");
+  const int resolutions = h.levels + 1;
+  const int last = resolutions - 1 - drop_levels;
   require_stream(!chunks.at_end(), "pupwave stream: missing chunk INDX");
   Chunk next = chunks.next();
   if (next.is("META")) {
@@ -181,19 +206,29 @@ ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_level
     next = chunks.next();
   }
   require_stream(next.is("INDX"), [&] { return "expected chunk INDX, found " + next.name(); });
+  // Only the blocks of the resolutions read are laid out and indexed: a reduced decode costs
+  // memory in proportion to its output (the index is a prefix, ordered by resolution).
   const auto index_chunk = next.payload;
   ByteReader ir(index_chunk, "INDX chunk");
-  require_stream(ir.u32() == s.blocks.size(), "block count does not match the image geometry");
+  require_stream(ir.u32() == block_count(s.bands, h.channels, h.block_size()),
+                 "block count does not match the image geometry");
+  s.blocks = partition_blocks(bands_up_to(s.bands, h.levels, last), h.levels, h.channels, h.block_size());
   s.index = decode_index(index_chunk.subspan(4), s.blocks.size());
-  if (drop_levels < 0 || drop_levels > s.header.levels)
-    throw std::invalid_argument("level " + std::to_string(drop_levels) + " outside [0, " +
-                                std::to_string(s.header.levels) + "] (the stream's levels)");
-  const int resolutions = s.header.levels + 1;
-  const int last = resolutions - 1 - drop_levels;
   for (int r = 0; r <= last; ++r) s.resolution_data.push_back(chunks.expect("DATA").payload);
   if (last == resolutions - 1) require_stream(chunks.at_end(), "trailing bytes after the last chunk");
   locate_codewords(s);
   return s;
+}
+
+Transform1DPtr make_stream_transform(const StreamHeader& h) {
+  try {
+    auto t = make_transform(h.spec);
+    require_stream(!h.reversible || t->is_reversible(),
+                   [&] { return "transform " + h.spec + " is not reversible"; });
+    return t;
+  } catch (const std::invalid_argument& e) {
+    throw DecodeError(std::string("corrupt or unsupported stream: transform spec: ") + e.what());
+  }
 }
 
 }  // namespace pupwave

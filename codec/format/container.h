@@ -12,9 +12,11 @@
 
 #include "codec/entropy/block_index.h"
 #include "codec/entropy/codeblocks.h"
+#include "codec/format/decode_limits.h"
 #include "codec/image/colour.h"
 #include "codec/image/image.h"
 #include "transforms/subband.h"
+#include "transforms/transform1d.h"
 
 namespace pupwave {
 
@@ -71,10 +73,10 @@ std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, 
 
 struct ParsedStream {
   StreamHeader header;
-  std::vector<Subband> bands;                                  // subbands(dims, levels)
-  std::vector<CodeBlock> blocks;                               // partition_blocks order
-  std::vector<BlockEntry> index;                               // one per block
-  std::vector<std::size_t> offsets;                            // codeword start in its DATA payload
+  std::vector<Subband> bands;        // subbands(dims, levels)
+  std::vector<CodeBlock> blocks;     // partition_blocks order, of the resolutions read only
+  std::vector<BlockEntry> index;     // one per block
+  std::vector<std::size_t> offsets;  // codeword start in its DATA payload
   std::vector<std::span<const std::uint8_t>> resolution_data;  // DATA payloads read (0..max)
 
   // Codeword of block i (whose resolution must have been read).
@@ -83,10 +85,17 @@ struct ParsedStream {
   }
 };
 
-// Parses and validates a stream, reading the DATA chunks of all but the `drop_levels` finest
-// resolutions (those a decode at 1/2^drop_levels size needs). Throws DecodeError with the
-// reason for any inconsistency, std::invalid_argument when drop_levels exceeds the levels.
-ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels = 0);
+// Parses and validates a stream, reading the DATA chunks and index entries of all but the
+// `drop_levels` finest resolutions (those a decode at 1/2^drop_levels size needs). Throws
+// DecodeError for the reason for any inconsistency or when the decoded size exceeds
+// `limits`, std::invalid_argument when drop_levels exceeds the levels. The transform spec is
+// checked against the stream bounds but no filter bank is designed (make_stream_transform).
+ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels = 0,
+                             const DecodeLimits& limits = {});
+
+// The transform of a parsed header (designs a PUPs bank within the stream bounds); throws
+// DecodeError when it cannot be built or a reversible stream names an irreversible one.
+Transform1DPtr make_stream_transform(const StreamHeader& header);
 
 // Human-readable description of a stream's header fields and chunk sizes (for `pupwave info`).
 // Throws DecodeError for a stream it cannot parse.

@@ -74,5 +74,10 @@ inline EncodeResult encode_image(const Image& image, const EncodeOptions& option
 // Parallel work runs on `executor`; the pixels never depend on it.
 Image decode_image(std::span<const std::uint8_t> bytes, int level = 0,
                    const Executor& executor = default_executor());
+// The same with a decode limit other than the default (DecodeLimits: 2^28 pixels at the
+// decoded level); a stream whose decoded size exceeds it throws DecodeError before anything
+// of that size is allocated.
+Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executor& executor,
+                   const DecodeLimits& limits);
 
 }  // namespace pupwave

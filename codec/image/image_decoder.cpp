@@ -1,6 +1,7 @@
 // decode_image: parse and validate the container, decode the code-blocks a resolution needs
 // in parallel, dequantize, inverse wavelet transform (stopping early for reduced
 // resolution), inverse colour transform.
+#include <cstdint>
 #include <stdexcept>
 
 #include "codec/entropy/block_decoder.h"
@@ -39,31 +40,30 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
 }
 
 // Decodes every block of the read resolutions into the component planes at planes[c] (each
-// dims-sized and zeroed).
+// `region`-sized and zeroed: the low corner of the Mallat layout that holds those resolutions).
 template <class T>
-void decode_into(const ParsedStream& s, const Executor& ex, const std::vector<T*>& planes) {
+void decode_into(const ParsedStream& s, const Extent& region, const Executor& ex,
+                 const std::vector<T*>& planes) {
   const StreamHeader& h = s.header;
-  const int last = int(s.resolution_data.size()) - 1;
   ex.run(s.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
-    if (b.resolution > last) return;
     std::vector<T> values = block_values<T>(s, i);
     if constexpr (std::is_floating_point_v<T>) {
       const float step = h.steps[b.component * s.bands.size() + b.band];
       for (T& v : values) v *= step;
     }
-    copy_block_in(values.data(), h.dims, b, planes[b.component]);  // blocks never overlap
+    copy_block_in(values.data(), region, b, planes[b.component]);  // blocks never overlap
   });
 }
 
-// Decodes every block of the read resolutions into component planes of type T.
+// Decodes every block of the read resolutions into `region`-sized component planes of type T.
 template <class T>
-std::vector<std::vector<T>> decode_planes(const ParsedStream& s, const Executor& ex) {
-  const StreamHeader& h = s.header;
-  std::vector<std::vector<T>> planes(h.channels, std::vector<T>(h.dims[0] * h.dims[1] * h.dims[2], T(0)));
+std::vector<std::vector<T>> decode_planes(const ParsedStream& s, const Extent& region, const Executor& ex) {
+  std::vector<std::vector<T>> planes(s.header.channels,
+                                     std::vector<T>(region[0] * region[1] * region[2], T(0)));
   std::vector<T*> pointers;
   for (auto& p : planes) pointers.push_back(p.data());
-  decode_into(s, ex, pointers);
+  decode_into(s, region, ex, pointers);
   return planes;
 }
 
@@ -74,7 +74,7 @@ Image decode_full_float(const ParsedStream& s, const Transform1D& t, const Execu
   Image out(h.dims[0], h.dims[1], h.channels, h.type);
   std::vector<float*> planes;
   for (std::size_t c = 0; c < h.channels; ++c) planes.push_back(out.plane(c));
-  decode_into(s, ex, planes);
+  decode_into(s, h.dims, ex, planes);
   for (float* p : planes) inverse(t, p, h.dims, h.levels, 0, ex);
   finish_image_in_place(out, h.colour, ex);
   return out;
@@ -95,30 +95,40 @@ Image finish_decoded(Image image, const StreamHeader& h, int level) {
 Image decode_in_domain(const ParsedStream& s, int level, const Executor& ex) {
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
-  const auto t = make_transform(h.spec);
+  const auto t = make_stream_transform(h);
   const Extent size = level_extent(h.dims, level);
+  const int levels = h.levels - level;
   if (h.reversible) {
-    auto planes = decode_planes<std::int32_t>(s, ex);
-    for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level, ex);
-    return image_from_components(planes, h.dims, size, h.type, h.colour);
+    auto planes = decode_planes<std::int32_t>(s, size, ex);
+    for (auto& p : planes) inverse(*t, p.data(), size, levels, 0, ex);
+    return image_from_components(planes, size, size, h.type, h.colour);
   }
   if (level == 0) return decode_full_float(s, *t, ex);
-  auto planes = decode_planes<float>(s, ex);
-  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, level, ex);
-  return image_from_components(planes, h.dims, size, h.type, h.colour, coarse_gain(*t, h.dims, level));
+  auto planes = decode_planes<float>(s, size, ex);
+  for (auto& p : planes) inverse(*t, p.data(), size, levels, 0, ex);
+  return image_from_components(planes, size, size, h.type, h.colour, coarse_gain(*t, h.dims, level));
 }
 
 }  // namespace
 
 Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executor& ex) {
-  const ParsedStream s = parse_container(bytes, level);
+  return decode_image(bytes, level, ex, DecodeLimits{});
+}
+
+// A reduced decode works on planes of the level's extent only: the resolutions it reads fill
+// the low corner of the Mallat layout, whose inverse is that of a level-sized image with
+// (levels - level) levels (the same lines in the same order, so the same samples).
+Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executor& ex,
+                   const DecodeLimits& limits) {
+  const ParsedStream s = parse_container(bytes, level, limits);
   return finish_decoded(decode_in_domain(s, level, ex), s.header, level);
 }
 
 // The encoder's check of a stream: decodes it at full resolution and compares it with the
 // input without building the decoded image.
 double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes, const Executor& ex) {
-  const ParsedStream s = parse_container(bytes, 0);
+  // The encoder's own stream: bounded by the image it was made from, not the decode limit.
+  const ParsedStream s = parse_container(bytes, 0, DecodeLimits{SIZE_MAX});
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
   if (h.dims[0] != image.width || h.dims[1] != image.height || h.channels != image.channels ||
@@ -126,11 +136,11 @@ double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes,
     throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
   const auto t = make_transform(h.spec);
   if (h.reversible) {
-    auto planes = decode_planes<std::int32_t>(s, ex);
+    auto planes = decode_planes<std::int32_t>(s, h.dims, ex);
     for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0, ex);
     return components_psnr(image, planes, h.colour);
   }
-  auto planes = decode_planes<float>(s, ex);
+  auto planes = decode_planes<float>(s, h.dims, ex);
   for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0, ex);
   return components_psnr(image, planes, h.colour, h.nonnegative);
 }

@@ -1,4 +1,5 @@
 // describe_stream: a readable summary of a .pw file for `pupwave info`.
+#include <cstdint>
 #include <sstream>
 
 #include "codec/error.h"
@@ -44,7 +45,8 @@ void describe_metadata(std::ostringstream& out, const ImageMetadata& m, const Ex
 }  // namespace
 
 std::string describe_stream(std::span<const std::uint8_t> bytes) {
-  const ParsedStream s = parse_container(bytes);
+  // No output is made, so no decode limit; the transform spec is checked, never designed.
+  const ParsedStream s = parse_container(bytes, 0, DecodeLimits{SIZE_MAX});
   const StreamHeader& h = s.header;
   std::ostringstream out;
   out << "pupwave stream, version " << int(bytes[4]) << ", " << bytes.size() << " bytes\n";

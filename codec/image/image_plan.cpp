@@ -81,6 +81,7 @@ ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   validate_image(image);
   validate_options(image, o);
   auto t = make_transform(o.transform);
+  check_stream_spec(t->spec());  // never write a stream the decoder's bounds refuse
   const bool reversible = o.mode == RateMode::lossless;
   if (reversible && !t->is_reversible())
     throw std::invalid_argument("lossless coding needs a reversible transform (cdf53), not " + t->spec());

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "codec/format/decode_limits.h"
 #include "codec/volume/volume.h"
 #include "transforms/executor.h"
 
@@ -57,6 +58,10 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
 // exceeds the stream's levels.
 std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level = 0,
                                        const Executor& executor = default_executor());
+// The same with a decode limit other than the default (2^28 voxels of all grids at full
+// resolution); a larger stream throws DecodeError before any mask or output is allocated.
+std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level,
+                                       const Executor& executor, const DecodeLimits& limits);
 
 // True when bytes start with the volume stream signature (cheap; validates nothing else).
 bool is_volume_stream(std::span<const std::uint8_t> bytes);

@@ -19,6 +19,7 @@ namespace {
 
 Transform1DPtr stream_transform(const VolumeStreamHeader& h) {
   try {
+    check_stream_spec(h.spec);  // bounded design work before anything is designed
     auto t = make_transform(h.spec);
     require_stream(t->is_reversible() || !h.reversible,
                    "volume stream: lossless with an irreversible transform");
@@ -163,7 +164,12 @@ void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s,
 bool is_volume_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kVolumeSignature); }
 
 std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level, const Executor& ex) {
-  const ParsedVolumeStream s = parse_volume_stream(bytes);
+  return decode_volumes(bytes, level, ex, DecodeLimits{});
+}
+
+std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level, const Executor& ex,
+                                       const DecodeLimits& limits) {
+  const ParsedVolumeStream s = parse_volume_stream(bytes, limits);
   const VolumeStreamHeader& h = s.header;
   if (level < 0 || level > h.levels)
     throw std::invalid_argument("level " + std::to_string(level) + " exceeds the stream's " +

@@ -154,6 +154,7 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncode
   validate(grids, o);
   VolumePlan plan;
   plan.transform = make_transform(o.transform);
+  check_stream_spec(plan.transform->spec());  // never write a stream the decoder's bounds refuse
   const bool reversible = o.mode == VolumeRateMode::lossless;
   if (reversible && !plan.transform->is_reversible())
     throw std::invalid_argument("lossless coding needs a reversible transform (cdf53), not " +

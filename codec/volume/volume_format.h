@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "codec/entropy/block_index.h"
+#include "codec/format/decode_limits.h"
 #include "codec/volume/volume.h"
 
 namespace pupwave {
@@ -70,7 +71,8 @@ struct ParsedVolumeStream {
   std::vector<BrickChunk> bricks;  // codewords point into the parsed bytes
 };
 
-// Parses and validates a whole stream. Throws DecodeError for any inconsistency.
-ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes);
+// Parses and validates a whole stream. Throws DecodeError for any inconsistency, or when the
+// voxels of all grids exceed `limits` (checked before any mask is decompressed).
+ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits = {});
 
 }  // namespace pupwave

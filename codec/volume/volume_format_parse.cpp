@@ -1,6 +1,8 @@
 // parse_volume_stream: the hostile-input side of volume_format.h.
 #include <zstd.h>
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -8,6 +10,8 @@
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
 #include "codec/format/chunks.h"
+#include "codec/format/decode_limits.h"
+#include "codec/volume/volume_brick.h"
 #include "codec/volume/volume_format.h"
 
 namespace pupwave {
@@ -44,6 +48,17 @@ void read_metadata(ByteReader& r, std::map<std::string, MetaValue>& metadata) {
   }
 }
 
+// A grid transform must be affine and invertible (OpenVDB refuses anything else on writing, so
+// a decode would otherwise end in an error after all the work). Row-major 4x4, translation in
+// the last row (m[12..14]).
+void require_affine(const std::array<double, 16>& m) {
+  require_stream(m[3] == 0.0 && m[7] == 0.0 && m[11] == 0.0 && m[15] == 1.0,
+                 "volume stream: grid transform is not affine (last column must be 0, 0, 0, 1)");
+  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+                     m[2] * (m[4] * m[9] - m[5] * m[8]);
+  require_stream(std::isfinite(det) && det != 0.0, "volume stream: grid transform is singular");
+}
+
 VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels) {
   VolumeGrid g;
   g.name = r.str16(65535);
@@ -52,6 +67,7 @@ VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels) {
   g.grid_class = GridClass(cls);
   for (std::int64_t& o : g.origin) o = std::int64_t(get_u64(r));
   for (double& v : g.index_to_world) v = get_finite(r, "grid transform");
+  require_affine(g.index_to_world);
   read_metadata(r, g.metadata);
   std::size_t voxels = 1;
   for (std::size_t& d : g.volume.dims) {
@@ -72,7 +88,7 @@ VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels) {
   return g;
 }
 
-VolumeStreamHeader read_header(std::span<const std::uint8_t> payload) {
+VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const DecodeLimits& limits) {
   ByteReader r(payload, "volume header");
   VolumeStreamHeader h;
   const std::uint32_t reversible = r.u8();
@@ -95,6 +111,8 @@ VolumeStreamHeader read_header(std::span<const std::uint8_t> payload) {
   std::size_t total = 0;
   for (std::size_t i = 0; i < grids; ++i) h.grids.push_back(read_grid(r, total));
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in header");
+  // Before any mask (one byte per voxel) or output is allocated.
+  check_decode_limit(total, limits, "volume stream: voxels of all grids");
   return h;
 }
 
@@ -118,16 +136,34 @@ MaskChunk read_mask(std::span<const std::uint8_t> payload, const VolumeStreamHea
   return m;
 }
 
+// Code-blocks of brick `brick` of grid `grid` (0 for an index outside the grid), computed from
+// the geometry so that a count is checked before the index is decoded.
+std::size_t brick_block_count(const VolumeStreamHeader& h, std::uint32_t grid, std::uint32_t brick) {
+  const Extent& dims = h.grids[grid].volume.dims;
+  const std::size_t edge = std::size_t(1) << h.brick_log2;
+  Extent n{}, size{};
+  for (std::size_t a = 0; a < 3; ++a) n[a] = (dims[a] + edge - 1) / edge;
+  if (brick >= n[0] * n[1] * n[2]) return 0;
+  const Extent at{brick % n[0], brick / n[0] % n[1], brick / n[0] / n[1]};
+  for (std::size_t a = 0; a < 3; ++a) size[a] = std::min(edge, dims[a] - at[a] * edge);
+  BrickCoding coding;
+  coding.levels = h.levels;
+  coding.block = std::size_t(1) << h.block_log2;
+  return brick_blocks(coding, size).size();
+}
+
 BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h) {
   ByteReader r(payload, "volume brick");
   BrickChunk b;
   b.grid = r.u32();
   b.brick = r.u32();
   require_stream(b.grid < h.grids.size(), "volume stream: brick grid");
+  require_stream(brick_block_count(h, b.grid, b.brick) > 0, "volume stream: brick index out of range");
   b.base_step = get_finite(r, "base step");
   require_stream(b.base_step > 0.0, "volume stream: base step");
   const std::size_t blocks = r.u32();
-  require_stream(blocks <= kMaxBlocksPerBrick, "volume stream: block count");
+  require_stream(blocks <= kMaxBlocksPerBrick && blocks == brick_block_count(h, b.grid, b.brick),
+                 "volume stream: block count does not match the brick geometry");
   b.entries = decode_index(r.bytes(r.u32()), blocks);
   for (const BlockEntry& e : b.entries) b.codewords.push_back(r.bytes(e.length));
   const auto outliers = r.bytes(r.u32());
@@ -138,11 +174,11 @@ BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamH
 
 }  // namespace
 
-ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes) {
+ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits) {
   ChunkReader r(bytes, kVolumeSignature, kVolumeStreamVersion, "volume stream");
   const Chunk head = r.expect("VHDR");
   ParsedVolumeStream s;
-  s.header = read_header(head.payload);
+  s.header = read_header(head.payload, limits);
   s.masks.resize(s.header.grids.size());
   std::size_t masks = 0, needed = 0;
   for (const VolumeGrid& g : s.header.grids) needed += g.volume.is_sparse() ? 1 : 0;

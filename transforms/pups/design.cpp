@@ -251,6 +251,24 @@ DesignSpec parse_design_spec(std::string_view body) {
   return spec;
 }
 
+void check_stream_design_bounds(const DesignSpec& spec) {
+  if (!spec.preset.empty()) return;
+  const DesignParams& p = spec.params;
+  auto refuse = [](const std::string& what) {
+    throw std::invalid_argument("pups spec in a stream: " + what + " (docs/bitstream.md, Decoder bounds)");
+  };
+  if (p.coeffs.size() > kStreamMaxCoeffs) refuse("more than 64 polynomial coefficients");
+  const int width = make_weight(p).width;  // validates the weight's own parameters; designs nothing
+  if (width > kStreamMaxWidth) refuse("support " + std::to_string(width) + " over 64");
+  if (p.samples < 1 || p.samples > kStreamMaxSamples) refuse("samples outside 1..1000000");
+  if (std::size_t(p.samples) * std::size_t(width + 1) > kStreamMaxSystem)
+    refuse("samples x (support + 1) over 2^23");
+  if (spec.rule.extension && (*spec.rule.extension < 0 || *spec.rule.extension > kStreamMaxExtension))
+    refuse("extension l outside 0..64");
+  if (!spec.rule.extension && spec.rule.max_extension > kStreamMaxExtension)
+    refuse("extension search over 64");
+}
+
 FilterBank design(const DesignSpec& spec) {
   if (!spec.preset.empty()) return design_preset(spec.preset);
   return design(spec.params, spec.rule);

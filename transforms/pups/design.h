@@ -3,6 +3,7 @@
 // the named presets used by the seeds, and the text form of a design used in transform
 // specs ("pups:<body>").
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -58,6 +59,17 @@ struct DesignSpec {
 // Example: "cinpact-interp(c=5,sigma=4.79,l=32)".
 // Throws std::invalid_argument with a clear message for anything else.
 DesignSpec parse_design_spec(std::string_view body);
+
+// Bounds on a design named in a stream (docs/bitstream.md, Decoder bounds): a header of a few
+// bytes must not demand minutes and gigabytes of design work before any data is read.
+inline constexpr int kStreamMaxWidth = 64;                 // support W of the weight
+inline constexpr int kStreamMaxSamples = 1'000'000;        // samples of the refinement system
+inline constexpr std::size_t kStreamMaxSystem = 1u << 23;  // samples x (W + 1): 64 MiB of doubles
+inline constexpr std::size_t kStreamMaxCoeffs = 64;        // polynomial coefficients
+inline constexpr int kStreamMaxExtension = 64;             // bandwidth extension l
+
+// Checks those bounds without designing (presets always pass). Throws std::invalid_argument.
+void check_stream_design_bounds(const DesignSpec& spec);
 
 // Designs from a parsed spec (preset or explicit).
 FilterBank design(const DesignSpec& spec);

@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Regenerates the seed corpora tests/fuzz/corpus/<target>/ from small real encodes of the
+# test images (testimages/): crops of a few dozen pixels, a small generated volume, a tiny
+# sqrt(3) mesh, PNM files, transform specs. Usage: tests/fuzz/make_corpus.sh [path/to/pupwave]
+# (default build/tools/pupwave). Keeps the corpora a few hundred KB in total; the hostile
+# reproducers (corpus/*/regress-*) are kept, not regenerated.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+cli=$(realpath "${1:-build/tools/pupwave}")
+out=tests/fuzz/corpus
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for t in image image_level volume info pnm spec mesh; do
+  mkdir -p "$out/$t"
+  find "$out/$t" -type f ! -name 'regress-*' -delete
+done
+
+# crop IN.pnm X Y W H OUT.pnm: a binary PNM region (P5/P6, 8-bit), in pure Python.
+crop() {
+  python3 - "$@" <<'PY'
+import sys
+src, x, y, w, h, dst = sys.argv[1], *map(int, sys.argv[2:6]), sys.argv[6]
+data = open(src, 'rb').read()
+fields, pos = [], 0
+while len(fields) < 4:
+    while data[pos:pos + 1].isspace(): pos += 1
+    if data[pos:pos + 1] == b'#':
+        pos = data.index(b'\n', pos)
+        continue
+    end = pos
+    while not data[end:end + 1].isspace(): end += 1
+    fields.append(data[pos:end]); pos = end
+pos += 1
+magic, width = fields[0], int(fields[1])
+c = 3 if magic == b'P6' else 1
+rows = [data[pos + ((y + r) * width + x) * c: pos + ((y + r) * width + x + w) * c] for r in range(h)]
+open(dst, 'wb').write(magic + b'\n%d %d\n255\n' % (w, h) + b''.join(rows))
+PY
+}
+
+"$cli" convert testimages/camera.png "$tmp/camera.pgm" > /dev/null
+"$cli" convert testimages/astronaut.png "$tmp/astronaut.ppm" > /dev/null
+crop "$tmp/camera.pgm" 200 100 40 32 "$tmp/grey.pgm"
+crop "$tmp/astronaut.ppm" 180 60 24 20 "$tmp/rgb.ppm"
+crop "$tmp/camera.pgm" 10 10 7 5 "$tmp/tiny.pgm"
+cp "$tmp/grey.pgm" "$tmp/tiny.pgm" "$tmp/rgb.ppm" "$out/pnm/"
+
+# Image streams: lossless and lossy, both coders, every transform family, odd sizes.
+img=0
+enc() {  # enc INPUT ARGS...: one image seed
+  local input=$1
+  shift
+  img=$((img + 1))
+  "$cli" compress "$input" "$out/image/seed-$img.pw" "$@" --threads 1 > /dev/null
+}
+enc "$tmp/grey.pgm" --lossless
+enc "$tmp/grey.pgm" --bpp 1.5
+enc "$tmp/grey.pgm" --bpp 2 --entropy zstd
+enc "$tmp/grey.pgm" --bpp 2 --transform pups:chaikin-ext
+enc "$tmp/grey.pgm" --bpp 2 --transform kobbelt:k4pt --levels 2
+enc "$tmp/rgb.ppm" --lossless
+enc "$tmp/rgb.ppm" --psnr 30
+enc "$tmp/tiny.pgm" --lossless --levels 1
+for f in "$out"/image/seed-*.pw; do
+  for level in 0 1 2; do
+    { printf "\\x$(printf %02x $level)"; cat "$f"; } > "$out/image_level/$(basename "$f" .pw)-level$level"
+  done
+done
+
+# Volume streams: a small generated field (dense), lossless and error-bounded.
+"$cli" generate-volume --kind gray-scott --size 16 --steps 20 "$tmp/gs.raw" > /dev/null
+"$cli" compress "$tmp/gs.raw" "$out/volume/seed-dense.pw" --dims 16,16,16 --dtype f32 --brick 8 \
+  --max-error 0.01 --threads 1 > /dev/null
+"$cli" compress "$tmp/gs.raw" "$out/volume/seed-lossless.pw" --dims 16,16,16 --dtype f32 --brick 16 \
+  --bpv 4 --threads 1 > /dev/null
+
+# Mesh: a sqrt(3)-structured mesh from the smallest test mesh, decomposed.
+"$cli" mesh subdivide testimages/u.off "$tmp/u3.off" --levels 1 > /dev/null
+"$cli" mesh decompose "$tmp/u3.off" "$out/mesh/seed-u.pwm" --levels 1 > /dev/null
+
+cp "$out"/image/seed-1.pw "$out"/image/seed-6.pw "$out"/volume/seed-dense.pw "$out"/mesh/seed-u.pwm "$out/info/"
+
+# Transform specs: every family, presets and explicit designs.
+spec=0
+for s in cdf97 cdf53 pups:chaikin-ext pups:poly10 'pups:bspline(degree=3)' 'pups:bspline(degree=5,l=4,samples=20000)' \
+  'pups:cinpact(c=3,sigma=7.27,l=14)' 'pups:cinpact-interp(c=5,sigma=4.79,t=0.001)' \
+  'pups:polynomial(coeffs=16:0:-8:0:1,domain=-2:2,boundary=wss)' kobbelt:k4pt kobbelt:kspl-raw; do
+  spec=$((spec + 1))
+  printf '%s' "$s" > "$out/spec/seed-$spec"
+done
+du -sh "$out"

@@ -1,0 +1,71 @@
+#pragma once
+// Runs the CLI in a child process under a 1 GiB address-space limit (setrlimit RLIMIT_AS)
+// and a wall-clock limit, so that a hostile stream demanding gigabytes or minutes fails the
+// test instead of the machine. Not built with sanitizers (ASan reserves terabytes of address
+// space and cannot run under RLIMIT_AS): see tests/CMakeLists.txt.
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace pupwave::testing {
+
+inline constexpr rlim_t kAddressSpaceLimit = rlim_t(1) << 30;
+
+struct ChildResult {
+  int exit_code = -1;  // -1: killed (signal or wall-clock limit)
+  bool timed_out = false;
+  double seconds = 0.0;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs PUPWAVE_CLI with `args` under the address-space limit, killing it after `wall_seconds`.
+inline ChildResult run_cli_bounded(const std::vector<std::string>& args, double wall_seconds = 10.0) {
+  const auto log = std::filesystem::temp_directory_path() / ("pupwave_bounded_" + std::to_string(::getpid()));
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const rlimit as{kAddressSpaceLimit, kAddressSpaceLimit};
+    ::setrlimit(RLIMIT_AS, &as);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::setenv("MALLOC_ARENA_MAX", "2", 1);  // per-thread malloc arenas reserve 64 MiB of address space each
+    std::vector<char*> argv{const_cast<char*>(PUPWAVE_CLI)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(PUPWAVE_CLI, argv.data());
+    ::_exit(127);
+  }
+  ChildResult r;
+  int status = 0;
+  while (::waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > wall_seconds) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      r.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!r.timed_out && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  std::ifstream in(log);
+  std::ostringstream text;
+  text << in.rdbuf();
+  r.output = text.str();
+  std::filesystem::remove(log);
+  return r;
+}
+
+}  // namespace pupwave::testing
