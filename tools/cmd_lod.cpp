@@ -255,9 +255,9 @@ void add_lod_command(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<VolumeGrid> grids;
     const std::vector<std::string> names = split_names(opt->names);
-    if (names.empty()) grids = read_vdb(opt->input);
+    if (names.empty()) grids = read_vdb_dense(opt->input);
     for (const std::string& name : names)
-      for (VolumeGrid& g : read_vdb(opt->input, name)) grids.push_back(std::move(g));
+      for (VolumeGrid& g : read_vdb_dense(opt->input, name)) grids.push_back(std::move(g));
     std::vector<VolumeGrid> out;
     for (const VolumeGrid& g : grids)
       for (VolumeGrid& level : level_of_detail(g, *t, levels)) out.push_back(std::move(level));

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 
@@ -248,41 +249,79 @@ static void describe_from_vdb(const openvdb::GridBase& grid, VolumeGrid& out, co
   }
 }
 
-// Dense extraction over the active bounding box: values (active or not) and the active mask.
+// Blocks gather the leaf nodes of one 64^3 page; 64 divides OpenVDB's 128^3 internal nodes, so
+// a block never straddles one and memory follows the leaves, not the bounding box.
+constexpr int kPageLog2 = 6;
+
 template <class GridT>
-static Volume extract_dense(const GridT& grid, VolumeGrid& out, std::size_t max_box_voxels,
-                            const fs::path& path) {
-  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
-  const VoxelType type = std::is_same_v<typename GridT::ValueType, double> ? VoxelType::f64 : VoxelType::f32;
-  if (box.empty()) {
-    Volume empty({0, 0, 0}, type);
-    empty.background = double(grid.background());
-    return empty;
+static VoxelType voxel_type_of() {
+  return std::is_same_v<typename GridT::ValueType, double> ? VoxelType::f64 : VoxelType::f32;
+}
+
+// The leaves of one page as a block over their bounding box; voxels no leaf covers are
+// inactive background.
+template <class LeafT>
+static VolumeBlock leaf_block(const std::vector<const LeafT*>& leaves, VoxelType type, double background) {
+  openvdb::Coord lo = leaves.front()->origin(), hi = lo;
+  for (const LeafT* leaf : leaves) {
+    lo.minComponent(leaf->origin());
+    hi.maxComponent(leaf->origin());
   }
+  VolumeBlock b;
   Extent dims{};
   for (int a = 0; a < 3; ++a) {
-    dims[std::size_t(a)] = std::size_t(std::int64_t(box.max()[a]) - box.min()[a] + 1);
+    b.origin[std::size_t(a)] = lo[a];
+    dims[std::size_t(a)] = std::size_t(hi[a] - lo[a]) + LeafT::DIM;
+  }
+  b.volume = Volume(dims, type);
+  b.volume.background = background;
+  std::fill(b.volume.samples.begin(), b.volume.samples.end(), background);
+  b.volume.active.assign(b.volume.count(), 0);
+  for (const LeafT* leaf : leaves)
+    for (openvdb::Index n = 0; n < LeafT::SIZE; ++n) {
+      const openvdb::Coord p = leaf->offsetToGlobalCoord(n) - lo;
+      const std::size_t i = b.volume.index(std::size_t(p.x()), std::size_t(p.y()), std::size_t(p.z()));
+      b.volume.samples[i] = double(leaf->getValue(n));
+      b.volume.active[i] = leaf->isValueOn(n) ? 1 : 0;
+    }
+  return b;
+}
+
+// Sparse-native extraction: leaves gathered into blocks page by page, tiles kept as tiles
+// (active ones, and inactive ones whose value is not the background), the active bounding box
+// in origin / volume.dims. Memory follows the leaves and tiles, not the bounding box.
+template <class GridT>
+static void extract_sparse(const GridT& grid, VolumeGrid& out) {
+  using LeafT = typename GridT::TreeType::LeafNodeType;
+  const VoxelType type = voxel_type_of<GridT>();
+  const double background = double(grid.background());
+  out.volume = Volume({0, 0, 0}, type);
+  out.volume.background = background;
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  if (box.empty()) return;
+  for (int a = 0; a < 3; ++a) {
+    out.volume.dims[std::size_t(a)] = std::size_t(std::int64_t(box.max()[a]) - box.min()[a] + 1);
     out.origin[std::size_t(a)] = box.min()[a];
   }
-  const std::size_t count = checked_count(dims);
-  if (count == 0 || count > max_box_voxels)
-    throw std::runtime_error("cannot read " + path.string() + ": grid '" + grid.getName() + "' spans " +
-                             dims_text(dims) + " voxels, more than the limit of " +
-                             std::to_string(max_box_voxels));
-  Volume v(dims, type);
-  v.background = double(grid.background());
-  v.active.assign(count, 0);
-  auto acc = grid.getConstAccessor();
-  std::size_t i = 0;
-  for (std::size_t z = 0; z < dims[2]; ++z)
-    for (std::size_t y = 0; y < dims[1]; ++y)
-      for (std::size_t x = 0; x < dims[0]; ++x, ++i) {
-        const openvdb::Coord ijk = box.min() + openvdb::Coord(int(x), int(y), int(z));
-        typename GridT::ValueType value;
-        v.active[i] = acc.probeValue(ijk, value) ? 1 : 0;
-        v.samples[i] = double(value);
-      }
-  return v;
+  std::map<std::array<int, 3>, std::vector<const LeafT*>> pages;
+  for (auto it = grid.tree().cbeginLeaf(); it; ++it) {
+    const openvdb::Coord o = it->origin();
+    pages[{o.x() >> kPageLog2, o.y() >> kPageLog2, o.z() >> kPageLog2}].push_back(&*it);
+  }
+  for (const auto& [page, leaves] : pages) out.blocks.push_back(leaf_block(leaves, type, background));
+  auto it = grid.tree().cbeginValueAll();
+  it.setMaxDepth(it.getLeafDepth() - 1);  // tiles only, not the voxels of leaves
+  for (; it; ++it) {
+    if (!it.isValueOn() && double(*it) == background) continue;
+    openvdb::CoordBBox tile;
+    it.getBoundingBox(tile);
+    VolumeTile t;
+    for (int a = 0; a < 3; ++a) t.origin[std::size_t(a)] = tile.min()[a];
+    t.edge = std::uint32_t(tile.dim().x());
+    t.value = double(*it);
+    t.active = it.isValueOn();
+    out.tiles.push_back(t);
+  }
 }
 
 static std::string available_names(const openvdb::GridPtrVec& grids) {
@@ -313,7 +352,7 @@ static openvdb::GridPtrVecPtr read_all_grids(const fs::path& path) {
 }
 
 std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_name,
-                                 std::vector<std::string>* skipped, std::size_t max_box_voxels) {
+                                 std::vector<std::string>* skipped) {
   const openvdb::GridPtrVecPtr grids = read_all_grids(path);
   if (grids->empty())
     throw std::runtime_error("cannot read " + path.string() + ": no grids (empty or truncated file)");
@@ -323,10 +362,10 @@ std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_nam
     VolumeGrid g;
     if (auto fg = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) {
       describe_from_vdb(*fg, g, path);
-      g.volume = extract_dense(*fg, g, max_box_voxels, path);
+      extract_sparse(*fg, g);
     } else if (auto dg = openvdb::gridPtrCast<openvdb::DoubleGrid>(base)) {
       describe_from_vdb(*dg, g, path);
-      g.volume = extract_dense(*dg, g, max_box_voxels, path);
+      extract_sparse(*dg, g);
     } else if (!grid_name.empty()) {
       throw std::runtime_error("cannot read " + path.string() + ": grid '" + base->getName() + "' holds " +
                                base->valueType() + " values (only float and double grids are supported)");
@@ -344,18 +383,29 @@ std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_nam
   return result;
 }
 
+std::vector<VolumeGrid> read_vdb_dense(const fs::path& path, std::string_view grid_name,
+                                       std::vector<std::string>* skipped, std::size_t max_box_voxels) {
+  std::vector<VolumeGrid> grids = read_vdb(path, grid_name, skipped);
+  for (VolumeGrid& g : grids) try {
+      make_dense_box(g, max_box_voxels);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("cannot read " + path.string() + ": " + e.what());
+    }
+  return grids;
+}
+
 // A sparse OpenVDB grid from a VolumeGrid: only voxels that differ from the implicit background
 // (or are active) are touched, then uniform leaves are pruned back into tiles.
+// Writes the voxels of a box volume placed at `at` that are active or not the background.
 template <class GridT>
-static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
+static void put_voxels(GridT& grid, const VolumeGrid& g, const Volume& vol,
+                       const std::array<std::int64_t, 3>& at) {
   using V = typename GridT::ValueType;
-  const Volume& vol = g.volume;
   if (vol.samples.size() != vol.count() || (vol.is_sparse() && vol.active.size() != vol.count()))
     throw std::invalid_argument("write_vdb: grid '" + g.name + "' has inconsistent sizes");
-  const V background = static_cast<V>(vol.background);
-  typename GridT::Ptr grid = GridT::create(background);
-  auto acc = grid->getAccessor();
-  const openvdb::Coord origin(int(g.origin[0]), int(g.origin[1]), int(g.origin[2]));
+  const V background = grid.background();
+  auto acc = grid.getAccessor();
+  const openvdb::Coord origin{int(at[0]), int(at[1]), int(at[2])};
   std::size_t i = 0;
   for (std::size_t z = 0; z < vol.dims[2]; ++z)
     for (std::size_t y = 0; y < vol.dims[1]; ++y)
@@ -367,6 +417,18 @@ static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
         else if (value != background)
           acc.setValueOff(ijk, value);
       }
+}
+
+template <class GridT>
+static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
+  using V = typename GridT::ValueType;
+  typename GridT::Ptr grid = GridT::create(static_cast<V>(g.volume.background));
+  for (const VolumeTile& t : g.tiles) {
+    const openvdb::Coord o(int(t.origin[0]), int(t.origin[1]), int(t.origin[2]));
+    grid->tree().fill(openvdb::CoordBBox::createCube(o, int(t.edge)), static_cast<V>(t.value), t.active);
+  }
+  for (const VolumeBlock& b : g.blocks) put_voxels(*grid, g, b.volume, b.origin);
+  if (!g.is_blocked()) put_voxels(*grid, g, g.volume, g.origin);
   openvdb::tools::prune(grid->tree());
   return grid;
 }
