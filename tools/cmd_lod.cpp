@@ -259,13 +259,21 @@ void add_lod_command(CLI::App& app) {
     for (const std::string& name : names)
       for (VolumeGrid& g : read_vdb_dense(opt->input, name)) grids.push_back(std::move(g));
     std::vector<VolumeGrid> out;
-    for (const VolumeGrid& g : grids)
+    for (const VolumeGrid& g : grids) {
+      if (g.is_opaque()) {  // vector, integer, bool grids: kept as they are, never dropped
+        out.push_back(g);
+        continue;
+      }
       for (VolumeGrid& level : level_of_detail(g, *t, levels)) out.push_back(std::move(level));
+    }
     write_vdb(out, opt->output);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (const VolumeGrid& g : out)
-      std::cout << g.name << ": " << g.volume.active_count() << " active voxels, voxel size "
-                << g.voxel_size()[0] << '\n';
+      if (g.is_opaque())
+        std::cout << g.name << ": not a float or double grid, copied unchanged\n";
+      else
+        std::cout << g.name << ": " << g.volume.active_count() << " active voxels, voxel size "
+                  << g.voxel_size()[0] << '\n';
     std::cout << opt->output << ": " << out.size() << " grid(s), " << t->spec() << ", " << seconds << " s\n";
   });
 }

@@ -1,5 +1,6 @@
 #include "tools/volume_io.h"
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Prune.h>
 
@@ -11,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 #include "tools/atomic_file.h"
@@ -258,10 +260,12 @@ static VoxelType voxel_type_of() {
   return std::is_same_v<typename GridT::ValueType, double> ? VoxelType::f64 : VoxelType::f32;
 }
 
-// The leaves of one page as a block over their bounding box; voxels no leaf covers are
-// inactive background.
-template <class LeafT>
-static VolumeBlock leaf_block(const std::vector<const LeafT*>& leaves, VoxelType type, double background) {
+// The leaves of one page as a block over their bounding box. Voxels no leaf covers are inactive
+// background, or -background under an inactive tile of that value (a level set's inside), so the
+// transform does not see a false jump there; other tiles stay in the tile list only.
+template <class GridT, class LeafT>
+static VolumeBlock leaf_block(const GridT& grid, const std::vector<const LeafT*>& leaves, VoxelType type,
+                              double background) {
   openvdb::Coord lo = leaves.front()->origin(), hi = lo;
   for (const LeafT* leaf : leaves) {
     lo.minComponent(leaf->origin());
@@ -277,6 +281,16 @@ static VolumeBlock leaf_block(const std::vector<const LeafT*>& leaves, VoxelType
   b.volume.background = background;
   std::fill(b.volume.samples.begin(), b.volume.samples.end(), background);
   b.volume.active.assign(b.volume.count(), 0);
+  auto acc = grid.getConstAccessor();
+  const auto inside = static_cast<typename GridT::ValueType>(-background);
+  for (std::size_t z = 0; z < dims[2]; ++z)
+    for (std::size_t y = 0; y < dims[1]; ++y)
+      for (std::size_t x = 0; x < dims[0]; ++x) {
+        const openvdb::Coord p = lo + openvdb::Coord(int(x), int(y), int(z));
+        if (acc.probeConstLeaf(p) != nullptr) continue;  // filled from the leaf below
+        typename GridT::ValueType v;
+        if (!acc.probeValue(p, v) && v == inside) b.volume.at(x, y, z) = double(inside);
+      }
   for (const LeafT* leaf : leaves)
     for (openvdb::Index n = 0; n < LeafT::SIZE; ++n) {
       const openvdb::Coord p = leaf->offsetToGlobalCoord(n) - lo;
@@ -308,7 +322,7 @@ static void extract_sparse(const GridT& grid, VolumeGrid& out) {
     const openvdb::Coord o = it->origin();
     pages[{o.x() >> kPageLog2, o.y() >> kPageLog2, o.z() >> kPageLog2}].push_back(&*it);
   }
-  for (const auto& [page, leaves] : pages) out.blocks.push_back(leaf_block(leaves, type, background));
+  for (const auto& [page, leaves] : pages) out.blocks.push_back(leaf_block(grid, leaves, type, background));
   auto it = grid.tree().cbeginValueAll();
   it.setMaxDepth(it.getLeafDepth() - 1);  // tiles only, not the voxels of leaves
   for (; it; ++it) {
@@ -321,6 +335,39 @@ static void extract_sparse(const GridT& grid, VolumeGrid& out) {
     t.value = double(*it);
     t.active = it.isValueOn();
     out.tiles.push_back(t);
+  }
+}
+
+// A grid the codec does not transform-code, as OpenVDB serialises it (a one-grid stream), with
+// its value type and active voxel count for `info`.
+static VolumeGrid opaque_grid(const openvdb::GridBase& grid) {
+  VolumeGrid g;
+  g.name = grid.getName();
+  std::ostringstream full(std::ios::binary);
+  openvdb::io::Stream(full).write(openvdb::GridCPtrVec{grid.copyGrid()});
+  const std::string text = full.str();
+  g.opaque.assign(text.begin(), text.end());
+  MetaValue type;
+  type.text = grid.valueType();
+  g.metadata["vdb_value_type"] = type;
+  MetaValue active;
+  active.kind = MetaValue::Kind::int64;
+  active.integer = std::int64_t(grid.activeVoxelCount());
+  g.metadata["vdb_active_voxels"] = active;
+  return g;
+}
+
+// The grid an opaque VolumeGrid carries.
+static openvdb::GridBase::Ptr grid_from_opaque(const VolumeGrid& g) {
+  std::istringstream in(std::string(g.opaque.begin(), g.opaque.end()), std::ios::binary);
+  try {
+    openvdb::io::Stream stream(in);
+    const openvdb::GridPtrVecPtr grids = stream.getGrids();
+    if (!grids || grids->size() != 1) throw std::runtime_error("not one grid");
+    return (*grids)[0];
+  } catch (const std::exception& e) {
+    throw std::runtime_error("grid '" + g.name + "': its carried OpenVDB bytes do not read back (" +
+                             std::string(e.what()) + ")");
   }
 }
 
@@ -366,12 +413,9 @@ std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_nam
     } else if (auto dg = openvdb::gridPtrCast<openvdb::DoubleGrid>(base)) {
       describe_from_vdb(*dg, g, path);
       extract_sparse(*dg, g);
-    } else if (!grid_name.empty()) {
-      throw std::runtime_error("cannot read " + path.string() + ": grid '" + base->getName() + "' holds " +
-                               base->valueType() + " values (only float and double grids are supported)");
     } else {
+      g = opaque_grid(*base);  // vector, integer, bool, mask or unknown values: carried verbatim
       if (skipped) skipped->push_back(base->getName());
-      continue;
     }
     result.push_back(std::move(g));
   }
@@ -387,11 +431,32 @@ std::vector<VolumeGrid> read_vdb_dense(const fs::path& path, std::string_view gr
                                        std::vector<std::string>* skipped, std::size_t max_box_voxels) {
   std::vector<VolumeGrid> grids = read_vdb(path, grid_name, skipped);
   for (VolumeGrid& g : grids) try {
-      make_dense_box(g, max_box_voxels);
+      if (!g.is_opaque()) make_dense_box(g, max_box_voxels);
     } catch (const std::runtime_error& e) {
       throw std::runtime_error("cannot read " + path.string() + ": " + e.what());
     }
   return grids;
+}
+
+std::string describe_vdb_file(const fs::path& path) {
+  const openvdb::GridPtrVecPtr grids = read_all_grids(path);
+  std::ostringstream out;
+  out << path.string() << ": OpenVDB file, " << grids->size() << " grid(s)\n";
+  for (std::size_t i = 0; i < grids->size(); ++i) {
+    const openvdb::GridBase& g = *(*grids)[i];
+    const openvdb::CoordBBox box = g.evalActiveVoxelBoundingBox();
+    const openvdb::Vec3d size = g.voxelSize();
+    out << "  grid " << i << " '" << g.getName() << "': class "
+        << openvdb::GridBase::gridClassToString(g.getGridClass()) << ", type " << g.valueType() << ", "
+        << g.activeVoxelCount() << " active voxels (" << g.baseTree().activeTileCount() << " active tile(s))";
+    if (box.empty())
+      out << ", no active voxels";
+    else
+      out << ", bounding box " << box.min() << ".." << box.max() << " (" << box.dim().x() << " x "
+          << box.dim().y() << " x " << box.dim().z() << ")";
+    out << ", voxel size " << size.x() << " x " << size.y() << " x " << size.z() << '\n';
+  }
+  return out.str();
 }
 
 // A sparse OpenVDB grid from a VolumeGrid: only voxels that differ from the implicit background
@@ -454,6 +519,10 @@ void write_vdb(const std::vector<VolumeGrid>& grids, const fs::path& path) {
   ensure_openvdb();
   openvdb::GridPtrVec out;
   for (const VolumeGrid& g : grids) {
+    if (g.is_opaque()) {
+      out.push_back(grid_from_opaque(g));
+      continue;
+    }
     const bool dbl = g.volume.type == VoxelType::f64;
     openvdb::GridBase::Ptr grid =
         dbl ? build_grid<openvdb::DoubleGrid>(g) : build_grid<openvdb::FloatGrid>(g);

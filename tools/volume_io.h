@@ -36,10 +36,11 @@ void write_raw_volume(const Volume& volume, const std::filesystem::path& path);
 // True when the path names an OpenVDB file (extension .vdb, any case).
 bool is_vdb_path(const std::filesystem::path& path);
 
-// Reads the FloatGrid and DoubleGrid grids of an OpenVDB file; with a non-empty grid_name only
-// the grids of that name (an error listing the available names when there is none). Grids of
-// other value types are skipped when reading all grids (their names go to *skipped if given) and
-// are an error when named. Each grid is read sparse-native (VolumeGrid::blocks and tiles): the
+// Reads the grids of an OpenVDB file; with a non-empty grid_name only the grids of that name (an
+// error listing the available names when there is none). Grids of other value types than float
+// and double (vec3s/d, int32/64, bool, mask, unknown) become opaque grids (VolumeGrid::opaque:
+// OpenVDB's own serialisation, restored bit exact by write_vdb; their names also go to *skipped
+// if given). Each float/double grid is read sparse-native (VolumeGrid::blocks and tiles): the
 // leaf nodes of each 64^3 page become one block over their bounding box, tiles stay tiles
 // (active ones and inactive ones that are not the background), so memory follows the leaves,
 // not the bounding box (origin / volume.dims: the active bounding box). Background, class,
@@ -49,13 +50,18 @@ bool is_vdb_path(const std::filesystem::path& path);
 std::vector<VolumeGrid> read_vdb(const std::filesystem::path& path, std::string_view grid_name = {},
                                  std::vector<std::string>* skipped = nullptr);
 
-// read_vdb, then each grid converted to a dense box over its active bounding box
+// read_vdb, then each float/double grid converted to a dense box over its active bounding box
 // (make_dense_box); throws std::runtime_error when a box exceeds max_box_voxels.
 std::vector<VolumeGrid> read_vdb_dense(const std::filesystem::path& path, std::string_view grid_name = {},
                                        std::vector<std::string>* skipped = nullptr,
                                        std::size_t max_box_voxels = kMaxVdbBoxVoxels);
 
-// Writes grids to an OpenVDB file atomically: f64 volumes as DoubleGrid, all others as FloatGrid,
+// `pupwave info` of a .vdb file: every grid (any value type) with class, value type, active
+// voxel and tile counts, active bounding box and voxel size. Throws like read_vdb.
+std::string describe_vdb_file(const std::filesystem::path& path);
+
+// Writes grids to an OpenVDB file atomically: opaque grids as they were read, f64 volumes as
+// DoubleGrid, all others as FloatGrid,
 // with the same background, active topology, values inside the box (or of the blocks and tiles
 // of a sparse-native grid), class, transform and metadata (uniform leaves are pruned back into
 // tiles). Grid names need not be unique.

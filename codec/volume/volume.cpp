@@ -97,6 +97,9 @@ void fill_box(Volume& v, const std::array<std::int64_t, 3>& o, const std::array<
 }  // namespace
 
 void make_dense_box(VolumeGrid& grid, std::size_t max_voxels) {
+  if (grid.is_opaque())
+    throw std::runtime_error("grid '" + grid.name +
+                             "' is not a float or double scalar field (carried as OpenVDB bytes only)");
   if (!grid.is_blocked()) return;
   const Extent dims = grid.volume.dims;
   std::size_t count = 1;

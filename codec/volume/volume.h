@@ -104,6 +104,12 @@ struct VolumeGrid {
   // active bounding box (dims, with `origin` its minimum), no samples.
   std::vector<VolumeBlock> blocks;
   std::vector<VolumeTile> tiles;
+  // A grid the codec does not transform-code (OpenVDB vector, integer, bool, mask and unknown
+  // value types): OpenVDB's own serialisation of it, carried verbatim so it comes back bit exact
+  // (values, topology, transform, metadata). Only `name` and the "vdb_*" metadata describe it.
+  std::vector<std::uint8_t> opaque;
+
+  bool is_opaque() const { return !opaque.empty(); }
 
   bool is_blocked() const { return !blocks.empty() || !tiles.empty(); }
   // Active voxels (tiles counted voxel by voxel) and active tiles.

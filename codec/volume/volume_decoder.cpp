@@ -55,7 +55,8 @@ void mark_active_bricks(const Extent& dims, const std::uint8_t* states, const st
 std::vector<std::uint8_t> expected_bricks(const ParsedVolumeStream& s, std::size_t g, std::size_t edge) {
   const Volume& v = s.header.grids[g].volume;
   std::vector<std::uint8_t> expected;
-  if (s.header.blocked[g]) {
+  if (s.header.blocked[g] == 2) return expected;  // opaque: no bricks
+  if (s.header.blocked[g] == 1) {
     std::size_t at = 0;
     for (const VolumeBlock& b : s.layouts[g].blocks) {
       mark_active_bricks(b.volume.dims, s.layouts[g].mask.states.data() + at,
@@ -161,7 +162,8 @@ std::vector<GridBricks> grid_bricks(const ParsedVolumeStream& s) {
   std::vector<GridBricks> bricks(s.header.grids.size());
   for (std::size_t g = 0; g < s.header.grids.size(); ++g) {
     const Volume& v = s.header.grids[g].volume;
-    if (s.header.blocked[g]) {
+    if (s.header.blocked[g] == 2) continue;  // opaque: no bricks
+    if (s.header.blocked[g] == 1) {
       for (std::uint32_t k = 0; k < s.layouts[g].blocks.size(); ++k)
         for (const BrickBox& box : brick_boxes(s.layouts[g].blocks[k].volume.dims, edge)) {
           bricks[g].boxes.push_back(box);
@@ -230,7 +232,7 @@ void restore_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
 // Active masks and exact inactive values of the sparse grids (coarsened at level > 0).
 void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s, int level) {
   for (std::size_t g = 0; g < grids.size(); ++g) {
-    if (s.header.blocked[g]) restore_blocks(grids[g], s.layouts[g], level);
+    if (s.header.blocked[g] == 1) restore_blocks(grids[g], s.layouts[g], level);
     if (!s.header.grids[g].volume.is_sparse()) continue;
     if (level == 0) {
       restore_mask(grids[g].volume, s.masks[g]);
@@ -263,7 +265,9 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
     if (level > 0) scale_placement(g, level);
     g.volume.dims = level_extent(g.volume.dims, level);
     g.volume.active.clear();
-    if (h.blocked[i])
+    if (h.blocked[i] == 2)
+      g.opaque = s.opaque[i];  // carried verbatim, at every level
+    else if (h.blocked[i] == 1)
       allocate_blocks(g, s.layouts[i], level);
     else
       g.volume.samples.assign(g.volume.count(), g.volume.background);
@@ -279,7 +283,7 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
     for (double& v : values) v = to_stored(v, type);
     const Extent at{box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level};
     VolumeGrid& g = grids[b.grid];
-    Volume& target = h.blocked[b.grid] ? g.blocks[bricks[b.grid].block[b.brick]].volume : g.volume;
+    Volume& target = h.blocked[b.grid] == 1 ? g.blocks[bricks[b.grid].block[b.brick]].volume : g.volume;
     place(target, at, level_extent(box.size, level), values);  // bricks never overlap
   });
   restore_sparse(grids, s, level);

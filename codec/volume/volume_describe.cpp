@@ -47,6 +47,17 @@ std::string describe_volume_stream(std::span<const std::uint8_t> bytes) {
   for (std::size_t g = 0; g < h.grids.size(); ++g) {
     const VolumeGrid& grid = h.grids[g];
     const Volume& v = grid.volume;
+    if (h.blocked[g] == 2) {
+      const auto type = grid.metadata.find("vdb_value_type");
+      const auto active = grid.metadata.find("vdb_active_voxels");
+      out << "  grid " << g << "      '" << grid.name << "', "
+          << (type != grid.metadata.end() ? type->second.text : std::string("?"))
+          << " values carried as OpenVDB serialises them (lossless), "
+          << (active != grid.metadata.end() ? std::to_string(active->second.integer) : std::string("?"))
+          << " active voxels; " << s.grid_bytes[g] << " bytes ("
+          << 100.0 * double(s.grid_bytes[g]) / double(bytes.size()) << "% of the stream)\n";
+      continue;
+    }
     const GridCounts n = count_grid(s, g);
     const auto size = grid.voxel_size();
     out << "  grid " << g << "      '" << grid.name << "', " << to_string(grid.grid_class) << ", "

@@ -79,6 +79,7 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
     throw std::invalid_argument("rate target must be positive and finite");
   std::size_t total = 0;
   for (const VolumeGrid& g : grids) {
+    if (g.is_opaque()) continue;  // carried verbatim
     if (g.is_blocked()) {
       validate_blocked(g, total);
     } else {
@@ -172,11 +173,13 @@ VolumeGrid describe(const VolumeGrid& g) {
   d.volume.type = g.volume.type;
   d.volume.background = g.volume.background;
   d.volume.active.assign(!g.is_blocked() && g.volume.is_sparse() ? 1 : 0, 1);
+  if (g.is_opaque()) d.volume = Volume({1, 1, 1}, VoxelType::f32), d.volume.samples.clear();
   return d;
 }
 
 // Bricks holding an active voxel, of the grid's box or of each of its blocks in turn.
 void add_jobs(VolumePlan& plan, const VolumeGrid& g, std::uint32_t grid, std::size_t edge) {
+  if (g.is_opaque()) return;
   std::uint32_t index = 0;
   const std::size_t parts = g.is_blocked() ? g.blocks.size() : 1;
   for (std::uint32_t k = 0; k < parts; ++k) {
@@ -268,16 +271,19 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncode
   plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.masks.resize(grids.size());
   plan.layouts.resize(grids.size());
+  plan.opaque.resize(grids.size());
   for (std::uint32_t g = 0; g < grids.size(); ++g) {
     const VolumeGrid& grid = grids[g];
     h.grids.push_back(describe(grid));
-    h.blocked.push_back(grid.is_blocked() ? 1 : 0);
-    if (grid.is_blocked())
+    h.blocked.push_back(grid.is_opaque() ? 2 : grid.is_blocked() ? 1 : 0);
+    if (grid.is_opaque())
+      plan.opaque[g] = grid.opaque;
+    else if (grid.is_blocked())
       plan.layouts[g] = make_layout(grid);
     else if (grid.volume.is_sparse())
       plan.masks[g] = make_mask(grid.volume);
     add_jobs(plan, grid, g, o.brick);
-    plan.voxels += grid.active_voxels();
+    if (!grid.is_opaque()) plan.voxels += grid.active_voxels();
     plan.range = std::max(plan.range, value_range(grid));
   }
   h.brick_chunks = std::uint32_t(plan.jobs.size());
@@ -332,7 +338,8 @@ std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::ve
   write_volume_signature(out);
   write_header_chunk(out, plan.header);
   for (std::uint32_t g = 0; g < plan.masks.size(); ++g) {
-    if (plan.header.blocked[g]) write_blocks_chunk(out, g, plan.layouts[g]);
+    if (plan.header.blocked[g] == 1) write_blocks_chunk(out, g, plan.layouts[g]);
+    if (plan.header.blocked[g] == 2) write_opaque_chunk(out, g, plan.opaque[g]);
     if (plan.header.grids[g].volume.is_sparse()) write_mask_chunk(out, g, plan.masks[g]);
   }
   for (std::size_t i = 0; i < codes.size(); ++i) {

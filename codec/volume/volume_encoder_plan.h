@@ -29,8 +29,9 @@ struct VolumePlan {
   VolumeStreamHeader header;
   Transform1DPtr transform;
   BrickCoding coding;
-  std::vector<MaskChunk> masks;      // per grid (empty for dense)
-  std::vector<BlocksChunk> layouts;  // per grid (empty unless sparse-native)
+  std::vector<MaskChunk> masks;                   // per grid (empty for dense)
+  std::vector<BlocksChunk> layouts;               // per grid (empty unless sparse-native)
+  std::vector<std::vector<std::uint8_t>> opaque;  // per grid (empty unless opaque)
   std::vector<BrickJob> jobs;
   std::size_t voxels = 0;              // active voxels of all grids (what bpv counts)
   double range = 0.0;                  // largest value range (max - min of active voxels) over grids

@@ -39,7 +39,7 @@ void write_metadata(ByteWriter& w, const std::map<std::string, MetaValue>& metad
   }
 }
 
-void write_grid(ByteWriter& w, const VolumeGrid& g, bool blocked) {
+void write_grid(ByteWriter& w, const VolumeGrid& g, std::uint8_t blocked) {
   put_text(w, g.name);
   w.u8(std::uint8_t(g.grid_class));
   for (std::int64_t o : g.origin) put_u64(w, std::uint64_t(o));
@@ -48,7 +48,7 @@ void write_grid(ByteWriter& w, const VolumeGrid& g, bool blocked) {
   for (std::size_t d : g.volume.dims) w.u32(std::uint32_t(d));
   w.u8(std::uint8_t(g.volume.type));
   put_f64(w, g.volume.background);
-  w.u8(blocked ? 2 : g.volume.is_sparse() ? 1 : 0);
+  w.u8(blocked == 2 ? 3 : blocked == 1 ? 2 : g.volume.is_sparse() ? 1 : 0);
 }
 
 // Voxel states (zstd) and inactive values, shared by MASK and BLKS.
@@ -83,7 +83,7 @@ void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader
   w.u32(h.brick_chunks);
   w.u32(std::uint32_t(h.grids.size()));
   for (std::size_t g = 0; g < h.grids.size(); ++g)
-    write_grid(w, h.grids[g], g < h.blocked.size() && h.blocked[g] != 0);
+    write_grid(w, h.grids[g], g < h.blocked.size() ? h.blocked[g] : 0);
   write_chunk(out, "VHDR", p);
 }
 
@@ -93,6 +93,15 @@ void write_mask_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const 
   w.u32(grid);
   write_states(w, mask);
   write_chunk(out, "MASK", p);
+}
+
+void write_opaque_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid,
+                        const std::vector<std::uint8_t>& bytes) {
+  std::vector<std::uint8_t> p;
+  ByteWriter w(p);
+  w.u32(grid);
+  w.bytes(bytes);
+  write_chunk(out, "OPAQ", p);
 }
 
 void write_blocks_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const BlocksChunk& c) {

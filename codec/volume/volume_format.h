@@ -15,7 +15,8 @@
 namespace pupwave {
 
 // Version 2: chunks framed by codec/format/chunks.h (the CRC also covers the length field).
-// Version 3: sparse-native grids (layout 2) with a BLKS chunk of blocks and tiles.
+// Version 3: sparse-native grids (layout 2) with a BLKS chunk of blocks and tiles, and opaque
+// grids (layout 3) carried as OpenVDB serialises them in an OPAQ chunk.
 inline constexpr std::uint8_t kVolumeStreamVersion = 3;
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
@@ -42,7 +43,7 @@ struct VolumeStreamHeader {
   std::uint32_t brick_chunks = 0;  // BRIK chunks that follow (all grids)
   std::vector<VolumeGrid>
       grids;  // descriptions: volume.dims/type/background, active non-empty when sparse (size 1)
-  std::vector<std::uint8_t> blocked;  // per grid: 1 for a sparse-native grid (BLKS chunk)
+  std::vector<std::uint8_t> blocked;  // per grid: 1 sparse-native grid (BLKS chunk), 2 opaque (OPAQ chunk)
 };
 
 // Per sparse grid: the state of every box voxel and the values of inactive_other voxels.
@@ -72,15 +73,18 @@ struct BrickChunk {
 void write_volume_signature(std::vector<std::uint8_t>& out);
 void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader& header);
 void write_mask_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const MaskChunk& mask);
+void write_opaque_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid,
+                        const std::vector<std::uint8_t>& bytes);
 void write_blocks_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const BlocksChunk& blocks);
 void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& brick);
 
 struct ParsedVolumeStream {
   VolumeStreamHeader header;
-  std::vector<MaskChunk> masks;         // one per grid (empty for dense grids)
-  std::vector<BlocksChunk> layouts;     // one per grid (empty unless sparse-native)
-  std::vector<std::size_t> grid_bytes;  // per grid: bytes of its MASK / BLKS / BRIK chunks
-  std::vector<BrickChunk> bricks;       // codewords point into the parsed bytes
+  std::vector<MaskChunk> masks;                   // one per grid (empty for dense grids)
+  std::vector<BlocksChunk> layouts;               // one per grid (empty unless sparse-native)
+  std::vector<std::vector<std::uint8_t>> opaque;  // one per grid (empty unless opaque)
+  std::vector<std::size_t> grid_bytes;            // per grid: bytes of its MASK / BLKS / BRIK chunks
+  std::vector<BrickChunk> bricks;                 // codewords point into the parsed bytes
 };
 
 // Parses and validates a whole stream. Throws DecodeError for any inconsistency.

@@ -73,8 +73,8 @@ VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels, std::uint8_t& blo
   g.volume.type = VoxelType(type);
   g.volume.background = get_finite(r, "background");
   const std::uint32_t sparse = r.u8();
-  require_stream(sparse <= 2, "volume stream: sparse flag");
-  blocked = sparse == 2 ? 1 : 0;
+  require_stream(sparse <= 3, "volume stream: sparse flag");
+  blocked = sparse == 3 ? 2 : sparse == 2 ? 1 : 0;
   if (sparse == 1) g.volume.active.assign(1, 1);  // marker; the mask comes from the MASK chunk
   // A sparse-native grid's dims are its bounding box only; its blocks are counted in BLKS.
   if (!blocked) total_voxels += voxels;
@@ -151,7 +151,7 @@ BlocksChunk read_blocks(std::span<const std::uint8_t> payload, const VolumeStrea
                         std::uint32_t& grid, std::size_t& total_voxels) {
   ByteReader r(payload, "volume blocks");
   grid = r.u32();
-  require_stream(grid < h.grids.size() && h.blocked[grid] != 0, "volume stream: blocks grid");
+  require_stream(grid < h.grids.size() && h.blocked[grid] == 1, "volume stream: blocks grid");
   BlocksChunk c;
   const std::size_t blocks = r.u32();
   require_stream(blocks <= r.remaining() / 36, "volume stream: block count");
@@ -216,6 +216,7 @@ ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes) {
   s.header = read_header(head.payload);
   s.masks.resize(s.header.grids.size());
   s.layouts.resize(s.header.grids.size());
+  s.opaque.resize(s.header.grids.size());
   std::size_t masks = 0, needed = 0, total_voxels = 0;
   for (std::size_t g = 0; g < s.header.grids.size(); ++g) {
     needed += s.header.grids[g].volume.is_sparse() || s.header.blocked[g] ? 1 : 0;
@@ -239,6 +240,18 @@ ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes) {
       require_stream(seen_layout[grid] == 0, "volume stream: repeated blocks");
       seen_layout[grid] = 1;
       s.layouts[grid] = std::move(b);
+      s.grid_bytes[grid] += c.payload.size() + kFraming;
+      ++masks;
+    } else if (c.is("OPAQ")) {
+      ByteReader op(c.payload, "volume opaque grid");
+      const std::uint32_t grid = op.u32();
+      require_stream(grid < s.header.grids.size() && s.header.blocked[grid] == 2,
+                     "volume stream: opaque grid");
+      require_stream(seen_layout[grid] == 0 && op.remaining() > 0,
+                     "volume stream: repeated or empty opaque grid");
+      seen_layout[grid] = 1;
+      const auto bytes = op.bytes(op.remaining());
+      s.opaque[grid].assign(bytes.begin(), bytes.end());
       s.grid_bytes[grid] += c.payload.size() + kFraming;
       ++masks;
     } else if (c.is("BRIK")) {

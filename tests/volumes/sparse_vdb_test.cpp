@@ -71,3 +71,100 @@ TEST_F(VolumeTest, ScatteredVoxelsRoundTripThroughTheCli) {
 
 }  // namespace
 }  // namespace pupwave::test
+
+namespace pupwave::test {
+namespace {
+
+// Float density, double temperature, vec3s velocity, int32 and bool grids with names,
+// transforms, classes, backgrounds and metadata, and file metadata.
+openvdb::GridPtrVec multi_grids() {
+  auto density = random_grid<openvdb::FloatGrid>({-5, 3, 10}, {21, 17, 13}, 0.4, 1);
+  density->setName("density");
+  density->setGridClass(openvdb::GRID_FOG_VOLUME);
+  density->insertMeta("units", openvdb::StringMetadata("kg/m3"));
+  auto temperature = random_grid<openvdb::DoubleGrid>({0, 0, 0}, {9, 11, 7}, 0.6, 2);
+  temperature->setName("temperature");
+  temperature->setTransform(openvdb::math::Transform::createLinearTransform(0.5));
+  auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0, 0, 1));
+  velocity->setName("velocity");
+  velocity->setGridClass(openvdb::GRID_STAGGERED);
+  auto mask = openvdb::Int32Grid::create(-1);
+  mask->setName("mask");
+  auto flags = openvdb::BoolGrid::create(false);
+  flags->setName("flags");
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> at(-40, 40);
+  for (int i = 0; i < 300; ++i) {
+    const openvdb::Coord c(at(rng), at(rng), at(rng));
+    velocity->tree().setValueOn(c, openvdb::Vec3s(float(c.x()) * 0.1f, 1.5f, -float(i)));
+    mask->tree().setValueOn(c, i * 1000003);
+    flags->tree().setValueOn(c, i % 2 == 0);
+  }
+  mask->insertMeta("count", openvdb::Int64Metadata(300));
+  return {density, temperature, velocity, mask, flags};
+}
+
+TEST_F(VolumeTest, InfoListsEveryGridOfAVdbFile) {
+  write_grids(multi_grids(), dir_ / "multi.vdb");
+  const CliResult r = run_cli({"info", (dir_ / "multi.vdb").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* want : {"5 grid(s)", "'density': class fog volume, type float", "'temperature'",
+                           "type double", "'velocity': class staggered, type vec3s", "'mask'", "type int32",
+                           "'flags'", "type bool", "voxel size 0.5 x 0.5 x 0.5"})
+    EXPECT_NE(r.output.find(want), std::string::npos) << want << " in\n" << r.output;
+}
+
+TEST_F(VolumeTest, MultiGridFileRoundTripsEveryGridType) {
+  write_grids(multi_grids(), dir_ / "multi.vdb");
+  const openvdb::GridPtrVec in = read_grids(dir_ / "multi.vdb");  // OpenVDB lists grids by name
+  const CliResult c =
+      run_cli({"compress", (dir_ / "multi.vdb").string(), (dir_ / "m.pw").string(), "--max-error", "1e-3"});
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const CliResult d = run_cli({"decompress", (dir_ / "m.pw").string(), (dir_ / "out.vdb").string()});
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  const openvdb::GridPtrVec out = read_grids(dir_ / "out.vdb");
+  ASSERT_EQ(out.size(), in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    EXPECT_EQ(out[i]->getName(), in[i]->getName());
+    EXPECT_EQ(out[i]->valueType(), in[i]->valueType());
+    EXPECT_EQ(out[i]->getGridClass(), in[i]->getGridClass());
+    EXPECT_EQ(out[i]->transform(), in[i]->transform());
+    EXPECT_EQ(out[i]->activeVoxelCount(), in[i]->activeVoxelCount());
+  }
+  // Names in OpenVDB's order: density, flags, mask, temperature, velocity.
+  EXPECT_EQ(out[0]->metaValue<std::string>("units"), "kg/m3");
+  EXPECT_EQ(out[2]->metaValue<openvdb::Int64>("count"), 300);
+  // Lossless grids: bit exact values and topology, backgrounds included.
+  const auto m_in = openvdb::gridPtrCast<openvdb::Int32Grid>(in[2]);
+  const auto m_out = openvdb::gridPtrCast<openvdb::Int32Grid>(out[2]);
+  ASSERT_TRUE(m_in && m_out);
+  EXPECT_TRUE(same_voxels(*m_in, *m_out));
+  const auto b_in = openvdb::gridPtrCast<openvdb::BoolGrid>(in[1]);
+  const auto b_out = openvdb::gridPtrCast<openvdb::BoolGrid>(out[1]);
+  ASSERT_TRUE(b_in && b_out);
+  EXPECT_TRUE(same_voxels(*b_in, *b_out));
+  const auto v_in = openvdb::gridPtrCast<openvdb::Vec3SGrid>(in[4]);
+  const auto v_out = openvdb::gridPtrCast<openvdb::Vec3SGrid>(out[4]);
+  ASSERT_TRUE(v_in && v_out);
+  EXPECT_EQ(v_out->background(), openvdb::Vec3s(0, 0, 1));
+  EXPECT_TRUE(v_out->tree().hasSameTopology(v_in->tree()));
+  auto vacc = v_out->getConstAccessor();
+  for (auto it = v_in->cbeginValueOn(); it; ++it) EXPECT_EQ(vacc.getValue(it.getCoord()), *it);
+  // Lossy grids: the bound on every active voxel, topology kept.
+  const auto f_in = openvdb::gridPtrCast<openvdb::FloatGrid>(in[0]);
+  const auto f_out = openvdb::gridPtrCast<openvdb::FloatGrid>(out[0]);
+  ASSERT_TRUE(f_in && f_out);
+  EXPECT_TRUE(f_out->tree().hasSameTopology(f_in->tree()));
+  auto acc = f_out->getConstAccessor();
+  for (auto it = f_in->cbeginValueOn(); it; ++it)
+    EXPECT_LE(std::abs(acc.getValue(it.getCoord()) - *it), 1e-3);
+  const auto d_in = openvdb::gridPtrCast<openvdb::DoubleGrid>(in[3]);
+  const auto d_out = openvdb::gridPtrCast<openvdb::DoubleGrid>(out[3]);
+  ASSERT_TRUE(d_in && d_out);
+  auto dacc = d_out->getConstAccessor();
+  for (auto it = d_in->cbeginValueOn(); it; ++it)
+    EXPECT_LE(std::abs(dacc.getValue(it.getCoord()) - *it), 1e-3);
+}
+
+}  // namespace
+}  // namespace pupwave::test
