@@ -172,7 +172,7 @@ BlocksChunk read_blocks(std::span<const std::uint8_t> payload, const VolumeStrea
     c.blocks.push_back(std::move(b));
   }
   const std::size_t tiles = r.u32();
-  require_stream(tiles <= r.remaining() / 45, "volume stream: tile count");
+  require_stream(tiles <= r.remaining() / 37, "volume stream: tile count");  // 37 bytes per tile
   for (std::size_t i = 0; i < tiles; ++i) {
     VolumeTile t;
     t.origin = get_origin(r);
