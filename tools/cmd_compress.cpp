@@ -196,8 +196,10 @@ void add_compress_command(CLI::App& app) {
   auto* step = cmd->add_option("--step", opt->step, "fixed quantizer base step (sample units)")
                    ->check(CLI::PositiveNumber);
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
-  auto* bpv = cmd->add_option("--bpv", opt->bpv, "volumes: target bits per voxel (whole file)")
-                  ->check(CLI::PositiveNumber);
+  auto* bpv =
+      cmd->add_option("--bpv", opt->bpv,
+                      "volumes: target bits per active voxel (whole file; active tiles count their voxels)")
+          ->check(CLI::PositiveNumber);
   auto* max_error =
       cmd->add_option("--max-error", opt->max_error,
                       "float volumes: absolute point-wise error bound E, guaranteed on every active voxel")

@@ -233,11 +233,12 @@ void add_lod_command(CLI::App& app) {
     int levels = -1;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd =
-      app.add_subcommand("lod",
-                         "Write a level-of-detail pyramid of the float/double grids of an OpenVDB file:\n"
-                         "level k is the wavelet low band at 2^k times the voxel size, named NAME_level_K\n"
-                         "as OpenVDB's vdb_lod names them (level 0 is the input).");
+  auto* cmd = app.add_subcommand(
+      "lod",
+      "Write a level-of-detail pyramid of the float/double grids of an OpenVDB file:\n"
+      "level k is the wavelet low band at 2^k times the voxel size, named NAME_level_K\n"
+      "as OpenVDB's vdb_lod names them (level 0 is the input). Grids of other value types\n"
+      "(vec3, integer, bool, mask) are copied to OUT unchanged.");
   cmd->add_option("IN", opt->input, "input .vdb")->required();
   cmd->add_option("OUT", opt->output, "output .vdb (written atomically)")->required();
   cmd->add_option("--levels", opt->levels, "write levels 0..N (same as --range 0-N)");

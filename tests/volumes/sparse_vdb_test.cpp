@@ -2,6 +2,7 @@
 // without a dense box, tiles come back as tiles, and every voxel meets the bound.
 #include <openvdb/tools/Prune.h>
 
+#include <map>
 #include <random>
 
 #include "tools/volume_io.h"
@@ -164,6 +165,25 @@ TEST_F(VolumeTest, MultiGridFileRoundTripsEveryGridType) {
   auto dacc = d_out->getConstAccessor();
   for (auto it = d_in->cbeginValueOn(); it; ++it)
     EXPECT_LE(std::abs(dacc.getValue(it.getCoord()) - *it), 1e-3);
+}
+
+// lod keeps the grids it has no pyramid for (vector, integer, bool) instead of dropping them.
+TEST_F(VolumeTest, LodCopiesOtherGridTypes) {
+  const openvdb::GridPtrVec in = multi_grids();
+  write_grids(in, dir_ / "multi.vdb");
+  const CliResult r =
+      run_cli({"lod", (dir_ / "multi.vdb").string(), (dir_ / "lod.vdb").string(), "--levels", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::map<std::string, openvdb::GridBase::Ptr> out;
+  for (const auto& g : read_grids(dir_ / "lod.vdb")) out[g->getName()] = g;
+  EXPECT_EQ(out.size(), 7u);         // density and temperature at levels 0 and 1, three copied grids
+  for (std::size_t i : {2, 3, 4}) {  // velocity, mask, flags in multi_grids()
+    const std::string name = in[i]->getName();
+    ASSERT_TRUE(out.count(name)) << name;
+    EXPECT_EQ(out[name]->activeVoxelCount(), in[i]->activeVoxelCount()) << name;
+    EXPECT_EQ(out[name]->valueType(), in[i]->valueType()) << name;
+  }
+  EXPECT_TRUE(out.count("density_level_1"));
 }
 
 }  // namespace
