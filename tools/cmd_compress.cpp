@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -61,19 +62,23 @@ std::vector<VolumeGrid> read_volume_input(const CompressOptions& opt) {
   return {std::move(g)};
 }
 
-// Largest value range (max - min of the active voxels) of the grids, for --max-error-rel.
+// Widens [lo, hi] by the active voxels of a box volume.
+void widen(const Volume& v, double& lo, double& hi) {
+  for (std::size_t i = 0; i < v.count(); ++i)
+    if (v.is_active(i)) lo = std::min(lo, v.samples[i]), hi = std::max(hi, v.samples[i]);
+}
+
+// Largest value range (max - min of the active voxels, active tiles included) of the grids, for
+// --max-error-rel.
 double largest_range(const std::vector<VolumeGrid>& grids) {
   double range = 0.0;
   for (const VolumeGrid& g : grids) {
-    double lo = 0.0, hi = 0.0;
-    bool any = false;
-    for (std::size_t i = 0; i < g.volume.count(); ++i)
-      if (g.volume.is_active(i)) {
-        lo = any ? std::min(lo, g.volume.samples[i]) : g.volume.samples[i];
-        hi = any ? std::max(hi, g.volume.samples[i]) : g.volume.samples[i];
-        any = true;
-      }
-    range = std::max(range, hi - lo);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    if (!g.is_blocked()) widen(g.volume, lo, hi);
+    for (const VolumeBlock& b : g.blocks) widen(b.volume, lo, hi);
+    for (const VolumeTile& t : g.tiles)
+      if (t.active) lo = std::min(lo, t.value), hi = std::max(hi, t.value);
+    if (hi > lo) range = std::max(range, hi - lo);
   }
   return range;
 }
@@ -121,9 +126,10 @@ void run_compress_volume(const CompressOptions& opt) {
   const VolumeEncodeResult r = encode_volumes(grids, enc);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_bytes_atomically(opt.output, r.bytes);
-  std::printf("%s: %zu bytes, %.4f bpv, max error %.6g, PSNR %.3f dB, %zu outlier(s), %.3f s (%zu grid(s))\n",
-              opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds,
-              grids.size());
+  std::printf(
+      "%s: %zu bytes, %.4f bpv (bits per active voxel), max error %.6g, PSNR %.3f dB, %zu outlier(s), %.3f s "
+      "(%zu grid(s))\n",
+      opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds, grids.size());
 }
 
 // Turns the mutually exclusive rate flags into the library's mode (default: --psnr 40).
@@ -213,8 +219,10 @@ void add_compress_command(CLI::App& app) {
   auto* step = cmd->add_option("--step", opt->step, "fixed quantizer base step (sample units)")
                    ->check(CLI::PositiveNumber);
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
-  auto* bpv = cmd->add_option("--bpv", opt->bpv, "volumes: target bits per voxel (whole file)")
-                  ->check(CLI::PositiveNumber);
+  auto* bpv =
+      cmd->add_option("--bpv", opt->bpv,
+                      "volumes: target bits per active voxel (whole file; active tiles count their voxels)")
+          ->check(CLI::PositiveNumber);
   auto* max_error =
       cmd->add_option("--max-error", opt->max_error,
                       "float volumes: absolute point-wise error bound E, guaranteed on every active voxel")

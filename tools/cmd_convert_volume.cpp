@@ -43,6 +43,7 @@ void write_output(std::vector<VolumeGrid> grids, const ConvertVolumeOptions& o) 
   if (grids.size() != 1)
     throw std::invalid_argument(o.input + " holds " + std::to_string(grids.size()) +
                                 " grids; choose one with --grid NAME for raw output");
+  make_dense_box(grids[0], kMaxVdbBoxVoxels);  // raw output is the dense active bounding box
   Volume& v = grids[0].volume;
   if (v.count() == 0) throw std::runtime_error("grid '" + grids[0].name + "' has no active voxels");
   if (!o.dtype.empty() && is_vdb_path(o.input))
@@ -74,7 +75,7 @@ void add_convert_volume_command(CLI::App& app) {
     for (const VolumeGrid& g : grids) {
       const Extent& d = g.volume.dims;
       std::cout << g.name << ": " << d[0] << 'x' << d[1] << 'x' << d[2] << " at (" << g.origin[0] << ','
-                << g.origin[1] << ',' << g.origin[2] << "), " << g.volume.active_count() << " active, "
+                << g.origin[1] << ',' << g.origin[2] << "), " << g.active_voxels() << " active, "
                 << to_string(g.volume.type) << ", " << to_string(g.grid_class) << '\n';
     }
     write_output(std::move(grids), *opt);

@@ -37,6 +37,7 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
   if (grids.size() != 1)
     throw std::invalid_argument("the stream holds " + std::to_string(grids.size()) +
                                 " grids; choose one with --grid NAME for raw output, or write .vdb");
+  make_dense_box(grids[0], kMaxVdbBoxVoxels);  // raw output is the dense active bounding box
   write_raw_volume(grids[0].volume, opt.output);
 }
 

@@ -9,6 +9,7 @@
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/volume_io.h"
 
 namespace pupwave::cli {
 namespace {
@@ -26,6 +27,8 @@ void run_info(const std::string& path) {
     std::cout << path << ": " << describe_stream(read_file_bytes(path)) << '\n';
   } else if (sig == "PUPV") {
     std::cout << path << ": " << describe_volume_stream(read_file_bytes(path));
+  } else if (is_vdb_path(path)) {
+    std::cout << describe_vdb_file(path);
   } else {
     std::cout << describe_image_file(path) << '\n';
   }
@@ -38,7 +41,9 @@ void add_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "info",
       "Describe a compressed .pw file (header fields, transform, levels, chunk sizes; every\n"
-      "checksum verified) or an image file (format, size, channels, sample type)");
+      "checksum verified; for volumes every grid with its active voxels, tiles, bounding box,\n"
+      "voxel size and share of the file), an OpenVDB file (every grid: class, value type,\n"
+      "active voxels, bounding box, voxel size) or an image file (format, size, channels, type)");
   cmd->add_option("FILE", *path, "file to describe")->required()->check(CLI::ExistingFile);
   cmd->callback([path] { run_info(*path); });
 }

@@ -233,11 +233,12 @@ void add_lod_command(CLI::App& app) {
     int levels = -1;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd =
-      app.add_subcommand("lod",
-                         "Write a level-of-detail pyramid of the float/double grids of an OpenVDB file:\n"
-                         "level k is the wavelet low band at 2^k times the voxel size, named NAME_level_K\n"
-                         "as OpenVDB's vdb_lod names them (level 0 is the input).");
+  auto* cmd = app.add_subcommand(
+      "lod",
+      "Write a level-of-detail pyramid of the float/double grids of an OpenVDB file:\n"
+      "level k is the wavelet low band at 2^k times the voxel size, named NAME_level_K\n"
+      "as OpenVDB's vdb_lod names them (level 0 is the input). Grids of other value types\n"
+      "(vec3, integer, bool, mask) are copied to OUT unchanged.");
   cmd->add_option("IN", opt->input, "input .vdb")->required();
   cmd->add_option("OUT", opt->output, "output .vdb (written atomically)")->required();
   cmd->add_option("--levels", opt->levels, "write levels 0..N (same as --range 0-N)");
@@ -255,17 +256,25 @@ void add_lod_command(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<VolumeGrid> grids;
     const std::vector<std::string> names = split_names(opt->names);
-    if (names.empty()) grids = read_vdb(opt->input);
+    if (names.empty()) grids = read_vdb_dense(opt->input);
     for (const std::string& name : names)
-      for (VolumeGrid& g : read_vdb(opt->input, name)) grids.push_back(std::move(g));
+      for (VolumeGrid& g : read_vdb_dense(opt->input, name)) grids.push_back(std::move(g));
     std::vector<VolumeGrid> out;
-    for (const VolumeGrid& g : grids)
+    for (const VolumeGrid& g : grids) {
+      if (g.is_opaque()) {  // vector, integer, bool grids: kept as they are, never dropped
+        out.push_back(g);
+        continue;
+      }
       for (VolumeGrid& level : level_of_detail(g, *t, levels)) out.push_back(std::move(level));
+    }
     write_vdb(out, opt->output);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (const VolumeGrid& g : out)
-      std::cout << g.name << ": " << g.volume.active_count() << " active voxels, voxel size "
-                << g.voxel_size()[0] << '\n';
+      if (g.is_opaque())
+        std::cout << g.name << ": not a float or double grid, copied unchanged\n";
+      else
+        std::cout << g.name << ": " << g.volume.active_count() << " active voxels, voxel size "
+                  << g.voxel_size()[0] << '\n';
     std::cout << opt->output << ": " << out.size() << " grid(s), " << t->spec() << ", " << seconds << " s\n";
   });
 }

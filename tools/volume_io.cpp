@@ -1,5 +1,6 @@
 #include "tools/volume_io.h"
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Prune.h>
 
@@ -9,7 +10,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 #include "tools/atomic_file.h"
@@ -248,41 +251,124 @@ static void describe_from_vdb(const openvdb::GridBase& grid, VolumeGrid& out, co
   }
 }
 
-// Dense extraction over the active bounding box: values (active or not) and the active mask.
+// Blocks gather the leaf nodes of one 64^3 page; 64 divides OpenVDB's 128^3 internal nodes, so
+// a block never straddles one and memory follows the leaves, not the bounding box.
+constexpr int kPageLog2 = 6;
+
 template <class GridT>
-static Volume extract_dense(const GridT& grid, VolumeGrid& out, std::size_t max_box_voxels,
-                            const fs::path& path) {
-  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
-  const VoxelType type = std::is_same_v<typename GridT::ValueType, double> ? VoxelType::f64 : VoxelType::f32;
-  if (box.empty()) {
-    Volume empty({0, 0, 0}, type);
-    empty.background = double(grid.background());
-    return empty;
+static VoxelType voxel_type_of() {
+  return std::is_same_v<typename GridT::ValueType, double> ? VoxelType::f64 : VoxelType::f32;
+}
+
+// The leaves of one page as a block over their bounding box. Voxels no leaf covers are inactive
+// background, or -background under an inactive tile of that value (a level set's inside), so the
+// transform does not see a false jump there; other tiles stay in the tile list only.
+template <class GridT, class LeafT>
+static VolumeBlock leaf_block(const GridT& grid, const std::vector<const LeafT*>& leaves, VoxelType type,
+                              double background) {
+  openvdb::Coord lo = leaves.front()->origin(), hi = lo;
+  for (const LeafT* leaf : leaves) {
+    lo.minComponent(leaf->origin());
+    hi.maxComponent(leaf->origin());
   }
+  VolumeBlock b;
   Extent dims{};
   for (int a = 0; a < 3; ++a) {
-    dims[std::size_t(a)] = std::size_t(std::int64_t(box.max()[a]) - box.min()[a] + 1);
-    out.origin[std::size_t(a)] = box.min()[a];
+    b.origin[std::size_t(a)] = lo[a];
+    dims[std::size_t(a)] = std::size_t(hi[a] - lo[a]) + LeafT::DIM;
   }
-  const std::size_t count = checked_count(dims);
-  if (count == 0 || count > max_box_voxels)
-    throw std::runtime_error("cannot read " + path.string() + ": grid '" + grid.getName() + "' spans " +
-                             dims_text(dims) + " voxels, more than the limit of " +
-                             std::to_string(max_box_voxels));
-  Volume v(dims, type);
-  v.background = double(grid.background());
-  v.active.assign(count, 0);
+  b.volume = Volume(dims, type);
+  b.volume.background = background;
+  std::fill(b.volume.samples.begin(), b.volume.samples.end(), background);
+  b.volume.active.assign(b.volume.count(), 0);
   auto acc = grid.getConstAccessor();
-  std::size_t i = 0;
+  const auto inside = static_cast<typename GridT::ValueType>(-background);
   for (std::size_t z = 0; z < dims[2]; ++z)
     for (std::size_t y = 0; y < dims[1]; ++y)
-      for (std::size_t x = 0; x < dims[0]; ++x, ++i) {
-        const openvdb::Coord ijk = box.min() + openvdb::Coord(int(x), int(y), int(z));
-        typename GridT::ValueType value;
-        v.active[i] = acc.probeValue(ijk, value) ? 1 : 0;
-        v.samples[i] = double(value);
+      for (std::size_t x = 0; x < dims[0]; ++x) {
+        const openvdb::Coord p = lo + openvdb::Coord(int(x), int(y), int(z));
+        if (acc.probeConstLeaf(p) != nullptr) continue;  // filled from the leaf below
+        typename GridT::ValueType v;
+        if (!acc.probeValue(p, v) && v == inside) b.volume.at(x, y, z) = double(inside);
       }
-  return v;
+  for (const LeafT* leaf : leaves)
+    for (openvdb::Index n = 0; n < LeafT::SIZE; ++n) {
+      const openvdb::Coord p = leaf->offsetToGlobalCoord(n) - lo;
+      const std::size_t i = b.volume.index(std::size_t(p.x()), std::size_t(p.y()), std::size_t(p.z()));
+      b.volume.samples[i] = double(leaf->getValue(n));
+      b.volume.active[i] = leaf->isValueOn(n) ? 1 : 0;
+    }
+  return b;
+}
+
+// Sparse-native extraction: leaves gathered into blocks page by page, tiles kept as tiles
+// (active ones, and inactive ones whose value is not the background), the active bounding box
+// in origin / volume.dims. Memory follows the leaves and tiles, not the bounding box.
+template <class GridT>
+static void extract_sparse(const GridT& grid, VolumeGrid& out) {
+  using LeafT = typename GridT::TreeType::LeafNodeType;
+  const VoxelType type = voxel_type_of<GridT>();
+  const double background = double(grid.background());
+  out.volume = Volume({0, 0, 0}, type);
+  out.volume.background = background;
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  if (box.empty()) return;
+  for (int a = 0; a < 3; ++a) {
+    out.volume.dims[std::size_t(a)] = std::size_t(std::int64_t(box.max()[a]) - box.min()[a] + 1);
+    out.origin[std::size_t(a)] = box.min()[a];
+  }
+  std::map<std::array<int, 3>, std::vector<const LeafT*>> pages;
+  for (auto it = grid.tree().cbeginLeaf(); it; ++it) {
+    const openvdb::Coord o = it->origin();
+    pages[{o.x() >> kPageLog2, o.y() >> kPageLog2, o.z() >> kPageLog2}].push_back(&*it);
+  }
+  for (const auto& [page, leaves] : pages) out.blocks.push_back(leaf_block(grid, leaves, type, background));
+  auto it = grid.tree().cbeginValueAll();
+  it.setMaxDepth(it.getLeafDepth() - 1);  // tiles only, not the voxels of leaves
+  for (; it; ++it) {
+    if (!it.isValueOn() && double(*it) == background) continue;
+    openvdb::CoordBBox tile;
+    it.getBoundingBox(tile);
+    VolumeTile t;
+    for (int a = 0; a < 3; ++a) t.origin[std::size_t(a)] = tile.min()[a];
+    t.edge = std::uint32_t(tile.dim().x());
+    t.value = double(*it);
+    t.active = it.isValueOn();
+    out.tiles.push_back(t);
+  }
+}
+
+// A grid the codec does not transform-code, as OpenVDB serialises it (a one-grid stream), with
+// its value type and active voxel count for `info`.
+static VolumeGrid opaque_grid(const openvdb::GridBase& grid) {
+  VolumeGrid g;
+  g.name = grid.getName();
+  std::ostringstream full(std::ios::binary);
+  openvdb::io::Stream(full).write(openvdb::GridCPtrVec{grid.copyGrid()});
+  const std::string text = full.str();
+  g.opaque.assign(text.begin(), text.end());
+  MetaValue type;
+  type.text = grid.valueType();
+  g.metadata["vdb_value_type"] = type;
+  MetaValue active;
+  active.kind = MetaValue::Kind::int64;
+  active.integer = std::int64_t(grid.activeVoxelCount());
+  g.metadata["vdb_active_voxels"] = active;
+  return g;
+}
+
+// The grid an opaque VolumeGrid carries.
+static openvdb::GridBase::Ptr grid_from_opaque(const VolumeGrid& g) {
+  std::istringstream in(std::string(g.opaque.begin(), g.opaque.end()), std::ios::binary);
+  try {
+    openvdb::io::Stream stream(in);
+    const openvdb::GridPtrVecPtr grids = stream.getGrids();
+    if (!grids || grids->size() != 1) throw std::runtime_error("not one grid");
+    return (*grids)[0];
+  } catch (const std::exception& e) {
+    throw std::runtime_error("grid '" + g.name + "': its carried OpenVDB bytes do not read back (" +
+                             std::string(e.what()) + ")");
+  }
 }
 
 static std::string available_names(const openvdb::GridPtrVec& grids) {
@@ -313,7 +399,7 @@ static openvdb::GridPtrVecPtr read_all_grids(const fs::path& path) {
 }
 
 std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_name,
-                                 std::vector<std::string>* skipped, std::size_t max_box_voxels) {
+                                 std::vector<std::string>* skipped) {
   const openvdb::GridPtrVecPtr grids = read_all_grids(path);
   if (grids->empty())
     throw std::runtime_error("cannot read " + path.string() + ": no grids (empty or truncated file)");
@@ -323,16 +409,13 @@ std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_nam
     VolumeGrid g;
     if (auto fg = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) {
       describe_from_vdb(*fg, g, path);
-      g.volume = extract_dense(*fg, g, max_box_voxels, path);
+      extract_sparse(*fg, g);
     } else if (auto dg = openvdb::gridPtrCast<openvdb::DoubleGrid>(base)) {
       describe_from_vdb(*dg, g, path);
-      g.volume = extract_dense(*dg, g, max_box_voxels, path);
-    } else if (!grid_name.empty()) {
-      throw std::runtime_error("cannot read " + path.string() + ": grid '" + base->getName() + "' holds " +
-                               base->valueType() + " values (only float and double grids are supported)");
+      extract_sparse(*dg, g);
     } else {
+      g = opaque_grid(*base);  // vector, integer, bool, mask or unknown values: carried verbatim
       if (skipped) skipped->push_back(base->getName());
-      continue;
     }
     result.push_back(std::move(g));
   }
@@ -344,18 +427,50 @@ std::vector<VolumeGrid> read_vdb(const fs::path& path, std::string_view grid_nam
   return result;
 }
 
+std::vector<VolumeGrid> read_vdb_dense(const fs::path& path, std::string_view grid_name,
+                                       std::vector<std::string>* skipped, std::size_t max_box_voxels) {
+  std::vector<VolumeGrid> grids = read_vdb(path, grid_name, skipped);
+  for (VolumeGrid& g : grids) try {
+      if (!g.is_opaque()) make_dense_box(g, max_box_voxels);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("cannot read " + path.string() + ": " + e.what());
+    }
+  return grids;
+}
+
+std::string describe_vdb_file(const fs::path& path) {
+  const openvdb::GridPtrVecPtr grids = read_all_grids(path);
+  std::ostringstream out;
+  out << path.string() << ": OpenVDB file, " << grids->size() << " grid(s)\n";
+  for (std::size_t i = 0; i < grids->size(); ++i) {
+    const openvdb::GridBase& g = *(*grids)[i];
+    const openvdb::CoordBBox box = g.evalActiveVoxelBoundingBox();
+    const openvdb::Vec3d size = g.voxelSize();
+    out << "  grid " << i << " '" << g.getName() << "': class "
+        << openvdb::GridBase::gridClassToString(g.getGridClass()) << ", type " << g.valueType() << ", "
+        << g.activeVoxelCount() << " active voxels (" << g.baseTree().activeTileCount() << " active tile(s))";
+    if (box.empty())
+      out << ", no active voxels";
+    else
+      out << ", bounding box " << box.min() << ".." << box.max() << " (" << box.dim().x() << " x "
+          << box.dim().y() << " x " << box.dim().z() << ")";
+    out << ", voxel size " << size.x() << " x " << size.y() << " x " << size.z() << '\n';
+  }
+  return out.str();
+}
+
 // A sparse OpenVDB grid from a VolumeGrid: only voxels that differ from the implicit background
 // (or are active) are touched, then uniform leaves are pruned back into tiles.
+// Writes the voxels of a box volume placed at `at` that are active or not the background.
 template <class GridT>
-static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
+static void put_voxels(GridT& grid, const VolumeGrid& g, const Volume& vol,
+                       const std::array<std::int64_t, 3>& at) {
   using V = typename GridT::ValueType;
-  const Volume& vol = g.volume;
   if (vol.samples.size() != vol.count() || (vol.is_sparse() && vol.active.size() != vol.count()))
     throw std::invalid_argument("write_vdb: grid '" + g.name + "' has inconsistent sizes");
-  const V background = static_cast<V>(vol.background);
-  typename GridT::Ptr grid = GridT::create(background);
-  auto acc = grid->getAccessor();
-  const openvdb::Coord origin(int(g.origin[0]), int(g.origin[1]), int(g.origin[2]));
+  const V background = grid.background();
+  auto acc = grid.getAccessor();
+  const openvdb::Coord origin{int(at[0]), int(at[1]), int(at[2])};
   std::size_t i = 0;
   for (std::size_t z = 0; z < vol.dims[2]; ++z)
     for (std::size_t y = 0; y < vol.dims[1]; ++y)
@@ -367,6 +482,18 @@ static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
         else if (value != background)
           acc.setValueOff(ijk, value);
       }
+}
+
+template <class GridT>
+static openvdb::GridBase::Ptr build_grid(const VolumeGrid& g) {
+  using V = typename GridT::ValueType;
+  typename GridT::Ptr grid = GridT::create(static_cast<V>(g.volume.background));
+  for (const VolumeTile& t : g.tiles) {
+    const openvdb::Coord o(int(t.origin[0]), int(t.origin[1]), int(t.origin[2]));
+    grid->tree().fill(openvdb::CoordBBox::createCube(o, int(t.edge)), static_cast<V>(t.value), t.active);
+  }
+  for (const VolumeBlock& b : g.blocks) put_voxels(*grid, g, b.volume, b.origin);
+  if (!g.is_blocked()) put_voxels(*grid, g, g.volume, g.origin);
   openvdb::tools::prune(grid->tree());
   return grid;
 }
@@ -392,6 +519,10 @@ void write_vdb(const std::vector<VolumeGrid>& grids, const fs::path& path) {
   ensure_openvdb();
   openvdb::GridPtrVec out;
   for (const VolumeGrid& g : grids) {
+    if (g.is_opaque()) {
+      out.push_back(grid_from_opaque(g));
+      continue;
+    }
     const bool dbl = g.volume.type == VoxelType::f64;
     openvdb::GridBase::Ptr grid =
         dbl ? build_grid<openvdb::DoubleGrid>(g) : build_grid<openvdb::FloatGrid>(g);

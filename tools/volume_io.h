@@ -15,8 +15,8 @@ namespace pupwave::cli {
 // Largest raw volume accepted (voxels). A raw file must hold exactly dims * bytes per voxel, so
 // memory use is bounded by the real file size; this only bounds absurd --dims early.
 inline constexpr std::size_t kMaxRawVoxels = std::size_t(1) << 30;
-// Largest dense box extracted from one OpenVDB grid (voxels, 2 GiB as double). A tiny hostile
-// .vdb can declare active tiles spanning any box, so the box is checked before allocating.
+// Largest dense box made from one OpenVDB grid by read_vdb_dense (voxels, 2 GiB as double). A
+// tiny hostile .vdb can declare active tiles spanning any box, so the box is checked first.
 inline constexpr std::size_t kMaxVdbBoxVoxels = std::size_t(1) << 28;
 
 // Parses --dims "X,Y,Z" (or "X,Y" / "X", missing axes = 1); every extent >= 1.
@@ -36,22 +36,35 @@ void write_raw_volume(const Volume& volume, const std::filesystem::path& path);
 // True when the path names an OpenVDB file (extension .vdb, any case).
 bool is_vdb_path(const std::filesystem::path& path);
 
-// Reads the FloatGrid and DoubleGrid grids of an OpenVDB file; with a non-empty grid_name only
-// the grids of that name (an error listing the available names when there is none). Grids of
-// other value types are skipped when reading all grids (their names go to *skipped if given) and
-// are an error when named. Each grid becomes a sparse Volume over the bounding box of its active
-// voxels (active tiles included), keeping inactive values inside the box, the background,
-// class, linear transform and metadata (string, bool, int32/64, float/double, vec3i/s/d entries;
-// the per-file statistics "file_*" that OpenVDB rewrites on every write are dropped).
-// Throws std::runtime_error for unreadable, corrupt or oversized (> max_box_voxels) input, and
-// for non-linear (frustum) transforms.
+// Reads the grids of an OpenVDB file; with a non-empty grid_name only the grids of that name (an
+// error listing the available names when there is none). Grids of other value types than float
+// and double (vec3s/d, int32/64, bool, mask, unknown) become opaque grids (VolumeGrid::opaque:
+// OpenVDB's own serialisation, restored bit exact by write_vdb; their names also go to *skipped
+// if given). Each float/double grid is read sparse-native (VolumeGrid::blocks and tiles): the
+// leaf nodes of each 64^3 page become one block over their bounding box, tiles stay tiles
+// (active ones and inactive ones that are not the background), so memory follows the leaves,
+// not the bounding box (origin / volume.dims: the active bounding box). Background, class,
+// linear transform and metadata are kept (string, bool, int32/64, float/double, vec3i/s/d
+// entries; the per-file statistics "file_*" that OpenVDB rewrites on every write are dropped).
+// Throws std::runtime_error for unreadable or corrupt input and non-linear (frustum) transforms.
 std::vector<VolumeGrid> read_vdb(const std::filesystem::path& path, std::string_view grid_name = {},
-                                 std::vector<std::string>* skipped = nullptr,
-                                 std::size_t max_box_voxels = kMaxVdbBoxVoxels);
+                                 std::vector<std::string>* skipped = nullptr);
 
-// Writes grids to an OpenVDB file atomically: f64 volumes as DoubleGrid, all others as FloatGrid,
-// with the same background, active topology, values inside the box, class, transform and
-// metadata (uniform leaves are pruned back into tiles). Grid names need not be unique.
+// read_vdb, then each float/double grid converted to a dense box over its active bounding box
+// (make_dense_box); throws std::runtime_error when a box exceeds max_box_voxels.
+std::vector<VolumeGrid> read_vdb_dense(const std::filesystem::path& path, std::string_view grid_name = {},
+                                       std::vector<std::string>* skipped = nullptr,
+                                       std::size_t max_box_voxels = kMaxVdbBoxVoxels);
+
+// `pupwave info` of a .vdb file: every grid (any value type) with class, value type, active
+// voxel and tile counts, active bounding box and voxel size. Throws like read_vdb.
+std::string describe_vdb_file(const std::filesystem::path& path);
+
+// Writes grids to an OpenVDB file atomically: opaque grids as they were read, f64 volumes as
+// DoubleGrid, all others as FloatGrid,
+// with the same background, active topology, values inside the box (or of the blocks and tiles
+// of a sparse-native grid), class, transform and metadata (uniform leaves are pruned back into
+// tiles). Grid names need not be unique.
 void write_vdb(const std::vector<VolumeGrid>& grids, const std::filesystem::path& path);
 
 }  // namespace pupwave::cli

@@ -70,6 +70,24 @@ struct MetaValue {
   bool operator==(const MetaValue&) const = default;
 };
 
+// Part of a sparse grid held natively (OpenVDB leaf nodes gathered into a block of at most one
+// 64^3 page): `volume` (with its active mask) covers index-space box [origin, origin + dims).
+// Voxels of a block that no leaf covers are inactive background.
+struct VolumeBlock {
+  std::array<std::int64_t, 3> origin{0, 0, 0};
+  Volume volume;
+};
+
+// A tile of a sparse grid (an OpenVDB tile value): every voxel of the cube [origin, origin + edge)
+// has `value` and the same active state. A constant region costs a tile, not its voxels.
+struct VolumeTile {
+  std::array<std::int64_t, 3> origin{0, 0, 0};
+  std::uint32_t edge = 1;
+  double value = 0.0;
+  bool active = false;
+  bool operator==(const VolumeTile&) const = default;
+};
+
 // A named volume with its placement in the world, as OpenVDB describes a grid. Sample (0,0,0)
 // of `volume` sits at integer index-space coordinate `origin`; index_to_world maps index space to
 // world space in OpenVDB's row-vector convention: [x y z 1] * M, so the translation is in row 3
@@ -81,9 +99,30 @@ struct VolumeGrid {
   std::array<double, 16> index_to_world{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   std::map<std::string, MetaValue> metadata;
   Volume volume;
+  // Sparse-native form (is_blocked()): the values live in `blocks` and `tiles`, disjoint, and
+  // everything else is inactive background; `volume` then only carries type, background and the
+  // active bounding box (dims, with `origin` its minimum), no samples.
+  std::vector<VolumeBlock> blocks;
+  std::vector<VolumeTile> tiles;
+  // A grid the codec does not transform-code (OpenVDB vector, integer, bool, mask and unknown
+  // value types): OpenVDB's own serialisation of it, carried verbatim so it comes back bit exact
+  // (values, topology, transform, metadata). Only `name` and the "vdb_*" metadata describe it.
+  std::vector<std::uint8_t> opaque;
+
+  bool is_opaque() const { return !opaque.empty(); }
+
+  bool is_blocked() const { return !blocks.empty() || !tiles.empty(); }
+  // Active voxels (tiles counted voxel by voxel) and active tiles.
+  std::size_t active_voxels() const;
+  std::size_t active_tiles() const;
 
   // Voxel size along each index axis (length of the rows 0..2 of the linear part).
   std::array<double, 3> voxel_size() const;
 };
+
+// Converts a sparse-native grid to the dense-box form over its active bounding box (inactive
+// values inside the box kept, tiles expanded). Throws std::runtime_error naming the grid when the
+// box holds more than max_voxels. Dense grids are left unchanged.
+void make_dense_box(VolumeGrid& grid, std::size_t max_voxels);
 
 }  // namespace pupwave

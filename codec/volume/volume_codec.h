@@ -40,7 +40,7 @@ struct VolumeEncodeOptions {
 
 struct VolumeEncodeResult {
   std::vector<std::uint8_t> bytes;  // the complete .pw volume stream
-  double bpv = 0.0;                 // bits per voxel (all grids, box voxels)
+  double bpv = 0.0;                 // bits per active voxel (all grids; active tiles count their voxels)
   double max_error = 0.0;           // largest |x - x'| over active voxels of all grids
   double psnr = 0.0;                // peak = value range of each grid's active voxels (worst grid)
   std::size_t outliers = 0;         // voxels corrected explicitly (max_error mode)

@@ -29,40 +29,62 @@ Transform1DPtr stream_transform(const VolumeStreamHeader& h) {
   }
 }
 
-// Bricks of each grid a valid stream codes: all for dense grids, those with an active voxel
-// for sparse grids (from the mask states).
-std::vector<std::uint8_t> expected_bricks(const Volume& v, const MaskChunk& mask,
-                                          const std::vector<BrickBox>& boxes) {
-  std::vector<std::uint8_t> expected(boxes.size(), 1);
-  if (!v.is_sparse()) return expected;
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
-    const BrickBox& box = boxes[b];
+// The bricks of one grid: of its box, or of each of its blocks in turn (block: which one).
+struct GridBricks {
+  std::vector<BrickBox> boxes;
+  std::vector<std::uint32_t> block;
+};
+
+// Whether each brick of `boxes` holds an active voxel by `states` (voxels of a `dims` box).
+void mark_active_bricks(const Extent& dims, const std::uint8_t* states, const std::vector<BrickBox>& boxes,
+                        std::vector<std::uint8_t>& expected) {
+  for (const BrickBox& box : boxes) {
     bool any = false;
     for (std::size_t z = 0; z < box.size[2] && !any; ++z)
       for (std::size_t y = 0; y < box.size[1] && !any; ++y) {
         const std::size_t row =
-            box.offset[0] + v.dims[0] * ((box.offset[1] + y) + v.dims[1] * (box.offset[2] + z));
+            box.offset[0] + dims[0] * ((box.offset[1] + y) + dims[1] * (box.offset[2] + z));
         for (std::size_t x = 0; x < box.size[0]; ++x)
-          any = any || mask.states[row + x] == std::uint8_t(VoxelState::active);
+          any = any || states[row + x] == std::uint8_t(VoxelState::active);
       }
-    expected[b] = any ? 1 : 0;
+    expected.push_back(any ? 1 : 0);
+  }
+}
+
+// Bricks of each grid a valid stream codes: all for dense grids, those with an active voxel
+// for sparse grids (from the mask states).
+std::vector<std::uint8_t> expected_bricks(const ParsedVolumeStream& s, std::size_t g, std::size_t edge) {
+  const Volume& v = s.header.grids[g].volume;
+  std::vector<std::uint8_t> expected;
+  if (s.header.blocked[g] == 2) return expected;  // opaque: no bricks
+  if (s.header.blocked[g] == 1) {
+    std::size_t at = 0;
+    for (const VolumeBlock& b : s.layouts[g].blocks) {
+      mark_active_bricks(b.volume.dims, s.layouts[g].mask.states.data() + at,
+                         brick_boxes(b.volume.dims, edge), expected);
+      at += b.volume.count();
+    }
+  } else if (v.is_sparse()) {
+    mark_active_bricks(v.dims, s.masks[g].states.data(), brick_boxes(v.dims, edge), expected);
+  } else {
+    expected.assign(brick_boxes(v.dims, edge).size(), 1);
   }
   return expected;
 }
 
 // Checks that the BRIK chunks code exactly the bricks every grid needs, once each.
-void check_brick_set(const ParsedVolumeStream& s, const std::vector<std::vector<BrickBox>>& boxes) {
-  std::vector<std::vector<std::uint8_t>> seen(boxes.size());
-  for (std::size_t g = 0; g < boxes.size(); ++g) seen[g].assign(boxes[g].size(), 0);
+void check_brick_set(const ParsedVolumeStream& s, const std::vector<GridBricks>& bricks) {
+  std::vector<std::vector<std::uint8_t>> seen(bricks.size());
+  for (std::size_t g = 0; g < bricks.size(); ++g) seen[g].assign(bricks[g].boxes.size(), 0);
   for (const BrickChunk& b : s.bricks) {
-    require_stream(b.brick < boxes[b.grid].size(), "volume stream: brick index out of range");
+    require_stream(b.brick < bricks[b.grid].boxes.size(), "volume stream: brick index out of range");
     require_stream(seen[b.grid][b.brick] == 0, "volume stream: repeated brick");
     seen[b.grid][b.brick] = 1;
   }
-  for (std::size_t g = 0; g < boxes.size(); ++g) {
-    const auto want = expected_bricks(s.header.grids[g].volume, s.masks[g], boxes[g]);
-    require_stream(want == seen[g], "volume stream: bricks do not match the active topology");
-  }
+  const std::size_t edge = std::size_t(1) << s.header.brick_log2;
+  for (std::size_t g = 0; g < bricks.size(); ++g)
+    require_stream(expected_bricks(s, g, edge) == seen[g],
+                   "volume stream: bricks do not match the active topology");
 }
 
 // Writes a decoded brick (extent `part`) into the output volume at `offset`.
@@ -74,12 +96,12 @@ void place(Volume& out, const Extent& offset, const Extent& part, const std::vec
         out.samples[out.index(offset[0] + x, offset[1] + y, offset[2] + z)] = values[k++];
 }
 
-// Full-resolution sparse restore: active mask from the states, inactive values exact.
-void restore_mask(Volume& out, const MaskChunk& mask) {
+// Full-resolution sparse restore: active mask from the states, inactive values exact
+// (`other` indexes mask.other_values and advances past those used).
+void restore_states(Volume& out, const std::uint8_t* states, const MaskChunk& mask, std::size_t& other) {
   out.active.assign(out.count(), 0);
-  std::size_t other = 0;
   for (std::size_t i = 0; i < out.count(); ++i) {
-    switch (VoxelState(mask.states[i])) {
+    switch (VoxelState(states[i])) {
       case VoxelState::active: out.active[i] = 1; break;
       case VoxelState::inactive_background: out.samples[i] = out.background; break;
       case VoxelState::inactive_negative: out.samples[i] = -out.background; break;
@@ -90,6 +112,11 @@ void restore_mask(Volume& out, const MaskChunk& mask) {
       default: throw DecodeError("volume stream: bad voxel state");
     }
   }
+}
+
+void restore_mask(Volume& out, const MaskChunk& mask) {
+  std::size_t other = 0;
+  restore_states(out, mask.states.data(), mask, other);
   require_stream(other == mask.other_values.size(), "volume stream: extra inactive values");
 }
 
@@ -131,22 +158,82 @@ void scale_placement(VolumeGrid& g, int level) {
 
 // Bricks of every grid. A dense grid needs a BRIK per brick, so its brick count is bounded by
 // the chunks present; checked before the brick list is allocated.
-std::vector<std::vector<BrickBox>> grid_bricks(const ParsedVolumeStream& s) {
+std::vector<GridBricks> grid_bricks(const ParsedVolumeStream& s) {
   const std::size_t edge = std::size_t(1) << s.header.brick_log2;
-  std::vector<std::vector<BrickBox>> boxes;
-  for (const VolumeGrid& g : s.header.grids) {
+  std::vector<GridBricks> bricks(s.header.grids.size());
+  for (std::size_t g = 0; g < s.header.grids.size(); ++g) {
+    const Volume& v = s.header.grids[g].volume;
+    if (s.header.blocked[g] == 2) continue;  // opaque: no bricks
+    if (s.header.blocked[g] == 1) {
+      for (std::uint32_t k = 0; k < s.layouts[g].blocks.size(); ++k)
+        for (const BrickBox& box : brick_boxes(s.layouts[g].blocks[k].volume.dims, edge)) {
+          bricks[g].boxes.push_back(box);
+          bricks[g].block.push_back(k);
+        }
+      continue;
+    }
     std::size_t count = 1;
-    for (std::size_t d : g.volume.dims) count *= (d + edge - 1) / edge;
-    require_stream(g.volume.is_sparse() || count <= s.bricks.size(),
-                   "volume stream truncated (missing bricks)");
-    boxes.push_back(brick_boxes(g.volume.dims, edge));
+    for (std::size_t d : v.dims) count *= (d + edge - 1) / edge;
+    require_stream(v.is_sparse() || count <= s.bricks.size(), "volume stream truncated (missing bricks)");
+    bricks[g].boxes = brick_boxes(v.dims, edge);
+    bricks[g].block.assign(bricks[g].boxes.size(), 0);
   }
-  return boxes;
+  return bricks;
+}
+
+// Floor of o / 2^level.
+std::int64_t coarse(std::int64_t o, int level) {
+  const std::int64_t f = std::int64_t(1) << level;
+  return o >= 0 ? o / f : -((-o + f - 1) / f);
+}
+
+// Blocks (at 1/2^level resolution, filled with background) and tiles of a sparse-native grid.
+// Blocks start on OpenVDB leaves (multiples of 8), so levels above 3 would misplace them.
+void allocate_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
+  const std::int64_t f = std::int64_t(1) << level;
+  for (const VolumeBlock& b : layout.blocks) {
+    VolumeBlock out;
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (b.origin[a] % f != 0)
+        throw std::invalid_argument("level " + std::to_string(level) + " of grid '" + g.name +
+                                    "': a block does not start on a multiple of 2^level (sparse grids decode "
+                                    "at levels up to 3)");
+      out.origin[a] = b.origin[a] / f;
+    }
+    out.volume = Volume(level_extent(b.volume.dims, level), g.volume.type);
+    out.volume.background = g.volume.background;
+    std::fill(out.volume.samples.begin(), out.volume.samples.end(), g.volume.background);
+    g.blocks.push_back(std::move(out));
+  }
+  for (VolumeTile t : layout.tiles) {
+    for (std::int64_t& o : t.origin) o = coarse(o, level);
+    t.edge = std::uint32_t((std::int64_t(t.edge) + f - 1) / f);
+    g.tiles.push_back(t);
+  }
+}
+
+// Active masks and exact inactive values of each block (coarsened at level > 0).
+void restore_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
+  std::size_t at = 0, other = 0;
+  for (std::size_t k = 0; k < layout.blocks.size(); ++k) {
+    const std::uint8_t* states = layout.mask.states.data() + at;
+    at += layout.blocks[k].volume.count();
+    if (level == 0) {
+      restore_states(g.blocks[k].volume, states, layout.mask, other);
+      continue;
+    }
+    Volume fine(layout.blocks[k].volume.dims, g.volume.type);
+    fine.background = g.volume.background;
+    restore_states(fine, states, layout.mask, other);
+    restore_coarse_mask(g.blocks[k].volume, fine, level);
+  }
+  require_stream(other == layout.mask.other_values.size(), "volume stream: extra inactive values");
 }
 
 // Active masks and exact inactive values of the sparse grids (coarsened at level > 0).
 void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s, int level) {
   for (std::size_t g = 0; g < grids.size(); ++g) {
+    if (s.header.blocked[g] == 1) restore_blocks(grids[g], s.layouts[g], level);
     if (!s.header.grids[g].volume.is_sparse()) continue;
     if (level == 0) {
       restore_mask(grids[g].volume, s.masks[g]);
@@ -176,26 +263,34 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
                                 std::to_string(h.levels) + " levels");
   const auto t = stream_transform(h);
   const BrickCoding coding{t.get(), h.levels, std::size_t(1) << h.block_log2, h.delta, h.reversible};
-  const auto boxes = grid_bricks(s);
-  check_brick_set(s, boxes);
+  const auto bricks = grid_bricks(s);
+  check_brick_set(s, bricks);
   std::vector<VolumeGrid> grids = h.grids;
-  for (VolumeGrid& g : grids) {
+  for (std::size_t i = 0; i < grids.size(); ++i) {
+    VolumeGrid& g = grids[i];
     if (level > 0) scale_placement(g, level);
     g.volume.dims = level_extent(g.volume.dims, level);
     g.volume.active.clear();
-    g.volume.samples.assign(g.volume.count(), g.volume.background);
+    if (h.blocked[i] == 2)
+      g.opaque = s.opaque[i];  // carried verbatim, at every level
+    else if (h.blocked[i] == 1)
+      allocate_blocks(g, s.layouts[i], level);
+    else
+      g.volume.samples.assign(g.volume.count(), g.volume.background);
   }
   // Bricks are the parallel tasks; each brick's inverse transform runs serially inside its task.
   ex.run(s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
-    const BrickBox& box = boxes[b.grid][b.brick];
+    const BrickBox& box = bricks[b.grid].boxes[b.brick];
     const VoxelType type = h.grids[b.grid].volume.type;
     auto values = decode_brick(coding, box.size, b.base_step, b.entries, b.codewords, level);
     if (level == 0 && h.max_error > 0.0)
       apply_outliers(values, decode_outliers(b.outliers, box.count()), h.max_error, type);
     for (double& v : values) v = to_stored(v, type);
     const Extent at{box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level};
-    place(grids[b.grid].volume, at, level_extent(box.size, level), values);  // bricks never overlap
+    VolumeGrid& g = grids[b.grid];
+    Volume& target = h.blocked[b.grid] == 1 ? g.blocks[bricks[b.grid].block[b.brick]].volume : g.volume;
+    place(target, at, level_extent(box.size, level), values);  // bricks never overlap
   });
   restore_sparse(grids, s, level);
   return grids;

@@ -29,6 +29,49 @@ int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) 
   return k;
 }
 
+// Dims, sizes and finiteness of one dense box (a box grid or a block); `total` is the running
+// voxel count of all grids.
+void validate_volume(const Volume& v, std::size_t total) {
+  for (std::size_t d : v.dims)
+    if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
+  if (total > kMaxVolumeVoxels) throw EncodeError("volumes exceed 2^31 voxels");
+  if (v.samples.size() != v.count() || (v.is_sparse() && v.active.size() != v.count()))
+    throw std::invalid_argument("volume sample or mask count does not match its dims");
+  if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
+  for (double s : v.samples)
+    if (!std::isfinite(s)) throw EncodeError("volume has non-finite samples (NaN or infinity)");
+}
+
+// Coordinates of blocks and tiles must stay in OpenVDB's 32-bit index range.
+bool in_coord_range(std::int64_t o, std::int64_t extent) {
+  return o >= -(std::int64_t(1) << 31) && o + extent <= (std::int64_t(1) << 31);
+}
+
+void validate_blocked(const VolumeGrid& g, std::size_t& total) {
+  if (g.active_voxels() == 0)
+    throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
+  for (std::size_t d : g.volume.dims)
+    if (d < 1 || d > kMaxVolumeAxis)
+      throw EncodeError("grid '" + g.name + "' bounding box must be in [1, 2^20] per axis");
+  for (const VolumeBlock& b : g.blocks) {
+    total += b.volume.count();
+    validate_volume(b.volume, total);
+    if (b.volume.type != g.volume.type || b.volume.background != g.volume.background)
+      throw std::invalid_argument("grid '" + g.name + "': block type or background differs from the grid's");
+    for (std::size_t a = 0; a < 3; ++a)
+      if (!in_coord_range(b.origin[a], std::int64_t(b.volume.dims[a])))
+        throw EncodeError("grid '" + g.name + "': block outside the 32-bit index range");
+  }
+  for (const VolumeTile& t : g.tiles) {
+    if (!std::isfinite(t.value)) throw EncodeError("grid '" + g.name + "' has a non-finite tile value");
+    if (t.edge < 1 || t.edge > kMaxVolumeAxis)
+      throw EncodeError("grid '" + g.name + "': tile edge out of range");
+    for (std::size_t a = 0; a < 3; ++a)
+      if (!in_coord_range(t.origin[a], t.edge))
+        throw EncodeError("grid '" + g.name + "': tile outside the 32-bit index range");
+  }
+}
+
 void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o) {
   if (grids.empty()) throw EncodeError("no grids to encode");
   if (grids.size() > kMaxVolumeGrids) throw EncodeError("more than 1024 grids");
@@ -36,27 +79,25 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
     throw std::invalid_argument("rate target must be positive and finite");
   std::size_t total = 0;
   for (const VolumeGrid& g : grids) {
-    const Volume& v = g.volume;
-    if (v.count() == 0) throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
-    for (std::size_t d : v.dims)
-      if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
-    total += v.count();
-    if (total > kMaxVolumeVoxels) throw EncodeError("volumes exceed 2^31 voxels");
-    if (v.samples.size() != v.count() || (v.is_sparse() && v.active.size() != v.count()))
-      throw std::invalid_argument("volume sample or mask count does not match its dims");
-    if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
-    for (double s : v.samples)
-      if (!std::isfinite(s)) throw EncodeError("volume has non-finite samples (NaN or infinity)");
-    if (o.mode == VolumeRateMode::lossless && !is_integer(v.type))
+    if (g.is_opaque()) continue;  // carried verbatim
+    if (g.is_blocked()) {
+      validate_blocked(g, total);
+    } else {
+      if (g.volume.count() == 0)
+        throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
+      total += g.volume.count();
+      validate_volume(g.volume, total);
+    }
+    if (o.mode == VolumeRateMode::lossless && !is_integer(g.volume.type))
       throw std::invalid_argument(
           "lossless coding needs integer volumes (u8, u16); use --max-error for float");
   }
 }
 
-// Voxel states and inactive values of a sparse grid.
-MaskChunk make_mask(const Volume& v) {
-  MaskChunk m;
-  m.states.resize(v.count());
+// Voxel states and inactive values of a sparse grid (appended to m).
+void append_mask(const Volume& v, MaskChunk& m) {
+  const std::size_t base = m.states.size();
+  m.states.resize(base + v.count());
   for (std::size_t i = 0; i < v.count(); ++i) {
     VoxelState s = VoxelState::active;
     if (!v.is_active(i)) {
@@ -69,9 +110,28 @@ MaskChunk make_mask(const Volume& v) {
         m.other_values.push_back(v.samples[i]);
       }
     }
-    m.states[i] = std::uint8_t(s);
+    m.states[base + i] = std::uint8_t(s);
   }
+}
+
+MaskChunk make_mask(const Volume& v) {
+  MaskChunk m;
+  append_mask(v, m);
   return m;
+}
+
+// Geometry (no samples), tiles and voxel states of a sparse-native grid.
+BlocksChunk make_layout(const VolumeGrid& g) {
+  BlocksChunk c;
+  c.tiles = g.tiles;
+  for (const VolumeBlock& b : g.blocks) {
+    VolumeBlock geometry;
+    geometry.origin = b.origin;
+    geometry.volume.dims = b.volume.dims;
+    c.blocks.push_back(std::move(geometry));
+    append_mask(b.volume, c.mask);
+  }
+  return c;
 }
 
 bool brick_has_active(const Volume& v, const BrickBox& box) {
@@ -83,14 +143,52 @@ bool brick_has_active(const Volume& v, const BrickBox& box) {
   return false;
 }
 
-double value_range(const Volume& v) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+void widen_range(const Volume& v, double& lo, double& hi) {
   for (std::size_t i = 0; i < v.count(); ++i)
     if (v.is_active(i)) {
       lo = std::min(lo, v.samples[i]);
       hi = std::max(hi, v.samples[i]);
     }
+}
+
+// Value range of the active voxels (active tiles included).
+double value_range(const VolumeGrid& g) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  if (!g.is_blocked()) widen_range(g.volume, lo, hi);
+  for (const VolumeBlock& b : g.blocks) widen_range(b.volume, lo, hi);
+  for (const VolumeTile& t : g.tiles)
+    if (t.active) lo = std::min(lo, t.value), hi = std::max(hi, t.value);
   return hi > lo ? hi - lo : 0.0;
+}
+
+// Grid description for the header: everything but the values.
+VolumeGrid describe(const VolumeGrid& g) {
+  VolumeGrid d;
+  d.name = g.name;
+  d.grid_class = g.grid_class;
+  d.origin = g.origin;
+  d.index_to_world = g.index_to_world;
+  d.metadata = g.metadata;
+  d.volume.dims = g.volume.dims;
+  d.volume.type = g.volume.type;
+  d.volume.background = g.volume.background;
+  d.volume.active.assign(!g.is_blocked() && g.volume.is_sparse() ? 1 : 0, 1);
+  if (g.is_opaque()) d.volume = Volume({1, 1, 1}, VoxelType::f32), d.volume.samples.clear();
+  return d;
+}
+
+// Bricks holding an active voxel, of the grid's box or of each of its blocks in turn.
+void add_jobs(VolumePlan& plan, const VolumeGrid& g, std::uint32_t grid, std::size_t edge) {
+  if (g.is_opaque()) return;
+  std::uint32_t index = 0;
+  const std::size_t parts = g.is_blocked() ? g.blocks.size() : 1;
+  for (std::uint32_t k = 0; k < parts; ++k) {
+    const Volume& v = g.is_blocked() ? g.blocks[k].volume : g.volume;
+    for (const BrickBox& box : brick_boxes(v.dims, edge)) {
+      if (brick_has_active(v, box)) plan.jobs.push_back({grid, index, box, k});
+      ++index;
+    }
+  }
 }
 
 std::vector<int> all_passes(const CodedBrick& c) {
@@ -134,7 +232,7 @@ std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const Vo
     const VolumeGrid& grid = grids[job.grid];
     std::vector<double> samples;
     std::vector<std::uint8_t> active;
-    brick_samples(grid, job.box, samples, active);
+    brick_samples(grid, job, samples, active);
     if (o.mode != VolumeRateMode::max_error) {
       codes[i] =
           code_at_step(plan, grid, job, samples, active, o.mode == VolumeRateMode::step ? o.target : 1.0);
@@ -173,26 +271,30 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncode
   plan.coding = BrickCoding{plan.transform.get(), h.levels, o.block, h.delta, reversible};
   plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.masks.resize(grids.size());
+  plan.layouts.resize(grids.size());
+  plan.opaque.resize(grids.size());
   for (std::uint32_t g = 0; g < grids.size(); ++g) {
-    const Volume& v = grids[g].volume;
-    VolumeGrid d = grids[g];
-    d.volume.samples.clear();
-    d.volume.active.assign(v.is_sparse() ? 1 : 0, 1);
-    h.grids.push_back(std::move(d));
-    if (v.is_sparse()) plan.masks[g] = make_mask(v);
-    const auto boxes = brick_boxes(v.dims, o.brick);
-    for (std::uint32_t b = 0; b < boxes.size(); ++b)
-      if (brick_has_active(v, boxes[b])) plan.jobs.push_back({g, b, boxes[b]});
-    plan.voxels += v.count();
-    plan.range = std::max(plan.range, value_range(v));
+    const VolumeGrid& grid = grids[g];
+    h.grids.push_back(describe(grid));
+    h.blocked.push_back(grid.is_opaque() ? 2 : grid.is_blocked() ? 1 : 0);
+    if (grid.is_opaque())
+      plan.opaque[g] = grid.opaque;
+    else if (grid.is_blocked())
+      plan.layouts[g] = make_layout(grid);
+    else if (grid.volume.is_sparse())
+      plan.masks[g] = make_mask(grid.volume);
+    add_jobs(plan, grid, g, o.brick);
+    if (!grid.is_opaque()) plan.voxels += grid.active_voxels();
+    plan.range = std::max(plan.range, value_range(grid));
   }
   h.brick_chunks = std::uint32_t(plan.jobs.size());
   return plan;
 }
 
-void brick_samples(const VolumeGrid& grid, const BrickBox& box, std::vector<double>& samples,
+void brick_samples(const VolumeGrid& grid, const BrickJob& job, std::vector<double>& samples,
                    std::vector<std::uint8_t>& active) {
-  const Volume& v = grid.volume;
+  const Volume& v = job_volume(grid, job);
+  const BrickBox& box = job.box;
   samples.clear();
   active.clear();
   for (std::size_t z = 0; z < box.size[2]; ++z)
@@ -221,7 +323,7 @@ void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<doub
                    BrickCode& code) {
   std::vector<double> samples;
   std::vector<std::uint8_t> active;
-  brick_samples(grid, job.box, samples, active);
+  brick_samples(grid, job, samples, active);
   code.max_error = 0.0;
   code.sse = 0.0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -236,8 +338,11 @@ std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::ve
   std::vector<std::uint8_t> out;
   write_volume_signature(out);
   write_header_chunk(out, plan.header);
-  for (std::uint32_t g = 0; g < plan.masks.size(); ++g)
+  for (std::uint32_t g = 0; g < plan.masks.size(); ++g) {
+    if (plan.header.blocked[g] == 1) write_blocks_chunk(out, g, plan.layouts[g]);
+    if (plan.header.blocked[g] == 2) write_opaque_chunk(out, g, plan.opaque[g]);
     if (plan.header.grids[g].volume.is_sparse()) write_mask_chunk(out, g, plan.masks[g]);
+  }
   for (std::size_t i = 0; i < codes.size(); ++i) {
     const BrickCode& c = codes[i];
     BrickChunk chunk{plan.jobs[i].grid, plan.jobs[i].brick, c.base_step, {}, {}, c.outliers};
@@ -264,9 +369,7 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
   r.bytes = assemble_volumes(plan, codes);
   r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
   double sse = 0.0;
-  std::size_t counted = 0;
-  for (const VolumeGrid& g : grids)
-    counted += g.volume.is_sparse() ? g.volume.active_count() : g.volume.count();
+  const std::size_t counted = plan.voxels;
   for (const BrickCode& c : codes) {
     r.max_error = std::max(r.max_error, c.max_error);
     r.outliers += c.outlier_count;

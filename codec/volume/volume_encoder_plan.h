@@ -11,20 +11,29 @@
 
 namespace pupwave {
 
-// One brick to code: its grid, its index among the grid's bricks and its box.
+// One brick to code: its grid, its index among the grid's bricks (over all blocks of a
+// sparse-native grid in turn), the block it lies in (0 for box grids) and its box in there.
 struct BrickJob {
   std::uint32_t grid = 0;
   std::uint32_t brick = 0;
   BrickBox box;
+  std::uint32_t block = 0;
 };
+
+// The volume a job's box refers to: the grid's own or one of its blocks.
+inline const Volume& job_volume(const VolumeGrid& g, const BrickJob& job) {
+  return g.is_blocked() ? g.blocks[job.block].volume : g.volume;
+}
 
 struct VolumePlan {
   VolumeStreamHeader header;
   Transform1DPtr transform;
   BrickCoding coding;
-  std::vector<MaskChunk> masks;  // per grid (empty for dense)
+  std::vector<MaskChunk> masks;                   // per grid (empty for dense)
+  std::vector<BlocksChunk> layouts;               // per grid (empty unless sparse-native)
+  std::vector<std::vector<std::uint8_t>> opaque;  // per grid (empty unless opaque)
   std::vector<BrickJob> jobs;
-  std::size_t voxels = 0;              // box voxels of all grids
+  std::size_t voxels = 0;              // active voxels of all grids (what bpv counts)
   double range = 0.0;                  // largest value range (max - min of active voxels) over grids
   const Executor* executor = nullptr;  // VolumeEncodeOptions::executor, resolved (never null)
 };
@@ -43,7 +52,7 @@ struct BrickCode {
 VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options);
 
 // Samples of a job's brick (x fastest) and the flags of voxels that count (empty: all).
-void brick_samples(const VolumeGrid& grid, const BrickBox& box, std::vector<double>& samples,
+void brick_samples(const VolumeGrid& grid, const BrickJob& job, std::vector<double>& samples,
                    std::vector<std::uint8_t>& active);
 
 // Reconstructs a brick from its chosen passes (exactly as the decoder will, before outliers).

@@ -29,7 +29,7 @@ Coded code_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan, dou
   plan.executor->run(plan.jobs.size(), [&](std::size_t i) {
     std::vector<double> samples;
     std::vector<std::uint8_t> active;
-    brick_samples(grids[plan.jobs[i].grid], plan.jobs[i].box, samples, active);
+    brick_samples(grids[plan.jobs[i].grid], plan.jobs[i], samples, active);
     c.codes[i].base_step = base;
     c.codes[i].coded = code_brick(plan.coding, samples, plan.jobs[i].box.size, base);
   });
@@ -78,7 +78,7 @@ double measure_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
 
 std::size_t counted_voxels(const std::vector<VolumeGrid>& grids) {
   std::size_t n = 0;
-  for (const VolumeGrid& g : grids) n += g.volume.is_sparse() ? g.volume.active_count() : g.volume.count();
+  for (const VolumeGrid& g : grids) n += g.active_voxels();
   return std::max<std::size_t>(n, 1);
 }
 

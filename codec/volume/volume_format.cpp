@@ -39,7 +39,7 @@ void write_metadata(ByteWriter& w, const std::map<std::string, MetaValue>& metad
   }
 }
 
-void write_grid(ByteWriter& w, const VolumeGrid& g) {
+void write_grid(ByteWriter& w, const VolumeGrid& g, std::uint8_t blocked) {
   put_text(w, g.name);
   w.u8(std::uint8_t(g.grid_class));
   for (std::int64_t o : g.origin) put_u64(w, std::uint64_t(o));
@@ -48,7 +48,20 @@ void write_grid(ByteWriter& w, const VolumeGrid& g) {
   for (std::size_t d : g.volume.dims) w.u32(std::uint32_t(d));
   w.u8(std::uint8_t(g.volume.type));
   put_f64(w, g.volume.background);
-  w.u8(g.volume.is_sparse() ? 1 : 0);
+  w.u8(blocked == 2 ? 3 : blocked == 1 ? 2 : g.volume.is_sparse() ? 1 : 0);
+}
+
+// Voxel states (zstd) and inactive values, shared by MASK and BLKS.
+void write_states(ByteWriter& w, const MaskChunk& mask) {
+  std::vector<std::uint8_t> packed(ZSTD_compressBound(mask.states.size()));
+  const std::size_t n =
+      ZSTD_compress(packed.data(), packed.size(), mask.states.data(), mask.states.size(), kMaskZstdLevel);
+  if (ZSTD_isError(n)) throw EncodeError(std::string("zstd: ") + ZSTD_getErrorName(n));
+  packed.resize(n);
+  w.u32(std::uint32_t(packed.size()));
+  w.bytes(packed);
+  w.u32(std::uint32_t(mask.other_values.size()));
+  for (double v : mask.other_values) put_f64(w, v);
 }
 
 }  // namespace
@@ -69,24 +82,46 @@ void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader
   put_text(w, h.spec);
   w.u32(h.brick_chunks);
   w.u32(std::uint32_t(h.grids.size()));
-  for (const VolumeGrid& g : h.grids) write_grid(w, g);
+  for (std::size_t g = 0; g < h.grids.size(); ++g)
+    write_grid(w, h.grids[g], g < h.blocked.size() ? h.blocked[g] : 0);
   write_chunk(out, "VHDR", p);
 }
 
 void write_mask_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const MaskChunk& mask) {
-  std::vector<std::uint8_t> packed(ZSTD_compressBound(mask.states.size()));
-  const std::size_t n =
-      ZSTD_compress(packed.data(), packed.size(), mask.states.data(), mask.states.size(), kMaskZstdLevel);
-  if (ZSTD_isError(n)) throw EncodeError(std::string("zstd: ") + ZSTD_getErrorName(n));
-  packed.resize(n);
   std::vector<std::uint8_t> p;
   ByteWriter w(p);
   w.u32(grid);
-  w.u32(std::uint32_t(packed.size()));
-  w.bytes(packed);
-  w.u32(std::uint32_t(mask.other_values.size()));
-  for (double v : mask.other_values) put_f64(w, v);
+  write_states(w, mask);
   write_chunk(out, "MASK", p);
+}
+
+void write_opaque_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid,
+                        const std::vector<std::uint8_t>& bytes) {
+  std::vector<std::uint8_t> p;
+  ByteWriter w(p);
+  w.u32(grid);
+  w.bytes(bytes);
+  write_chunk(out, "OPAQ", p);
+}
+
+void write_blocks_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const BlocksChunk& c) {
+  std::vector<std::uint8_t> p;
+  ByteWriter w(p);
+  w.u32(grid);
+  w.u32(std::uint32_t(c.blocks.size()));
+  for (const VolumeBlock& b : c.blocks) {
+    for (std::int64_t o : b.origin) put_u64(w, std::uint64_t(o));
+    for (std::size_t d : b.volume.dims) w.u32(std::uint32_t(d));
+  }
+  w.u32(std::uint32_t(c.tiles.size()));
+  for (const VolumeTile& t : c.tiles) {
+    for (std::int64_t o : t.origin) put_u64(w, std::uint64_t(o));
+    w.u32(t.edge);
+    put_f64(w, t.value);
+    w.u8(t.active ? 1 : 0);
+  }
+  write_states(w, c.mask);
+  write_chunk(out, "BLKS", p);
 }
 
 void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& b) {

@@ -16,7 +16,9 @@
 namespace pupwave {
 
 // Version 2: chunks framed by codec/format/chunks.h (the CRC also covers the length field).
-inline constexpr std::uint8_t kVolumeStreamVersion = 2;
+// Version 3: sparse-native grids (layout 2) with a BLKS chunk of blocks and tiles, and opaque
+// grids (layout 3) carried as OpenVDB serialises them in an OPAQ chunk.
+inline constexpr std::uint8_t kVolumeStreamVersion = 3;
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;
@@ -42,6 +44,7 @@ struct VolumeStreamHeader {
   std::uint32_t brick_chunks = 0;  // BRIK chunks that follow (all grids)
   std::vector<VolumeGrid>
       grids;  // descriptions: volume.dims/type/background, active non-empty when sparse (size 1)
+  std::vector<std::uint8_t> blocked;  // per grid: 1 sparse-native grid (BLKS chunk), 2 opaque (OPAQ chunk)
 };
 
 // Per sparse grid: the state of every box voxel and the values of inactive_other voxels.
@@ -50,9 +53,17 @@ struct MaskChunk {
   std::vector<double> other_values;
 };
 
+// Per sparse-native grid: block geometry (volume.dims only), tiles, and the states of the voxels
+// of every block in order (with the values of inactive_other voxels).
+struct BlocksChunk {
+  std::vector<VolumeBlock> blocks;
+  std::vector<VolumeTile> tiles;
+  MaskChunk mask;
+};
+
 struct BrickChunk {
   std::uint32_t grid = 0;
-  std::uint32_t brick = 0;  // index into brick_boxes(dims, brick edge)
+  std::uint32_t brick = 0;  // index into brick_boxes(dims, brick edge), of each block in turn
   double base_step = 1.0;
   std::vector<BlockEntry> entries;
   std::vector<std::span<const std::uint8_t>> codewords;  // one per block (into the stream or owner)
@@ -63,12 +74,18 @@ struct BrickChunk {
 void write_volume_signature(std::vector<std::uint8_t>& out);
 void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader& header);
 void write_mask_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const MaskChunk& mask);
+void write_opaque_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid,
+                        const std::vector<std::uint8_t>& bytes);
+void write_blocks_chunk(std::vector<std::uint8_t>& out, std::uint32_t grid, const BlocksChunk& blocks);
 void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& brick);
 
 struct ParsedVolumeStream {
   VolumeStreamHeader header;
-  std::vector<MaskChunk> masks;    // one per grid (empty for dense grids)
-  std::vector<BrickChunk> bricks;  // codewords point into the parsed bytes
+  std::vector<MaskChunk> masks;                   // one per grid (empty for dense grids)
+  std::vector<BlocksChunk> layouts;               // one per grid (empty unless sparse-native)
+  std::vector<std::vector<std::uint8_t>> opaque;  // one per grid (empty unless opaque)
+  std::vector<std::size_t> grid_bytes;            // per grid: bytes of its MASK / BLKS / BRIK chunks
+  std::vector<BrickChunk> bricks;                 // codewords point into the parsed bytes
 };
 
 // Parses and validates a whole stream. Throws DecodeError for any inconsistency, or when the

@@ -20,6 +20,15 @@ namespace {
 constexpr std::size_t kMaxSpec = 4096;
 constexpr std::size_t kMaxMetadata = 4096;
 constexpr std::size_t kMaxBlocksPerBrick = std::size_t(1) << 20;
+// Index coordinates of blocks and tiles stay in OpenVDB's 32-bit signed range.
+constexpr std::int64_t kMinCoord = -(std::int64_t(1) << 31);
+constexpr std::int64_t kMaxCoord = (std::int64_t(1) << 31) - 1;
+
+std::size_t total_block_voxels(const BlocksChunk& c) {
+  std::size_t n = 0;
+  for (const VolumeBlock& b : c.blocks) n += b.volume.count();
+  return n;
+}
 
 std::uint64_t get_u64(ByteReader& r) {
   const std::uint64_t lo = r.u32();
@@ -59,7 +68,7 @@ void require_affine(const std::array<double, 16>& m) {
   require_stream(std::isfinite(det) && det != 0.0, "volume stream: grid transform is singular");
 }
 
-VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels) {
+VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels, std::uint8_t& blocked) {
   VolumeGrid g;
   g.name = r.str16(65535);
   const std::uint32_t cls = r.u8();
@@ -75,16 +84,19 @@ VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels) {
     require_stream(d >= 1 && d <= kMaxVolumeAxis, "volume stream: absurd volume dims");
     voxels *= d;
   }
-  total_voxels += voxels;
-  require_stream(voxels <= kMaxVolumeVoxels && total_voxels <= kMaxVolumeVoxels,
-                 "volume stream: volume too large (more than 2^31 voxels)");
   const std::uint32_t type = r.u8();
   require_stream(type <= std::uint32_t(VoxelType::f64), "volume stream: voxel type");
   g.volume.type = VoxelType(type);
   g.volume.background = get_finite(r, "background");
   const std::uint32_t sparse = r.u8();
-  require_stream(sparse <= 1, "volume stream: sparse flag");
-  if (sparse) g.volume.active.assign(1, 1);  // marker; the mask comes from the MASK chunk
+  require_stream(sparse <= 3, "volume stream: sparse flag");
+  blocked = sparse == 3 ? 2 : sparse == 2 ? 1 : 0;
+  if (sparse == 1) g.volume.active.assign(1, 1);  // marker; the mask comes from the MASK chunk
+  // A sparse-native grid's dims are its bounding box only; its blocks are counted in BLKS.
+  if (!blocked) total_voxels += voxels;
+  require_stream(voxels <= kMaxVolumeVoxels || blocked,
+                 "volume stream: volume too large (more than 2^31 voxels)");
+  require_stream(total_voxels <= kMaxVolumeVoxels, "volume stream: volume too large (more than 2^31 voxels)");
   return g;
 }
 
@@ -109,19 +121,16 @@ VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const Deco
   const std::size_t grids = r.u32();
   require_stream(grids >= 1 && grids <= kMaxVolumeGrids, "volume stream: grid count");
   std::size_t total = 0;
-  for (std::size_t i = 0; i < grids; ++i) h.grids.push_back(read_grid(r, total));
+  h.blocked.assign(grids, 0);
+  for (std::size_t i = 0; i < grids; ++i) h.grids.push_back(read_grid(r, total, h.blocked[i]));
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in header");
   // Before any mask (one byte per voxel) or output is allocated.
   check_decode_limit(total, limits, "volume stream: voxels of all grids");
   return h;
 }
 
-MaskChunk read_mask(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h, std::uint32_t& grid) {
-  ByteReader r(payload, "volume mask");
-  grid = r.u32();
-  require_stream(grid < h.grids.size() && h.grids[grid].volume.is_sparse(), "volume stream: mask grid");
-  const Volume& v = h.grids[grid].volume;
-  const std::size_t count = v.dims[0] * v.dims[1] * v.dims[2];
+// Voxel states of `count` voxels (zstd) and the inactive_other values.
+MaskChunk read_states(ByteReader& r, std::size_t count) {
   const auto packed = r.bytes(r.u32());
   const unsigned long long content = ZSTD_getFrameContentSize(packed.data(), packed.size());
   require_stream(content == count, "volume stream: mask size");
@@ -132,13 +141,35 @@ MaskChunk read_mask(std::span<const std::uint8_t> payload, const VolumeStreamHea
   const std::size_t others = r.u32();
   require_stream(others <= r.remaining() / 8, "volume stream: inactive value count");
   for (std::size_t i = 0; i < others; ++i) m.other_values.push_back(get_finite(r, "inactive value"));
+  return m;
+}
+
+MaskChunk read_mask(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h, std::uint32_t& grid) {
+  ByteReader r(payload, "volume mask");
+  grid = r.u32();
+  require_stream(grid < h.grids.size() && h.grids[grid].volume.is_sparse(), "volume stream: mask grid");
+  const Volume& v = h.grids[grid].volume;
+  MaskChunk m = read_states(r, v.dims[0] * v.dims[1] * v.dims[2]);
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in mask");
   return m;
 }
 
-// Code-blocks of brick `brick` of grid `grid` (0 for an index outside the grid), computed from
-// the geometry so that a count is checked before the index is decoded.
-std::size_t brick_block_count(const VolumeStreamHeader& h, std::uint32_t grid, std::uint32_t brick) {
+// Code-blocks of a brick of extent `size`, computed from the geometry so that a count is
+// checked before the index is decoded.
+std::size_t block_count_of(const VolumeStreamHeader& h, const Extent& size) {
+  BrickCoding coding;
+  coding.levels = h.levels;
+  coding.block = std::size_t(1) << h.block_log2;
+  return brick_blocks(coding, size).size();
+}
+
+// Code-blocks of brick `brick` of grid `grid` (0 for an index outside the grid). A box grid's
+// bricks tile its box; a sparse-native grid's bricks tile each of its blocks in turn
+// (`block_bricks`, the brick extents listed when its BLKS chunk was read).
+std::size_t brick_block_count(const VolumeStreamHeader& h, std::uint32_t grid, std::uint32_t brick,
+                              const std::vector<Extent>& block_bricks) {
+  if (h.blocked[grid] == 2) return 0;  // opaque grids have no bricks
+  if (h.blocked[grid] == 1) return brick < block_bricks.size() ? block_count_of(h, block_bricks[brick]) : 0;
   const Extent& dims = h.grids[grid].volume.dims;
   const std::size_t edge = std::size_t(1) << h.brick_log2;
   Extent n{}, size{};
@@ -146,23 +177,75 @@ std::size_t brick_block_count(const VolumeStreamHeader& h, std::uint32_t grid, s
   if (brick >= n[0] * n[1] * n[2]) return 0;
   const Extent at{brick % n[0], brick / n[0] % n[1], brick / n[0] / n[1]};
   for (std::size_t a = 0; a < 3; ++a) size[a] = std::min(edge, dims[a] - at[a] * edge);
-  BrickCoding coding;
-  coding.levels = h.levels;
-  coding.block = std::size_t(1) << h.block_log2;
-  return brick_blocks(coding, size).size();
+  return block_count_of(h, size);
 }
 
-BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h) {
+std::array<std::int64_t, 3> get_origin(ByteReader& r) {
+  std::array<std::int64_t, 3> o{};
+  for (std::int64_t& v : o) {
+    v = std::int64_t(get_u64(r));
+    require_stream(v >= kMinCoord && v <= kMaxCoord, "volume stream: coordinate out of range");
+  }
+  return o;
+}
+
+// Blocks, tiles and block voxel states of a sparse-native grid; block voxels count towards
+// total_voxels (the 2^31 cap of all grids).
+BlocksChunk read_blocks(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h,
+                        std::uint32_t& grid, std::size_t& total_voxels) {
+  ByteReader r(payload, "volume blocks");
+  grid = r.u32();
+  require_stream(grid < h.grids.size() && h.blocked[grid] == 1, "volume stream: blocks grid");
+  BlocksChunk c;
+  const std::size_t blocks = r.u32();
+  require_stream(blocks <= r.remaining() / 36, "volume stream: block count");
+  for (std::size_t i = 0; i < blocks; ++i) {
+    VolumeBlock b;
+    b.origin = get_origin(r);
+    std::size_t voxels = 1;
+    for (std::size_t& d : b.volume.dims) {
+      d = r.u32();
+      require_stream(d >= 1 && d <= kMaxVolumeAxis, "volume stream: absurd block dims");
+      voxels *= d;
+    }
+    total_voxels += voxels;
+    require_stream(total_voxels <= kMaxVolumeVoxels,
+                   "volume stream: volume too large (more than 2^31 voxels)");
+    b.volume.type = h.grids[grid].volume.type;
+    b.volume.background = h.grids[grid].volume.background;
+    c.blocks.push_back(std::move(b));
+  }
+  const std::size_t tiles = r.u32();
+  require_stream(tiles <= r.remaining() / 37, "volume stream: tile count");  // 37 bytes per tile
+  for (std::size_t i = 0; i < tiles; ++i) {
+    VolumeTile t;
+    t.origin = get_origin(r);
+    t.edge = r.u32();
+    require_stream(t.edge >= 1 && t.edge <= kMaxVolumeAxis, "volume stream: tile edge");
+    t.value = get_finite(r, "tile value");
+    const std::uint32_t active = r.u8();
+    require_stream(active <= 1, "volume stream: tile state");
+    t.active = active == 1;
+    c.tiles.push_back(t);
+  }
+  c.mask = read_states(r, total_block_voxels(c));
+  require_stream(r.remaining() == 0, "volume stream: trailing bytes in blocks");
+  return c;
+}
+
+BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h,
+                      const std::vector<std::vector<Extent>>& block_bricks) {
   ByteReader r(payload, "volume brick");
   BrickChunk b;
   b.grid = r.u32();
   b.brick = r.u32();
   require_stream(b.grid < h.grids.size(), "volume stream: brick grid");
-  require_stream(brick_block_count(h, b.grid, b.brick) > 0, "volume stream: brick index out of range");
+  const std::size_t geometry_blocks = brick_block_count(h, b.grid, b.brick, block_bricks[b.grid]);
+  require_stream(geometry_blocks > 0, "volume stream: brick index out of range");
   b.base_step = get_finite(r, "base step");
   require_stream(b.base_step > 0.0, "volume stream: base step");
   const std::size_t blocks = r.u32();
-  require_stream(blocks <= kMaxBlocksPerBrick && blocks == brick_block_count(h, b.grid, b.brick),
+  require_stream(blocks <= kMaxBlocksPerBrick && blocks == geometry_blocks,
                  "volume stream: block count does not match the brick geometry");
   b.entries = decode_index(r.bytes(r.u32()), blocks);
   for (const BlockEntry& e : b.entries) b.codewords.push_back(r.bytes(e.length));
@@ -180,8 +263,18 @@ ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, cons
   ParsedVolumeStream s;
   s.header = read_header(head.payload, limits);
   s.masks.resize(s.header.grids.size());
-  std::size_t masks = 0, needed = 0;
-  for (const VolumeGrid& g : s.header.grids) needed += g.volume.is_sparse() ? 1 : 0;
+  s.layouts.resize(s.header.grids.size());
+  s.opaque.resize(s.header.grids.size());
+  std::size_t masks = 0, needed = 0, total_voxels = 0;
+  for (std::size_t g = 0; g < s.header.grids.size(); ++g) {
+    needed += s.header.grids[g].volume.is_sparse() || s.header.blocked[g] ? 1 : 0;
+    if (!s.header.blocked[g]) total_voxels += s.header.grids[g].volume.count();
+  }
+  std::vector<std::uint8_t> seen_layout(s.header.grids.size(), 0);
+  std::vector<std::vector<Extent>> block_bricks(s.header.grids.size());  // of sparse-native grids
+  const std::size_t brick_edge = std::size_t(1) << s.header.brick_log2;
+  s.grid_bytes.assign(s.header.grids.size(), 0);
+  constexpr std::size_t kFraming = 12;  // name, length and CRC of a chunk
   while (!r.at_end()) {
     const Chunk c = r.next();
     if (c.is("MASK")) {
@@ -189,10 +282,37 @@ ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, cons
       MaskChunk m = read_mask(c.payload, s.header, grid);
       require_stream(s.masks[grid].states.empty(), "volume stream: repeated mask");
       s.masks[grid] = std::move(m);
+      s.grid_bytes[grid] += c.payload.size() + kFraming;
+      ++masks;
+    } else if (c.is("BLKS")) {
+      std::uint32_t grid = 0;
+      BlocksChunk b = read_blocks(c.payload, s.header, grid, total_voxels);
+      // Block voxels are allocated on decode: the decode limit covers them as it covers boxes.
+      check_decode_limit(total_voxels, limits, "volume stream: voxels of all grids");
+      require_stream(seen_layout[grid] == 0, "volume stream: repeated blocks");
+      seen_layout[grid] = 1;
+      for (const VolumeBlock& block : b.blocks)
+        for (const BrickBox& box : brick_boxes(block.volume.dims, brick_edge))
+          block_bricks[grid].push_back(box.size);
+      s.layouts[grid] = std::move(b);
+      s.grid_bytes[grid] += c.payload.size() + kFraming;
+      ++masks;
+    } else if (c.is("OPAQ")) {
+      ByteReader op(c.payload, "volume opaque grid");
+      const std::uint32_t grid = op.u32();
+      require_stream(grid < s.header.grids.size() && s.header.blocked[grid] == 2,
+                     "volume stream: opaque grid");
+      require_stream(seen_layout[grid] == 0 && op.remaining() > 0,
+                     "volume stream: repeated or empty opaque grid");
+      seen_layout[grid] = 1;
+      const auto bytes = op.bytes(op.remaining());
+      s.opaque[grid].assign(bytes.begin(), bytes.end());
+      s.grid_bytes[grid] += c.payload.size() + kFraming;
       ++masks;
     } else if (c.is("BRIK")) {
       require_stream(s.bricks.size() < s.header.brick_chunks, "volume stream: too many bricks");
-      s.bricks.push_back(read_brick(c.payload, s.header));
+      s.bricks.push_back(read_brick(c.payload, s.header, block_bricks));
+      s.grid_bytes[s.bricks.back().grid] += c.payload.size() + kFraming;
     } else {
       throw DecodeError("volume stream: unknown chunk " + c.name());
     }

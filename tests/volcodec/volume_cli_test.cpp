@@ -57,7 +57,7 @@ TEST_F(VolumeCli, VdbRoundTripKeepsTopologyAndBackground) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     r = run_cli({"decompress", path("v.pw"), path("out.vdb")});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    const auto a = cli::read_vdb(in), b = cli::read_vdb(path("out.vdb"));
+    const auto a = cli::read_vdb_dense(in), b = cli::read_vdb_dense(path("out.vdb"));
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t g = 0; g < a.size(); ++g) {
       EXPECT_EQ(a[g].name, b[g].name);

@@ -107,7 +107,7 @@ TEST_F(VolumeTest, HugeActiveTileIsRefused) {
   g->setName("huge");
   write_grids({g}, dir_ / "huge.vdb");
   ASSERT_LT(fs::file_size(dir_ / "huge.vdb"), 100000u);
-  expect_has(error_of([&] { cli::read_vdb(dir_ / "huge.vdb"); }), "more than the limit");
+  expect_has(error_of([&] { cli::read_vdb_dense(dir_ / "huge.vdb"); }), "more than the limit");
   expect_lod_rejects(dir_, dir_ / "huge.vdb", "more than the limit");
 }
 

@@ -14,6 +14,7 @@ namespace {
 
 using cli::read_raw_volume;
 using cli::read_vdb;
+using cli::read_vdb_dense;
 using cli::write_raw_volume;
 using cli::write_vdb;
 
@@ -117,7 +118,7 @@ void expect_vdb_round_trip(const fs::path& in, const fs::path& out) {
 TEST_F(VolumeTest, VdbLevelSetAndFogFromOpenVdbTools) {
   expect_vdb_round_trip<openvdb::FloatGrid>(testimage("sphere_ls.vdb"), dir_ / "sphere.vdb");
   expect_vdb_round_trip<openvdb::FloatGrid>(testimage("dodeca_fog.vdb"), dir_ / "fog.vdb");
-  const auto grids = read_vdb(testimage("sphere_ls.vdb"));
+  const auto grids = read_vdb_dense(testimage("sphere_ls.vdb"));
   ASSERT_EQ(grids.size(), 1u);
   EXPECT_EQ(grids[0].grid_class, GridClass::level_set);
   EXPECT_EQ(grids[0].volume.dims, (Extent{63, 63, 63}));
@@ -169,10 +170,14 @@ TEST_F(VolumeTest, VdbNamedGridAndUnsupportedTypes) {
   write_grids({v, f}, dir_ / "mixed.vdb");
   std::vector<std::string> skipped;
   const auto all = read_vdb(dir_ / "mixed.vdb", {}, &skipped);
-  ASSERT_EQ(all.size(), 1u);
+  // The vec3s grid is kept (carried as OpenVDB bytes), never dropped.
+  ASSERT_EQ(all.size(), 2u);  // in OpenVDB's order (by name)
   EXPECT_EQ(all[0].name, "a");
+  EXPECT_FALSE(all[0].is_opaque());
+  EXPECT_EQ(all[1].name, "velocity");
+  EXPECT_TRUE(all[1].is_opaque());
   EXPECT_EQ(skipped, (std::vector<std::string>{"velocity"}));
-  EXPECT_THROW(read_vdb(dir_ / "mixed.vdb", "velocity"), std::runtime_error);
+  EXPECT_TRUE(read_vdb(dir_ / "mixed.vdb", "velocity").at(0).is_opaque());
   try {
     read_vdb(dir_ / "mixed.vdb", "nope");
     FAIL() << "missing grid accepted";
@@ -193,7 +198,7 @@ TEST_F(VolumeTest, VdbDenseAndEmptyGrids) {
   empty.name = "empty";
   empty.volume.background = 2.0;
   write_vdb({dense, empty}, dir_ / "d.vdb");
-  const auto back = read_vdb(dir_ / "d.vdb");
+  const auto back = read_vdb_dense(dir_ / "d.vdb");
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(back[0].origin, dense.origin);
   EXPECT_EQ(back[0].volume.samples, dense.volume.samples);
