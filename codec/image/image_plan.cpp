@@ -1,6 +1,8 @@
 #include "codec/image/image_plan.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -47,6 +49,26 @@ void validate_options(const ImageView& image, const EncodeOptions& o) {
   if (o.mode != RateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   if (o.levels < -1 || o.levels > 32) throw std::invalid_argument("levels must be in [0, 32]");
+  const int most = max_levels(image.width, image.height);
+  if (o.levels > most)
+    throw std::invalid_argument("--levels " + std::to_string(o.levels) + " is more than a " +
+                                std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                " image takes (at most " + std::to_string(most) + ")");
+}
+
+// Targets finer than lossy coding can express (the peak is the image's PSNR peak).
+void check_precision(const ImageView& image, const EncodeOptions& o, double peak) {
+  if (o.mode == RateMode::step && o.target < kFinestStep * peak) {
+    const std::string finest = format_number(kFinestStep * peak);
+    if (is_integer(image.type)) throw TargetRangeError("step finer than " + finest);
+    throw std::invalid_argument("--step " + format_number(o.target) +
+                                " is finer than float samples resolve; the finest step for this image is " +
+                                finest + " (2^-24 of its value range)");
+  }
+  if (o.mode == RateMode::psnr && !is_integer(image.type) && o.target > kMaxFloatPsnr)
+    throw std::invalid_argument("--psnr " + format_number(o.target) +
+                                " dB is beyond the precision of float images; the highest target is " +
+                                format_number(kMaxFloatPsnr) + " dB");
 }
 
 Extent block_log2(const Extent& size) {
@@ -63,6 +85,21 @@ Extent block_log2(const Extent& size) {
 }
 
 }  // namespace
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+int max_levels(std::size_t width, std::size_t height) {
+  // Axes of one sample are not transformed; the shortest other axis limits the levels.
+  std::size_t shortest = width > 1 ? width : height;
+  if (height > 1) shortest = std::min(shortest, height);
+  int levels = 0;
+  for (std::size_t m = shortest; m > 1; m = (m + 1) / 2) ++levels;
+  return levels;
+}
 
 ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   validate_image(image);
@@ -89,6 +126,7 @@ ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   plan.pixels = image.plane_size();
   plan.samples = plan.pixels * image.channels;
   plan.peak = psnr_peak(image);
+  check_precision(image, o, plan.peak);
   plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.measure_psnr = o.measure_psnr;
   plan.source = image;

@@ -3,8 +3,10 @@
 // (max-error), and assembly of the stream.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "codec/error.h"
 #include "codec/rate/quantizer.h"
@@ -19,6 +21,28 @@ namespace {
 // Base steps tried per brick in max-error mode, as multiples of the bound: a coarser step
 // gives fewer coefficient bits but more outliers; the smallest total wins.
 constexpr double kBoundStepFactors[] = {1.25, 1.9, 2.8};
+// Finest bound or step, relative to the largest sample magnitude: coefficients are coded as
+// float magnitudes (24 significant bits), and below this a transform's gain would push
+// indices past float precision and the block coder's range. Refused up front, never mid-way.
+constexpr double kFinestRelativeStep = 1.0 / 1048576.0;
+
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
+// A step or error bound finer than the coder resolves for samples up to `largest` in magnitude.
+void check_precision(const VolumeEncodeOptions& o, double largest) {
+  if (o.mode != VolumeRateMode::max_error && o.mode != VolumeRateMode::step) return;
+  const double finest = kFinestRelativeStep * std::max(largest, 1e-300);
+  if (o.target >= finest) return;
+  const char* what = o.mode == VolumeRateMode::max_error ? "error bound" : "step";
+  throw std::invalid_argument(std::string(what) + " " + number_text(o.target) +
+                              " is finer than the volume coder resolves: the finest " + what +
+                              " for samples up to " + number_text(largest) + " is " + number_text(finest) +
+                              " (2^-20 of the largest magnitude)");
+}
 
 int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) {
   if (v < lo || v > hi || (v & (v - 1)) != 0)
@@ -35,6 +59,7 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
   if (o.mode != VolumeRateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   std::size_t total = 0;
+  double largest = 0.0;
   for (const VolumeGrid& g : grids) {
     const Volume& v = g.volume;
     if (v.count() == 0) throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
@@ -45,12 +70,15 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
     if (v.samples.size() != v.count() || (v.is_sparse() && v.active.size() != v.count()))
       throw std::invalid_argument("volume sample or mask count does not match its dims");
     if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
-    for (double s : v.samples)
+    for (double s : v.samples) {
       if (!std::isfinite(s)) throw EncodeError("volume has non-finite samples (NaN or infinity)");
+      largest = std::max(largest, std::fabs(s));
+    }
     if (o.mode == VolumeRateMode::lossless && !is_integer(v.type))
       throw std::invalid_argument(
           "lossless coding needs integer volumes (u8, u16); use --max-error for float");
   }
+  check_precision(o, largest);
 }
 
 // Voxel states and inactive values of a sparse grid.
