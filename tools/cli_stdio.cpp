@@ -36,6 +36,15 @@ std::string extension_for(const std::string& head) {
 
 }  // namespace
 
+CLI::Validator existing_file_or_stdin() {
+  return CLI::Validator(
+      [](std::string& path) -> std::string {
+        if (is_stdio(path)) return {};
+        return CLI::ExistingFile(path);
+      },
+      "FILE or -");
+}
+
 void add_verbosity_flags(CLI::App& cmd, Verbosity& v) {
   auto* quiet = cmd.add_flag("--quiet,-q", v.quiet, "print nothing but errors");
   cmd.add_flag("--verbose,-v", v.verbose, "print more detail (transform, levels, step, rate mode)")

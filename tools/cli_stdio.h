@@ -31,6 +31,9 @@ struct Verbosity {
   std::FILE* stream() const { return quiet ? nullptr : (to_stderr ? stderr : stdout); }
 };
 
+// An existing file, or "-" for stdin.
+CLI::Validator existing_file_or_stdin();
+
 // Adds --quiet and --verbose to a subcommand.
 void add_verbosity_flags(CLI::App& cmd, Verbosity& v);
 

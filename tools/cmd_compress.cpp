@@ -239,7 +239,7 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("IN", opt->input,
                   "input image (PNG, TIFF, EXR, PNM, ...) or volume (.vdb, raw), or - for stdin")
       ->required()
-      ->check(CLI::ExistingFile | CLI::IsMember({"-"}));
+      ->check(existing_file_or_stdin());
   cmd->add_option("OUT", opt->output, "output .pw file, or - for stdout")->required();
   cmd->add_option("--transform", opt->transform, "transform spec (cdf97, cdf53, pups:..., kobbelt:...)");
   cmd->add_option("--levels", opt->levels,

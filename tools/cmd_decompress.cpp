@@ -99,7 +99,7 @@ void add_decompress_command(CLI::App& app) {
                                  ".vdb (all grids) or raw (dense, stored type)");
   cmd->add_option("IN", opt->input, "input .pw file, or - for stdin")
       ->required()
-      ->check(CLI::ExistingFile | CLI::IsMember({"-"}));
+      ->check(existing_file_or_stdin());
   cmd->add_option("OUT", opt->output,
                   "output image; the format follows the extension; - for stdout (PNG, EXR for float "
                   "images, raw for a volume grid; status then goes to stderr)")
