@@ -47,7 +47,7 @@ CLI::Validator existing_file_or_stdin() {
 
 void add_verbosity_flags(CLI::App& cmd, Verbosity& v) {
   auto* quiet = cmd.add_flag("--quiet,-q", v.quiet, "print nothing but errors");
-  cmd.add_flag("--verbose,-v", v.verbose, "print more detail (transform, levels, step, rate mode)")
+  cmd.add_flag("--verbose,-v", v.verbose, "print more detail (transform, entropy coder, base step)")
       ->excludes(quiet);
 }
 

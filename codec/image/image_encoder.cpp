@@ -393,7 +393,7 @@ EncodeResult encode_capped(const ImageView& image, const EncodeOptions& options)
   // A decoded image that is not exact has a sample off by at least 1: MSE >= 1 / samples. And
   // below an MSE of 1/256 (fewer than 1 sample in 256 off by one) a lossy stream has to code
   // nearly every bit the lossless one does and more (72 dB for 8 bits; on the test photographs
-  // lossless wins from 57-65 dB), so the long lossy search is skipped there.
+  // lossless already wins at 60-65 dB), so the long lossy search is skipped there.
   const double best_inexact = 10.0 * std::log10(peak * peak * std::min(samples, 256.0));
   if (options.mode == RateMode::psnr && options.target > best_inexact) return *encode_exact(image, options);
   std::optional<EncodeResult> lossy;
