@@ -26,7 +26,7 @@ constexpr double kPsnrTolerance = 0.05;
 // The promise to the user: the PSNR reached is at most this far above the target; other base
 // steps are tried when the first cannot keep it.
 constexpr double kPsnrWithin = 0.12;
-constexpr int kMaxBaseShifts = 3;
+constexpr int kMaxBaseShifts = 7;
 // Decodes measured while searching the truncation for a PSNR target, and search steps in all.
 constexpr int kMaxPsnrTrials = 14;
 constexpr int kMaxPsnrSteps = 48;
@@ -289,7 +289,7 @@ bool better(const Trial& a, const std::optional<Trial>& b, double psnr) {
 // Smallest stream whose decoded PSNR reaches the target. The base step starts a little finer
 // than the target error and is refined while even every pass misses the target. Where the
 // truncation points are too coarse to land within kPsnrWithin of the target (very low rates:
-// one pass of a coarse-band block moves tenths of a dB), base steps a quarter octave apart
+// one pass of a coarse-band block moves tenths of a dB), base steps an eighth octave apart
 // shift the bit-planes and so offer other truncation points.
 EncodeResult encode_for_psnr(const ImageView& image, ImagePlan& plan, double psnr) {
   const double target_mse = plan.peak * plan.peak / std::pow(10.0, psnr / 10.0);
@@ -298,7 +298,7 @@ EncodeResult encode_for_psnr(const ImageView& image, ImagePlan& plan, double psn
   std::optional<Trial> best;
   double best_base = first;
   for (int round = 0, shift = 0;;) {
-    const double base = std::max(first * std::pow(4.0, -round) * std::exp2(-0.25 * shift), finest);
+    const double base = std::max(first * std::pow(4.0, -round) * std::exp2(-0.125 * shift), finest);
     set_base_step(plan, base);
     const CodedImage coded = code_blocks(plan);
     auto found = search_psnr(image, plan, coded, psnr, base);
