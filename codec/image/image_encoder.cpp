@@ -314,7 +314,9 @@ EncodeResult encode_for_psnr(const ImageView& image, ImagePlan& plan, double psn
       best = std::move(found);
       best_base = base;
     }
-    if (best->psnr <= psnr + kPsnrWithin || ++shift > kMaxBaseShifts) break;
+    // The first step usually lands close; once it does not, every shift is tried so that the
+    // answer is the smallest close one (consistent from one target to the next).
+    if ((shift == 0 && best->psnr <= psnr + kPsnrWithin) || ++shift > kMaxBaseShifts) break;
   }
   return make_encode_result(image, plan, std::move(best->bytes), best_base, best->psnr);
 }
