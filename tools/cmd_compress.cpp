@@ -9,6 +9,8 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,6 +19,8 @@
 #include "codec/rate/metrics.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
+#include "tools/cli_numbers.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/volume_io.h"
@@ -32,16 +36,39 @@ struct CompressOptions {
   int levels = -1;
   double bpp = 0.0, psnr = 0.0, step = 0.0;
   bool lossless = false;
-  EntropyCoder entropy = EntropyCoder::ebcot;
+  std::string entropy = "ebcot";
   unsigned threads = 0;
   bool report_psnr = false;
   bool keep_nonfinite = false;
-  Transfer transfer = Transfer::log2;
+  std::string transfer = "log";  // --transfer: log or linear
   // volumes
   std::string dims, dtype, grid;
   double bpv = 0.0, max_error = 0.0, max_error_rel = 0.0;
   std::size_t brick = 64;
+  Verbosity verbosity;
 };
+
+EntropyCoder entropy_coder(const std::string& name) {
+  return name == "zstd" ? EntropyCoder::zstd : EntropyCoder::ebcot;
+}
+
+// The input as a readable path: the file itself, or stdin saved to a temporary file ("-").
+struct InputPath {
+  std::optional<StdinFile> spooled;
+  std::string path;
+  explicit InputPath(const std::string& input) : path(input) {
+    if (!is_stdio(input)) return;
+    spooled.emplace();
+    path = spooled->path().string();
+  }
+};
+
+void write_output(const CompressOptions& opt, std::span<const std::uint8_t> bytes) {
+  if (is_stdio(opt.output))
+    write_stdout(bytes);
+  else
+    write_bytes_atomically(opt.output, bytes);
+}
 
 bool is_volume_input(const CompressOptions& opt) { return !opt.dims.empty() || is_vdb_path(opt.input); }
 
@@ -113,7 +140,7 @@ void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& 
 }
 
 void run_compress_volume(const CompressOptions& opt) {
-  if (opt.entropy != EntropyCoder::ebcot) throw std::invalid_argument("--entropy applies to images only");
+  if (opt.entropy != "ebcot") throw std::invalid_argument("--entropy applies to images only");
   const auto grids = read_volume_input(opt);
   VolumeEncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
@@ -123,13 +150,32 @@ void run_compress_volume(const CompressOptions& opt) {
   enc.executor = executor.get();
   set_volume_rate(opt, grids, enc);
   const auto start = std::chrono::steady_clock::now();
-  const VolumeEncodeResult r = encode_volumes(grids, enc);
+  const VolumeEncodeResult r = [&] {
+    ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
+    return encode_volumes(grids, enc);
+  }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_bytes_atomically(opt.output, r.bytes);
-  std::printf(
-      "%s: %zu bytes, %.4f bpv (bits per active voxel), max error %.6g, PSNR %.3f dB, %zu outlier(s), %.3f s "
-      "(%zu grid(s))\n",
-      opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds, grids.size());
+  write_output(opt, r.bytes);
+  std::FILE* status = opt.verbosity.stream();
+  if (status == nullptr) return;
+  std::fprintf(status,
+               "%s: %zu bytes, %.4f bpv (bits per active voxel), max error %.6g, PSNR %.3f dB, %zu "
+               "outlier(s), %.3f s (%zu grid(s))\n",
+               opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds,
+               grids.size());
+}
+
+// Why a rate target gave the lossless stream (EncodeResult::switched_to_lossless).
+std::string lossless_reason(const CompressOptions& opt, const EncodeOptions& enc) {
+  char text[160];
+  if (enc.mode == RateMode::bpp)
+    std::snprintf(text, sizeof text, "the lossless file fits --bpp %.6g", opt.bpp);
+  else if (enc.mode == RateMode::psnr)
+    std::snprintf(text, sizeof text, "no lossy file reaching --psnr %.6g is smaller than the lossless one",
+                  enc.target);
+  else
+    std::snprintf(text, sizeof text, "--step %.6g gives no file smaller than the lossless one", opt.step);
+  return text;
 }
 
 // Turns the mutually exclusive rate flags into the library's mode (default: --psnr 40).
@@ -167,7 +213,7 @@ std::string quality_text(const Image& image, const EncodeResult& r) {
 }
 
 void run_compress(const CompressOptions& opt) {
-  check_output_path(opt.output);
+  if (!is_stdio(opt.output)) check_output_path(opt.output);
   if (is_volume_input(opt)) return run_compress_volume(opt);
   if (opt.bpv > 0.0 || opt.max_error > 0.0 || opt.max_error_rel > 0.0 || !opt.dtype.empty() ||
       !opt.grid.empty())
@@ -177,21 +223,35 @@ void run_compress(const CompressOptions& opt) {
   EncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
-  enc.entropy = opt.entropy;
+  enc.entropy = entropy_coder(opt.entropy);
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
   enc.measure_psnr = opt.report_psnr;
   enc.keep_nonfinite = opt.keep_nonfinite;
-  enc.transfer = opt.transfer;
+  enc.transfer = opt.transfer == "linear" ? Transfer::linear : Transfer::log2;
   set_rate(opt, enc);
   const auto start = std::chrono::steady_clock::now();
-  const EncodeResult r = encode_image(image, enc);
+  const EncodeResult r = [&] {
+    ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
+    return encode_image(image, enc);
+  }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_bytes_atomically(opt.output, r.bytes);
-  const std::string psnr = quality_text(image, r);
-  std::printf("%s: %zu bytes, %.4f bpp%s, %.3f s (%zux%zu, %zu channel(s), %s)\n", opt.output.c_str(),
-              r.bytes.size(), r.bpp, psnr.c_str(), seconds, image.width, image.height, image.channels,
-              to_string(image.type).c_str());
+  write_output(opt, r.bytes);
+  std::FILE* status = opt.verbosity.stream();
+  if (status == nullptr) return;
+  if (r.switched_to_lossless)
+    std::fprintf(status, "pupwave: %s; coded lossless instead\n", lossless_reason(opt, enc).c_str());
+  char psnr[48] = "";  // only when measured
+  if (std::isinf(r.psnr))
+    std::snprintf(psnr, sizeof psnr, ", lossless (PSNR inf)");
+  else if (!std::isnan(r.psnr))
+    std::snprintf(psnr, sizeof psnr, ", PSNR %.3f dB", r.psnr);
+  std::fprintf(status, "%s: %zu bytes, %.4f bpp%s, %.3f s (%zux%zu, %zu channel(s), %s)\n",
+               opt.output.c_str(), r.bytes.size(), r.bpp, psnr, seconds, image.width, image.height,
+               image.channels, to_string(image.type).c_str());
+  if (opt.verbosity.verbose)
+    std::fprintf(status, "  transform %s, %s coder, base step %.6g\n",
+                 r.switched_to_lossless ? "cdf53" : enc.transform.c_str(), opt.entropy.c_str(), r.base_step);
 }
 
 }  // namespace
@@ -202,35 +262,43 @@ void add_compress_command(CLI::App& app) {
       app.add_subcommand("compress",
                          "Compress an image (default: cdf97, --psnr 40) or a volume (.vdb, or raw with "
                          "--dims/--dtype; default: lossless for u8/u16, --max-error-rel 1e-3 for float) "
-                         "to a .pw stream");
-  cmd->add_option("IN", opt->input, "input image (PNG, TIFF, EXR, PNM, ...) or volume (.vdb, raw)")
+                         "to a .pw stream. '-' as IN or OUT is stdin or stdout (status then goes to "
+                         "stderr). For 8/16-bit images no rate target gives a file larger than "
+                         "--lossless: the encoder then codes lossless and says so");
+  cmd->add_option("IN", opt->input,
+                  "input image (PNG, TIFF, EXR, PNM, ...) or volume (.vdb, raw), or - for stdin")
       ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("OUT", opt->output, "output .pw file")->required();
+      ->check(existing_file_or_stdin());
+  cmd->add_option("OUT", opt->output, "output .pw file, or - for stdout")->required();
   cmd->add_option("--transform", opt->transform, "transform spec (cdf97, cdf53, pups:..., kobbelt:...)");
-  cmd->add_option("--levels", opt->levels, "decomposition levels (default: from the image size)")
+  cmd->add_option("--levels", opt->levels,
+                  "decomposition levels (default: from the image size; at most what halves the shortest "
+                  "axis down to one sample)")
       ->check(CLI::Range(0, 32));
   auto* bpp =
-      cmd->add_option("--bpp", opt->bpp, "target bits per pixel (whole file)")->check(CLI::PositiveNumber);
-  auto* psnr =
-      cmd->add_option("--psnr", opt->psnr,
-                      "target PSNR in dB (all channels; log-PSNR for half/float images, see --transfer)")
-          ->check(CLI::PositiveNumber);
-  auto* step = cmd->add_option("--step", opt->step, "fixed quantizer base step (sample units)")
-                   ->check(CLI::PositiveNumber);
+      cmd->add_option("--bpp", opt->bpp, "target bits per pixel (whole file)")->check(positive_number());
+  auto* psnr = cmd->add_option("--psnr", opt->psnr,
+                               "target PSNR in dB (all channels; log-PSNR for half/float images, see "
+                               "--transfer): the smallest file that reaches it (at most "
+                               "0.15 dB above); float images: at most 120 dB")
+                   ->check(positive_number());
+  auto* step = cmd->add_option("--step", opt->step,
+                               "fixed quantizer base step (sample units); float images: at least 2^-24 of "
+                               "the value range")
+                   ->check(positive_number());
   auto* lossless = cmd->add_flag("--lossless", opt->lossless, "bit-exact (cdf53 integer transform, RCT)");
   auto* bpv =
       cmd->add_option("--bpv", opt->bpv,
                       "volumes: target bits per active voxel (whole file; active tiles count their voxels)")
-          ->check(CLI::PositiveNumber);
+          ->check(positive_number());
   auto* max_error =
       cmd->add_option("--max-error", opt->max_error,
                       "float volumes: absolute point-wise error bound E, guaranteed on every active voxel")
-          ->check(CLI::PositiveNumber);
+          ->check(positive_number());
   auto* max_error_rel =
       cmd->add_option("--max-error-rel", opt->max_error_rel,
                       "float volumes: the bound as a fraction R of the value range (E = R * (max - min))")
-          ->check(CLI::PositiveNumber);
+          ->check(positive_number());
   bpp->excludes(psnr, step, lossless, bpv, max_error, max_error_rel);
   psnr->excludes(step, lossless, bpv, max_error, max_error_rel);
   step->excludes(lossless, bpv, max_error, max_error_rel);
@@ -241,23 +309,27 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--dtype", opt->dtype, "raw volume input: u8, u16, f32 or f64 (little endian)");
   cmd->add_option("--grid", opt->grid, ".vdb input: compress only the grids of this name");
   cmd->add_option("--brick", opt->brick, "volumes: brick edge (power of two, 8..256, default 64)");
-  const std::map<std::string, EntropyCoder> coders{{"ebcot", EntropyCoder::ebcot},
-                                                   {"zstd", EntropyCoder::zstd}};
   cmd->add_option("--entropy", opt->entropy, "entropy coder: ebcot (bit-plane, default) or zstd")
-      ->transform(CLI::CheckedTransformer(coders, CLI::ignore_case));
+      ->transform(CLI::IsMember({"ebcot", "zstd"}, CLI::ignore_case));
   cmd->add_flag("--keep-nonfinite", opt->keep_nonfinite,
                 "float images: code NaN and infinite samples exactly in a side list (default: refuse them)");
-  const std::map<std::string, Transfer> transfers{{"log", Transfer::log2}, {"linear", Transfer::linear}};
   cmd->add_option(
          "--transfer", opt->transfer,
          "float images: coding domain, log (default: log2 of the value, --psnr is log-PSNR with peak "
          "1 stop) or linear (--psnr against the value range)")
-      ->transform(CLI::CheckedTransformer(transfers, CLI::ignore_case));
+      ->transform(CLI::IsMember({"log", "linear"}, CLI::ignore_case));
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_flag("--report-psnr", opt->report_psnr,
                 "images: decode the stream in memory and report its PSNR against the input (costs about "
                 "a decode; --psnr targets always report it)");
-  cmd->callback([opt] { run_compress(*opt); });
+  add_verbosity_flags(*cmd, opt->verbosity);
+  cmd->callback([opt] {
+    CompressOptions o = *opt;
+    o.verbosity.to_stderr = is_stdio(o.output);
+    const InputPath in(o.input);
+    o.input = in.path;
+    run_compress(o);
+  });
 }
 
 }  // namespace pupwave::cli

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tools/atomic_file.h"
+#include "tools/cli_numbers.h"
 #include "tools/commands.h"
 #include "tools/volume_io.h"
 
@@ -68,7 +69,7 @@ void add_convert_volume_command(CLI::App& app) {
   cmd->add_option("--grid", opt->grid, "the .vdb grid to convert (default: all)");
   cmd->add_option("--name", opt->name, "grid name for raw input (default: the file's stem)");
   cmd->add_option("--voxel-size", opt->voxel_size, "voxel size for raw input (world units)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->callback([opt] {
     check_output_path(opt->output);
     std::vector<VolumeGrid> grids = read_input(*opt);

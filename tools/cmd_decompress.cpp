@@ -10,6 +10,8 @@
 #include "codec/image/image_codec.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
+#include "tools/cli_numbers.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/volume_io.h"
@@ -25,7 +27,12 @@ struct DecompressOptions {
   unsigned threads = 0;
   std::string grid;
   DecodeLimits limits;  // --max-pixels
+  Verbosity verbosity;
 };
+
+// The extension that picks the format written to stdout: float samples keep their values in
+// EXR, integer ones go to PNG; a volume goes out raw.
+std::string stdout_extension(const Image& image) { return is_integer(image.type) ? ".png" : ".exr"; }
 
 // Grids of a volume stream to .vdb, or one grid (--grid, or the only one) to raw.
 void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions& opt) {
@@ -38,32 +45,51 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
     throw std::invalid_argument("the stream holds " + std::to_string(grids.size()) +
                                 " grids; choose one with --grid NAME for raw output, or write .vdb");
   make_dense_box(grids[0], kMaxVdbBoxVoxels);  // raw output is the dense active bounding box
-  write_raw_volume(grids[0].volume, opt.output);
+  if (!is_stdio(opt.output)) return write_raw_volume(grids[0].volume, opt.output);
+  const ScratchFile scratch(".raw");
+  write_raw_volume(grids[0].volume, scratch.path());
+  write_stdout(read_file_bytes(scratch.path()));
 }
 
 void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
-  auto grids = decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits);
+  auto grids = [&] {
+    ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
+    return decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits);
+  }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_volume_output(grids, opt);
+  std::FILE* status = opt.verbosity.stream();
+  if (status == nullptr) return;
   for (const VolumeGrid& g : grids)
-    std::printf("%s: grid '%s' %zux%zux%zu, %s, decoded in %.3f s\n", opt.output.c_str(), g.name.c_str(),
-                g.volume.dims[0], g.volume.dims[1], g.volume.dims[2], to_string(g.volume.type).c_str(),
-                seconds);
+    std::fprintf(status, "%s: grid '%s' %zux%zux%zu, %s, decoded in %.3f s\n", opt.output.c_str(),
+                 g.name.c_str(), g.volume.dims[0], g.volume.dims[1], g.volume.dims[2],
+                 to_string(g.volume.type).c_str(), seconds);
 }
 
 void run_decompress(const DecompressOptions& opt) {
-  check_output_path(opt.output);
-  const auto bytes = read_file_bytes(opt.input);
+  if (!is_stdio(opt.output)) check_output_path(opt.output);
+  const auto bytes = is_stdio(opt.input) ? read_file_bytes(StdinFile().path()) : read_file_bytes(opt.input);
   if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
   const auto start = std::chrono::steady_clock::now();
-  const Image image = decode_image(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits);
+  const Image image = [&] {
+    ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
+    return decode_image(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits);
+  }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   SampleType stored = image.type;
-  write_image(image, opt.output, &stored);
-  std::printf("%s: %zux%zu, %zu channel(s), %s, decoded in %.3f s\n", opt.output.c_str(), image.width,
-              image.height, image.channels, to_string(stored).c_str(), seconds);
+  if (is_stdio(opt.output)) {
+    const ScratchFile scratch(stdout_extension(image));
+    write_image(image, scratch.path(), &stored);
+    write_stdout(read_file_bytes(scratch.path()));
+  } else {
+    write_image(image, opt.output, &stored);
+  }
+  std::FILE* status = opt.verbosity.stream();
+  if (status == nullptr) return;
+  std::fprintf(status, "%s: %zux%zu, %zu channel(s), %s, decoded in %.3f s\n", opt.output.c_str(),
+               image.width, image.height, image.channels, to_string(stored).c_str(), seconds);
 }
 
 }  // namespace
@@ -73,17 +99,27 @@ void add_decompress_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("decompress",
                                  "Decompress a .pw stream to an image file, or a volume stream to "
                                  ".vdb (all grids) or raw (dense, stored type)");
-  cmd->add_option("IN", opt->input, "input .pw file")->required()->check(CLI::ExistingFile);
-  cmd->add_option("OUT", opt->output, "output image; the format follows the extension")->required();
+  cmd->add_option("IN", opt->input, "input .pw file, or - for stdin")
+      ->required()
+      ->check(existing_file_or_stdin());
+  cmd->add_option("OUT", opt->output,
+                  "output image; the format follows the extension; - for stdout (PNG, EXR for float "
+                  "images, raw for a volume grid; status then goes to stderr)")
+      ->required();
   cmd->add_option("--level", opt->level, "decode at 1/2^k resolution, reading only what it needs")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_option("--grid", opt->grid, "volume streams: only the grids of this name");
   cmd->add_option("--max-pixels", opt->limits.max_pixels,
                   "refuse a stream whose decoded pixels (images, at --level) or voxels (volumes, all grids) "
                   "exceed this (default 2^28)")
       ->check(CLI::PositiveNumber);
-  cmd->callback([opt] { run_decompress(*opt); });
+  add_verbosity_flags(*cmd, opt->verbosity);
+  cmd->callback([opt] {
+    DecompressOptions o = *opt;
+    o.verbosity.to_stderr = is_stdio(o.output);
+    run_decompress(o);
+  });
 }
 
 }  // namespace pupwave::cli

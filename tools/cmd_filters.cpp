@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "tools/cli_numbers.h"
 #include "tools/commands.h"
 #include "tools/filter_bank_json.h"
 #include "tools/filters_report.h"
@@ -102,12 +103,13 @@ void add_design(CLI::App& filters) {
   cmd->add_option("--degree", o->degree, "B-spline degree")->capture_default_str();
   cmd->add_option("--coeffs", o->coeffs, "polynomial coefficients a0 a1 ... (Eq. 32)")->delimiter(',');
   cmd->add_option("--domain", o->domain, "polynomial domain a,b")->delimiter(',')->expected(2);
-  cmd->add_option("--c", o->c, "CINPACT support radius c");
-  cmd->add_option("--sigma", o->sigma, "CINPACT sigma");
+  cmd->add_option("--c", o->c, "CINPACT support radius c")->check(positive_number());
+  cmd->add_option("--sigma", o->sigma, "CINPACT sigma")->check(positive_number());
   cmd->add_flag("--optimize-sigma", o->optimize_sigma, "search the sigma that minimizes E for c");
   cmd->add_option("--samples", o->samples, "samples of the refinement system")->capture_default_str();
   auto* ext = cmd->add_option("--extend", o->extend, "bandwidth extension l (even)");
   cmd->add_option("--threshold", o->threshold, "extend until the orthogonality error is below T")
+      ->check(positive_number())
       ->excludes(ext);
   cmd->add_flag("--json", o->json, "print JSON instead of a table");
   cmd->callback([o] { run_design(*o); });

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "tools/atomic_file.h"
+#include "tools/cli_numbers.h"
 #include "tools/commands.h"
 #include "tools/volume_io.h"
 #include "transforms/separable.h"
@@ -241,7 +242,8 @@ void add_lod_command(CLI::App& app) {
       "(vec3, integer, bool, mask) are copied to OUT unchanged.");
   cmd->add_option("IN", opt->input, "input .vdb")->required();
   cmd->add_option("OUT", opt->output, "output .vdb (written atomically)")->required();
-  cmd->add_option("--levels", opt->levels, "write levels 0..N (same as --range 0-N)");
+  cmd->add_option("--levels", opt->levels, "write levels 0..N (same as --range 0-N)")
+      ->check(non_negative_number());
   cmd->add_option("--range", opt->range, "levels FROM[-TO[:STEP]] as vdb_lod's -range (integers)");
   cmd->add_option("--transform", opt->transform, "wavelet whose low band makes each level (default cdf97)");
   cmd->add_option("--name", opt->names,

@@ -9,6 +9,7 @@
 
 #include "codec/mesh/mesh_codec.h"
 #include "tools/atomic_file.h"
+#include "tools/cli_numbers.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/mesh_io.h"
@@ -183,7 +184,8 @@ void add_mesh_command(CLI::App& app) {
   CLI::App* d = sub(mesh, "decompose", "Multiresolution of a sqrt(3)-structured mesh into a .pwm file", o);
   d->add_option("OUTPUT", o->output, "output .pwm file")->required();
   d->add_option("--levels", o->levels, "reversals")->capture_default_str();
-  d->add_option("--max-error", o->max_error, "quantise so that every vertex moves at most E (Euclidean)");
+  d->add_option("--max-error", o->max_error, "quantise so that every vertex moves at most E (Euclidean)")
+      ->check(positive_number());
   d->callback([o] { run_decompose(*o); });
   CLI::App* r = sub(mesh, "reconstruct", "Mesh of any level of a .pwm file", o);
   r->add_option("OUTPUT", o->output, "output mesh")->required();

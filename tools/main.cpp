@@ -2,6 +2,8 @@
 #include <exception>
 #include <iostream>
 
+#include "tools/cli_errors.h"
+#include "tools/cli_numbers.h"
 #include "tools/commands.h"
 
 int main(int argc, char** argv) {
@@ -20,10 +22,15 @@ int main(int argc, char** argv) {
   pupwave::cli::add_filters_command(app);
   pupwave::cli::add_subdivide_command(app);
   pupwave::cli::add_mesh_command(app);
+  pupwave::cli::require_finite_numbers(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --version
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // Parse errors read and exit like every other error.
+    std::cerr << "pupwave: error: " << pupwave::cli::parse_error_message(app, e) << '\n';
+    return 1;
   } catch (const std::exception& e) {
     // Library and I/O errors carry a complete message; print it and fail.
     std::cerr << "pupwave: error: " << e.what() << '\n';

@@ -53,10 +53,16 @@ struct EncodeResult {
   double base_step = 0.0;  // quantizer base step used (1 for lossless)
   std::string metric = "PSNR";  // what `psnr` measures: "PSNR", or "log-PSNR" for float images coded in log2
   std::size_t nonfinite = 0;    // non-finite samples kept in the side list
+  // An integer image's rate target gave the lossless stream instead: it fit the --bpp budget,
+  // only exact decoding reaches the --psnr target, or a lossy stream would not be smaller.
+  bool switched_to_lossless = false;
 };
 
-// Compresses an image. Throws std::invalid_argument for bad options (unknown transform, a
-// non-reversible transform for lossless, lossless float samples, a non-positive target) and
+// Compresses an image. For integer images no rate target gives a file larger than the
+// lossless one (switched_to_lossless tells). Throws std::invalid_argument for bad options
+// (unknown transform, a non-reversible transform for lossless, lossless float samples, a
+// non-positive or non-finite target, more levels than the image takes, a float image's step
+// below 2^-24 of its value range or PSNR target above 120 dB) and
 // EncodeError for images the format cannot hold (empty, over 2^16 per axis or 2^31 samples,
 // more than 64 channels, non-finite samples unless keep_nonfinite).
 // The image is read through a typed strided view (image_view.h), never copied whole; a view

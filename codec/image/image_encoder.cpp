@@ -1,7 +1,10 @@
 // encode_image with the bit-plane coder: every block is coded once at a fine quantizer step,
 // then rate control picks each block's truncation point by rate-distortion slope (PCRD).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "codec/entropy/block_contexts.h"
@@ -10,6 +13,7 @@
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/transfer.h"
+#include "codec/rate/metrics.h"
 #include "codec/rate/pcrd.h"
 #include "codec/rate/rate_guess.h"
 #include "transforms/separable.h"
@@ -21,7 +25,15 @@ namespace {
 constexpr int kMaxStepRefinements = 4;
 // PSNR targets are met from above within this margin (dB) when possible.
 constexpr double kPsnrTolerance = 0.05;
-constexpr int kMaxPsnrRounds = 6;
+// The promise to the user: the PSNR reached is at most this far above the target; other base
+// steps are tried when the first cannot keep it.
+constexpr double kPsnrWithin = 0.12;
+constexpr int kMaxBaseShifts = 7;
+// Decodes measured while searching the truncation for a PSNR target, and search steps in all.
+constexpr int kMaxPsnrTrials = 14;
+constexpr int kMaxPsnrSteps = 48;
+// Truncations tried between two adjacent slope thresholds (refine_between).
+constexpr int kMaxRefineTrials = 6;
 // Blocks offered leftover budget after the slope bisection.
 constexpr std::size_t kMaxFillCandidates = 64;
 // How much finer than the rate model's step to code, so PCRD has truncation points to choose
@@ -38,19 +50,25 @@ struct CodedImage {
   std::vector<EncodedBlock> blocks;
   std::vector<std::vector<HullPoint>> hulls;
   double initial_distortion = 0.0;  // index units^2, nothing coded
+  bool over_limit = false;          // stopped early: every pass would exceed the byte limit
 };
 
 // Codes every block, one component at a time so only one transformed component is held.
-CodedImage code_blocks(ImagePlan& plan) {
+// Stops early once the blocks with every pass hold more than `byte_limit` bytes (a lossless
+// stream that cannot beat a lossy one costs little this way).
+CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_limits<std::size_t>::max()) {
   CodedImage out;
   out.blocks.resize(plan.blocks.size());
   out.hulls.resize(plan.blocks.size());
-  for (std::size_t c = 0; c < plan.header.channels; ++c) {
+  std::atomic<std::size_t> total{0};
+  std::atomic<bool> over{false};
+  for (std::size_t c = 0; c < plan.header.channels && !over; ++c) {
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
       if (plan.blocks[i].component == c) ids.push_back(i);
     if (plan.coef.size() <= c || plan.coef[c].empty()) transform_component(plan, c);
     plan.executor->run(ids.size(), [&](std::size_t k) {
+      if (over.load(std::memory_order_relaxed)) return;
       const std::size_t i = ids[k];
       std::vector<float> magnitude;
       std::vector<std::uint8_t> negative;
@@ -58,10 +76,13 @@ CodedImage code_blocks(ImagePlan& plan) {
       const CodeBlock& b = plan.blocks[i];
       out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
       out.hulls[i] = rd_hull(out.blocks[i]);
+      const std::size_t full = out.blocks[i].size(out.blocks[i].pass_count());
+      if (total.fetch_add(full) + full > byte_limit) over = true;
     });
     release_component(plan, c);
   }
   release_coefficients(plan);
+  out.over_limit = over;
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
 }
@@ -153,36 +174,153 @@ EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp
   }
 }
 
-// Smallest stream whose decoded PSNR reaches the target: PCRD on the estimated distortion,
-// corrected by measuring the decoded image.
+// One truncation of the coded blocks: every block cut at slope threshold lambda, decoded.
+struct Trial {
+  double lambda = 0.0;
+  std::vector<std::uint8_t> bytes;
+  double psnr = 0.0;  // measured on the decoded stream
+};
+
+Trial trial_at(const ImageView& image, const ImagePlan& plan, const CodedImage& coded, double lambda) {
+  Trial t{lambda, build(plan, coded, passes_at_slope(coded.hulls, lambda)), 0.0};
+  t.psnr = measure_psnr(image, t.bytes, *plan.executor);
+  return t;
+}
+
+// Smallest positive hull slope: the threshold that keeps every pass.
+double lowest_slope(const CodedImage& coded) {
+  double low = std::numeric_limits<double>::infinity();
+  for (const auto& h : coded.hulls)
+    if (!h.empty() && h.back().slope > 0.0) low = std::min(low, h.back().slope);
+  return std::isfinite(low) ? low : 1e-12;
+}
+
+// Next threshold to try between `ok` (reaches the target) and `fail` (misses it). Near the
+// target the MSE is about proportional to lambda (high-rate theory), so log lambda is about
+// linear in dB: interpolate, aiming a little above the target, kept inside the middle of the
+// bracket so it always shrinks.
+double next_lambda(const Trial& ok, const std::optional<Trial>& fail, double target) {
+  const double aim = target + 0.4 * kPsnrTolerance;
+  const double per_db = std::log(10.0) / 10.0;  // d(log lambda) / d(-dB)
+  if (!fail) return ok.lambda * std::exp(per_db * std::min(ok.psnr - aim, 30.0));
+  const double lo = std::log(ok.lambda), hi = std::log(fail->lambda);
+  double x = 0.5 * (lo + hi);
+  if (std::isfinite(ok.psnr) && ok.psnr > fail->psnr)
+    x = lo + (hi - lo) * (ok.psnr - aim) / (ok.psnr - fail->psnr);
+  else if (!std::isfinite(ok.psnr))
+    x = hi - per_db * (aim - fail->psnr);
+  return std::exp(std::clamp(x, lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo)));
+}
+
+// Adjacent slope thresholds can differ by a hull point spanning several passes of one block,
+// a step of tenths of a dB at low rates. From the truncation that misses the target, raise
+// one differing block to each pass count up to ok's, and keep the smallest that reaches it.
+void refine_between(const ImageView& image, const ImagePlan& plan, const CodedImage& coded, double psnr,
+                    Trial& ok, const Trial& fail) {
+  const auto high = passes_at_slope(coded.hulls, ok.lambda);
+  const auto low = passes_at_slope(coded.hulls, fail.lambda);
+  std::vector<std::pair<std::size_t, std::vector<int>>> options;  // (stream size, passes)
+  for (std::size_t i = 0; i < low.size(); ++i)
+    for (int p = low[i] + 1; p <= high[i]; ++p) {
+      auto passes = low;
+      passes[i] = p;
+      const std::size_t size = stream_size(plan, coded, passes);
+      if (size < ok.bytes.size()) options.emplace_back(size, std::move(passes));
+    }
+  std::sort(options.begin(), options.end());
+  int tried = 0;
+  for (const auto& [size, passes] : options) {
+    if (tried++ == kMaxRefineTrials) break;
+    auto bytes = build(plan, coded, passes);
+    const double got = measure_psnr(image, bytes, *plan.executor);
+    if (got < psnr) continue;
+    ok.bytes = std::move(bytes);
+    ok.psnr = got;
+    return;
+  }
+}
+
+// Smallest truncation of `coded` whose decoded PSNR reaches the target: a bracketed search on
+// the slope threshold, seeded by PCRD on the estimated distortion and steered by measuring the
+// decoded image. Every truncation tried is remembered as reaching the target or not, so the
+// answer always reaches it. Nullopt when even every pass misses the target (step too coarse).
+std::optional<Trial> search_psnr(const ImageView& image, const ImagePlan& plan, const CodedImage& coded,
+                                 double psnr, double base) {
+  Trial ok = trial_at(image, plan, coded, lowest_slope(coded));
+  if (!(ok.psnr >= psnr)) return std::nullopt;
+  std::optional<Trial> fail;
+  const double target_mse = plan.peak * plan.peak / std::pow(10.0, psnr / 10.0);
+  const double allowed = target_mse * double(plan.samples) / (base * base);
+  double lambda = slope_threshold(coded.hulls, false, [&](const std::vector<int>& p) {
+    return remaining_distortion(coded, p) <= allowed;
+  });
+  int trials = 0;
+  for (int k = 0; k < kMaxPsnrSteps && trials < kMaxPsnrTrials && ok.psnr > psnr + kPsnrTolerance; ++k) {
+    if (k > 0 || !(lambda > ok.lambda) || (fail && !(lambda < fail->lambda)))
+      lambda = trials % 2 == 1 && fail ? std::sqrt(ok.lambda * fail->lambda) : next_lambda(ok, fail, psnr);
+    const auto passes = passes_at_slope(coded.hulls, lambda);
+    // No block changes between the bracket's ends: ok is the last truncation that reaches the target.
+    if (passes == passes_at_slope(coded.hulls, ok.lambda)) {
+      ok.lambda = lambda;
+      continue;
+    }
+    if (fail && passes == passes_at_slope(coded.hulls, fail->lambda)) {
+      fail->lambda = lambda;
+      continue;
+    }
+    Trial t = trial_at(image, plan, coded, lambda);
+    ++trials;
+    if (t.psnr >= psnr)
+      ok = std::move(t);
+    else
+      fail = std::move(t);
+  }
+  if (fail && ok.psnr > psnr + kPsnrTolerance) refine_between(image, plan, coded, psnr, ok, *fail);
+  return ok;
+}
+
+// Whether trial `a` is a better answer than `b` for the target: within kPsnrWithin of the
+// target first, then the fewer bytes.
+bool better(const Trial& a, const std::optional<Trial>& b, double psnr) {
+  if (!b) return true;
+  const bool a_close = a.psnr <= psnr + kPsnrWithin, b_close = b->psnr <= psnr + kPsnrWithin;
+  if (a_close != b_close) return a_close;
+  return a.bytes.size() < b->bytes.size();
+}
+
+// Smallest stream whose decoded PSNR reaches the target. The base step starts a little finer
+// than the target error and is refined while even every pass misses the target. Where the
+// truncation points are too coarse to land within kPsnrWithin of the target (very low rates:
+// one pass of a coarse-band block moves tenths of a dB), base steps an eighth octave apart
+// shift the bit-planes and so offer other truncation points.
 EncodeResult encode_for_psnr(const ImageView& image, ImagePlan& plan, double psnr) {
   const double target_mse = plan.peak * plan.peak / std::pow(10.0, psnr / 10.0);
-  double base = 0.3 * std::sqrt(target_mse);
-  for (int round = 0;; ++round, base /= 4.0) {
+  const double finest = kFinestStep * plan.peak;
+  const double first = std::max(0.3 * std::sqrt(target_mse), finest);
+  std::optional<Trial> best;
+  double best_base = first;
+  for (int round = 0, shift = 0;;) {
+    const double base = std::max(first * std::pow(4.0, -round) * std::exp2(-0.125 * shift), finest);
     set_base_step(plan, base);
     const CodedImage coded = code_blocks(plan);
-    double allowed = target_mse * double(plan.samples) / (base * base);
-    std::vector<std::uint8_t> best;
-    double best_psnr = 0.0;
-    for (int k = 0; k < kMaxPsnrRounds; ++k) {
-      const auto passes = allocate_by_slope(coded.hulls, false, [&](const std::vector<int>& p) {
-        return remaining_distortion(coded, p) <= allowed;
-      });
-      auto bytes = build(plan, coded, passes);
-      const double got = measure_psnr(image, bytes, *plan.executor);
-      if (got >= psnr && (best.empty() || bytes.size() < best.size())) {
-        best = bytes;
-        best_psnr = got;
+    auto found = search_psnr(image, plan, coded, psnr, base);
+    if (!found) {
+      if (round < kMaxStepRefinements && base > finest) {
+        ++round;
+        continue;
       }
-      if (got >= psnr && got <= psnr + kPsnrTolerance) break;
-      const double got_mse = target_mse * std::pow(10.0, (psnr - got) / 10.0);
-      allowed *= std::isfinite(got) ? target_mse / got_mse : 2.0;
+      if (best) break;
+      throw TargetRangeError("PSNR " + format_number(psnr) + " dB is beyond the precision of lossy coding");
     }
-    if (!best.empty() || round >= kMaxStepRefinements) {
-      if (best.empty()) return make_encode_result(image, plan, build(plan, coded, all_passes(coded)), base);
-      return make_encode_result(image, plan, std::move(best), base, best_psnr);
+    if (better(*found, best, psnr)) {
+      best = std::move(found);
+      best_base = base;
     }
+    // The first step usually lands close; once it does not, every shift is tried so that the
+    // answer is the smallest close one (consistent from one target to the next).
+    if ((shift == 0 && best->psnr <= psnr + kPsnrWithin) || ++shift > kMaxBaseShifts) break;
   }
+  return make_encode_result(image, plan, std::move(best->bytes), best_base, best->psnr);
 }
 
 // What the stream records about the coded domain of a float image (transfer.h).
@@ -233,10 +371,67 @@ EncodeResult encode_in_domain(const ImageView& image, const EncodeOptions& optio
   }
 }
 
+// The lossless stream of an integer image (caller's levels and entropy coder), if it holds at
+// most `byte_limit` bytes.
+std::optional<EncodeResult> encode_exact(const ImageView& image, const EncodeOptions& options,
+                                         std::size_t byte_limit = std::numeric_limits<std::size_t>::max()) {
+  EncodeOptions exact = options;
+  exact.mode = RateMode::lossless;
+  exact.transform = "cdf53";
+  exact.target = 0.0;
+  exact.measure_psnr = false;
+  ImagePlan plan = plan_image(image, exact);
+  EncodeResult r;
+  if (exact.entropy == EntropyCoder::zstd) {
+    r = encode_zstd(image, plan, exact);
+  } else {
+    const CodedImage coded = code_blocks(plan, byte_limit);
+    if (coded.over_limit) return std::nullopt;
+    r = make_encode_result(image, plan, build(plan, coded, all_passes(coded)), 1.0);
+  }
+  if (r.bytes.size() > byte_limit) return std::nullopt;
+  r.psnr = std::numeric_limits<double>::infinity();
+  r.switched_to_lossless = true;
+  return r;
+}
+
+// Integer images have an exact stream of finite size and infinite PSNR, so no rate target
+// should give a larger file: a budget it fits, a PSNR only exact decoding reaches, or a lossy
+// stream at least as large all give the lossless stream instead.
+EncodeResult encode_capped(const ImageView& image, const EncodeOptions& options) {
+  if (options.mode == RateMode::bpp) {
+    const double bytes = std::floor(options.target * double(image.plane_size()) / 8.0);
+    const std::size_t budget = bytes < 1e18 ? std::size_t(bytes) : std::numeric_limits<std::size_t>::max();
+    if (auto exact = encode_exact(image, options, budget)) return std::move(*exact);
+    return encode_in_domain(image, options, CodedDomain{});
+  }
+  const double peak = psnr_peak(image);
+  const double samples = double(image.plane_size() * image.channels);
+  // A decoded image that is not exact has a sample off by at least 1: MSE >= 1 / samples. And
+  // below an MSE of 1/256 (fewer than 1 sample in 256 off by one) a lossy stream has to code
+  // nearly every bit the lossless one does and more (72 dB for 8 bits; on the test photographs
+  // lossless already wins at 60-65 dB), so the long lossy search is skipped there.
+  const double best_inexact = 10.0 * std::log10(peak * peak * std::min(samples, 256.0));
+  if (options.mode == RateMode::psnr && options.target > best_inexact) return *encode_exact(image, options);
+  std::optional<EncodeResult> lossy;
+  try {
+    lossy = encode_in_domain(image, options, CodedDomain{});
+  } catch (const TargetRangeError&) {
+    return *encode_exact(image, options);  // finer than lossy coding can go: exact is the answer
+  }
+  if (auto exact = encode_exact(image, options, lossy->bytes.size())) return std::move(*exact);
+  return std::move(*lossy);
+}
+
 }  // namespace
 
 EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) {
-  if (is_integer(image.type)) return encode_in_domain(image, options, CodedDomain{});
+  if (options.mode != RateMode::lossless && !(options.target > 0.0 && std::isfinite(options.target)))
+    throw std::invalid_argument("rate target must be positive and finite");
+  if (is_integer(image.type)) {
+    if (options.mode != RateMode::lossless) return encode_capped(image, options);
+    return encode_in_domain(image, options, CodedDomain{});
+  }
   // Float images are coded in the transfer domain, from a copy (non-finite samples taken out).
   check_view(image);
   if (image.channels > kMaxChannels || image.width > kMaxAxisExtent || image.height > kMaxAxisExtent ||

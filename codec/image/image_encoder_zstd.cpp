@@ -74,6 +74,11 @@ EncodeResult encode_zstd(const ImageView& image, ImagePlan& plan, const EncodeOp
     });
   }
   release_coefficients(plan);
+  // A PSNR target reports the PSNR it reached, as the bit-plane path does.
+  if (options.mode == RateMode::psnr) {
+    const double reached = measure_psnr(image, bytes, *plan.executor);
+    return make_encode_result(image, plan, std::move(bytes), base, reached);
+  }
   return make_encode_result(image, plan, std::move(bytes), base);
 }
 

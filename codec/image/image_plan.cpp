@@ -1,6 +1,8 @@
 #include "codec/image/image_plan.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -51,6 +53,11 @@ void validate_options(const ImageView& image, const EncodeOptions& o) {
   if (o.metadata && !o.metadata->channel_names.empty() && o.metadata->channel_names.size() != image.channels)
     throw std::invalid_argument("metadata names " + std::to_string(o.metadata->channel_names.size()) +
                                 " channels for an image of " + std::to_string(image.channels));
+  const int most = max_levels(image.width, image.height);
+  if (o.levels > most)
+    throw std::invalid_argument("--levels " + std::to_string(o.levels) + " is more than a " +
+                                std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                " image takes (at most " + std::to_string(most) + ")");
 }
 
 // The colour transform decorrelates R, G, B: images of 3 or 4 channels, or more channels of
@@ -60,6 +67,21 @@ ColourTransform colour_of(const ImageView& image, const EncodeOptions& o, bool r
   const auto* names = o.metadata ? &o.metadata->channel_names : nullptr;
   const bool rgb = names && !names->empty() && (*names)[0] == "R" && (*names)[1] == "G" && (*names)[2] == "B";
   return rgb ? colour_for(3, reversible) : ColourTransform::none;
+}
+
+// Targets finer than lossy coding can express (the peak is the image's PSNR peak).
+void check_precision(const ImageView& image, const EncodeOptions& o, double peak) {
+  if (o.mode == RateMode::step && o.target < kFinestStep * peak) {
+    const std::string finest = format_number(kFinestStep * peak);
+    if (is_integer(image.type)) throw TargetRangeError("step finer than " + finest);
+    throw std::invalid_argument("--step " + format_number(o.target) +
+                                " is finer than float samples resolve; the finest step for this image is " +
+                                finest + " (2^-24 of its value range)");
+  }
+  if (o.mode == RateMode::psnr && !is_integer(image.type) && o.target > kMaxFloatPsnr)
+    throw std::invalid_argument("--psnr " + format_number(o.target) +
+                                " dB is beyond the precision of float images; the highest target is " +
+                                format_number(kMaxFloatPsnr) + " dB");
 }
 
 Extent block_log2(const Extent& size) {
@@ -76,6 +98,21 @@ Extent block_log2(const Extent& size) {
 }
 
 }  // namespace
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+int max_levels(std::size_t width, std::size_t height) {
+  // Axes of one sample are not transformed; the shortest other axis limits the levels.
+  std::size_t shortest = width > 1 ? width : height;
+  if (height > 1) shortest = std::min(shortest, height);
+  int levels = 0;
+  for (std::size_t m = shortest; m > 1; m = (m + 1) / 2) ++levels;
+  return levels;
+}
 
 ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   validate_image(image);
@@ -104,6 +141,7 @@ ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   plan.pixels = image.plane_size();
   plan.samples = plan.pixels * image.channels;
   plan.peak = psnr_peak(image);
+  check_precision(image, o, plan.peak);
   plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.measure_psnr = o.measure_psnr;
   plan.source = image;

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "codec/entropy/codeblocks.h"
@@ -14,6 +16,25 @@
 #include "transforms/spec.h"
 
 namespace pupwave {
+
+// Finest quantizer base step, relative to the PSNR peak: float samples hold 24 significant
+// bits, so a finer step only codes rounding noise (and integer images are exact far above it).
+inline constexpr double kFinestStep = 1.0 / 16777216.0;
+// Highest PSNR target for float images: the float transform's own rounding sits not far above.
+inline constexpr double kMaxFloatPsnr = 120.0;
+
+// A rate target finer than lossy coding can reach; integer images switch to lossless instead.
+class TargetRangeError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// A number for messages, in the shortest form that reads back the same (%.6g).
+std::string format_number(double value);
+
+// The most decomposition levels an image of these dimensions takes: levels beyond the point
+// where the shortest transformed axis is one sample only rescale it and wreck the quality.
+int max_levels(std::size_t width, std::size_t height);
 
 struct ImagePlan {
   StreamHeader header;

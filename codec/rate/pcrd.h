@@ -31,34 +31,37 @@ int passes_at_slope(const std::vector<HullPoint>& hull, double lambda);
 // Per-block passes at one threshold.
 std::vector<int> passes_at_slope(const std::vector<std::vector<HullPoint>>& hulls, double lambda);
 
-// Chooses the per-block passes at the threshold where `accept(passes)` changes, by bisection
+// The slope threshold where `accept(passes_at_slope(hulls, lambda))` changes, by bisection
 // on log lambda. accept must be monotone in lambda: with `accept_high` (a size budget) it
 // holds for large lambda and the smallest accepted lambda is returned (most bytes that fit);
 // otherwise (a distortion target) it holds for small lambda and the largest accepted lambda
-// is returned (fewest bytes that suffice). Falls back to no passes / all passes when nothing
-// is accepted.
+// is returned (fewest bytes that suffice). Falls back to the threshold of no passes / all
+// passes (0) when nothing is accepted.
 template <class Accept>
-std::vector<int> allocate_by_slope(const std::vector<std::vector<HullPoint>>& hulls, bool accept_high,
-                                   Accept&& accept) {
+double slope_threshold(const std::vector<std::vector<HullPoint>>& hulls, bool accept_high, Accept&& accept) {
   double lo = 1e-12, hi = 1e12;  // lambda in index-units^2 per byte
   for (const auto& h : hulls)
     if (!h.empty() && std::isfinite(h.front().slope)) hi = std::max(hi, h.front().slope * 2.0);
-  std::vector<int> none = passes_at_slope(hulls, hi);
-  std::vector<int> all = passes_at_slope(hulls, 0.0);
-  if (accept_high ? accept(all) : !accept(all)) return all;
-  if (accept_high ? !accept(none) : accept(none)) return none;
-  std::vector<int> best = accept_high ? none : all;
+  if (accept_high ? accept(passes_at_slope(hulls, 0.0)) : !accept(passes_at_slope(hulls, 0.0))) return 0.0;
+  if (accept_high ? !accept(passes_at_slope(hulls, hi)) : accept(passes_at_slope(hulls, hi))) return hi;
+  double best = accept_high ? hi : 0.0;
   for (int iter = 0; iter < 64 && hi / lo > 1.0 + 1e-7; ++iter) {
     const double mid = std::sqrt(lo * hi);
-    auto choice = passes_at_slope(hulls, mid);
-    const bool ok = accept(choice);
-    if (ok) best = choice;
+    const bool ok = accept(passes_at_slope(hulls, mid));
+    if (ok) best = mid;
     if (ok == accept_high)
       hi = mid;
     else
       lo = mid;
   }
   return best;
+}
+
+// The per-block passes at slope_threshold(hulls, accept_high, accept).
+template <class Accept>
+std::vector<int> allocate_by_slope(const std::vector<std::vector<HullPoint>>& hulls, bool accept_high,
+                                   Accept&& accept) {
+  return passes_at_slope(hulls, slope_threshold(hulls, accept_high, accept));
 }
 
 }  // namespace pupwave

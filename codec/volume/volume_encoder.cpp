@@ -3,8 +3,10 @@
 // (max-error), and assembly of the stream.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "codec/error.h"
 #include "codec/rate/quantizer.h"
@@ -19,6 +21,28 @@ namespace {
 // Base steps tried per brick in max-error mode, as multiples of the bound: a coarser step
 // gives fewer coefficient bits but more outliers; the smallest total wins.
 constexpr double kBoundStepFactors[] = {1.25, 1.9, 2.8};
+// Finest bound or step, relative to the largest sample magnitude: coefficients are coded as
+// float magnitudes (24 significant bits), and below this a transform's gain would push
+// indices past float precision and the block coder's range. Refused up front, never mid-way.
+constexpr double kFinestRelativeStep = 1.0 / 1048576.0;
+
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
+// A step or error bound finer than the coder resolves for samples up to `largest` in magnitude.
+void check_precision(const VolumeEncodeOptions& o, double largest) {
+  if (o.mode != VolumeRateMode::max_error && o.mode != VolumeRateMode::step) return;
+  const double finest = kFinestRelativeStep * std::max(largest, 1e-300);
+  if (o.target >= finest) return;
+  const char* what = o.mode == VolumeRateMode::max_error ? "error bound" : "step";
+  throw std::invalid_argument(std::string(what) + " " + number_text(o.target) +
+                              " is finer than the volume coder resolves: the finest " + what +
+                              " for samples up to " + number_text(largest) + " is " + number_text(finest) +
+                              " (2^-20 of the largest magnitude)");
+}
 
 int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) {
   if (v < lo || v > hi || (v & (v - 1)) != 0)
@@ -31,15 +55,20 @@ int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) 
 
 // Dims, sizes and finiteness of one dense box (a box grid or a block); `total` is the running
 // voxel count of all grids.
-void validate_volume(const Volume& v, std::size_t total) {
+// Checks one dense box; returns its largest |sample| (for the precision check).
+double validate_volume(const Volume& v, std::size_t total) {
   for (std::size_t d : v.dims)
     if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
   if (total > kMaxVolumeVoxels) throw EncodeError("volumes exceed 2^31 voxels");
   if (v.samples.size() != v.count() || (v.is_sparse() && v.active.size() != v.count()))
     throw std::invalid_argument("volume sample or mask count does not match its dims");
   if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
-  for (double s : v.samples)
+  double largest = 0.0;
+  for (double s : v.samples) {
     if (!std::isfinite(s)) throw EncodeError("volume has non-finite samples (NaN or infinity)");
+    largest = std::max(largest, std::fabs(s));
+  }
+  return largest;
 }
 
 // Coordinates of blocks and tiles must stay in OpenVDB's 32-bit index range.
@@ -47,7 +76,9 @@ bool in_coord_range(std::int64_t o, std::int64_t extent) {
   return o >= -(std::int64_t(1) << 31) && o + extent <= (std::int64_t(1) << 31);
 }
 
-void validate_blocked(const VolumeGrid& g, std::size_t& total) {
+// Checks a sparse-native grid; returns its largest |sample| or |tile value|.
+double validate_blocked(const VolumeGrid& g, std::size_t& total) {
+  double largest = 0.0;
   if (g.active_voxels() == 0)
     throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
   for (std::size_t d : g.volume.dims)
@@ -55,7 +86,7 @@ void validate_blocked(const VolumeGrid& g, std::size_t& total) {
       throw EncodeError("grid '" + g.name + "' bounding box must be in [1, 2^20] per axis");
   for (const VolumeBlock& b : g.blocks) {
     total += b.volume.count();
-    validate_volume(b.volume, total);
+    largest = std::max(largest, validate_volume(b.volume, total));
     if (b.volume.type != g.volume.type || b.volume.background != g.volume.background)
       throw std::invalid_argument("grid '" + g.name + "': block type or background differs from the grid's");
     for (std::size_t a = 0; a < 3; ++a)
@@ -69,6 +100,7 @@ void validate_blocked(const VolumeGrid& g, std::size_t& total) {
     for (std::size_t a = 0; a < 3; ++a)
       if (!in_coord_range(t.origin[a], t.edge))
         throw EncodeError("grid '" + g.name + "': tile outside the 32-bit index range");
+    largest = std::max(largest, std::fabs(t.value));
   }
 }
 
@@ -78,20 +110,22 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
   if (o.mode != VolumeRateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   std::size_t total = 0;
+  double largest = 0.0;
   for (const VolumeGrid& g : grids) {
     if (g.is_opaque()) continue;  // carried verbatim
     if (g.is_blocked()) {
-      validate_blocked(g, total);
+      largest = std::max(largest, validate_blocked(g, total));
     } else {
       if (g.volume.count() == 0)
         throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
       total += g.volume.count();
-      validate_volume(g.volume, total);
+      largest = std::max(largest, validate_volume(g.volume, total));
     }
     if (o.mode == VolumeRateMode::lossless && !is_integer(g.volume.type))
       throw std::invalid_argument(
           "lossless coding needs integer volumes (u8, u16); use --max-error for float");
   }
+  check_precision(o, largest);
 }
 
 // Voxel states and inactive values of a sparse grid (appended to m).

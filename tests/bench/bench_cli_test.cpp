@@ -230,5 +230,23 @@ TEST_F(BenchCli, CoarseRunWritesItsTable) {
       std::string::npos);
 }
 
+// A custom spec's own commas (inside its parentheses) do not split the --transforms list, in
+// both experiments (issue 12).
+TEST_F(BenchCli, CustomSpecWithCommasIsOneTransform) {
+  const std::string custom = "pups:cinpact(c=3,sigma=7.27,l=14)";
+  const CliRun coarse = run_cli({"bench", "coarse", "--images", image_.string(), "--transforms",
+                                 "cdf97," + custom, "--levels", "1", "--out", (dir_ / "coarse").string()},
+                                dir_ / "log.txt", environment_path());
+  ASSERT_EQ(coarse.exit_code, 0) << coarse.output;
+  const auto rows = read_csv(dir_ / "coarse" / "coarse.csv");
+  ASSERT_EQ(rows.size(), 1u + 2);  // header, cdf97, the custom bank
+  EXPECT_NE(read_text(dir_ / "coarse" / "coarse.csv").find("cinpact"), std::string::npos);
+  const CliRun rd = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf97," + custom,
+                             "--bpp", "1", "--anchors", "none", "--out", (dir_ / "rd").string()},
+                            dir_ / "log2.txt", environment_path());
+  ASSERT_EQ(rd.exit_code, 0) << rd.output;
+  EXPECT_NE(read_text(dir_ / "rd" / "summary.md").find("pups:cinpact"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace pupwave::bench

@@ -12,11 +12,12 @@ namespace pupwave {
 namespace {
 
 TEST(UnstableBank, DefaultLevelsFallBackInsteadOfFailing) {
-  const Image img = testing::synthetic_image(256, 256, 1, SampleType::u8);
+  // Float samples: an integer image at so fine a step would be coded lossless instead (issue 12).
+  const Image img = testing::synthetic_image(256, 256, 1, SampleType::f32);
   EncodeOptions o;
   o.transform = "pups:cinpact-c3";
   o.mode = RateMode::step;  // a fine step: near-lossless indices overflow after the coarse band grows
-  o.target = 0.01;
+  o.target = 0.01 / 255.0;
   const int full = default_levels({256, 256, 1});
   o.levels = full;
   EXPECT_THROW(encode_image(img, o), IndexRangeError);  // the bank really overflows at full depth
