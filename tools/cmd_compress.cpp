@@ -241,13 +241,10 @@ void run_compress(const CompressOptions& opt) {
   if (status == nullptr) return;
   if (r.switched_to_lossless)
     std::fprintf(status, "pupwave: %s; coded lossless instead\n", lossless_reason(opt, enc).c_str());
-  char psnr[48] = "";  // only when measured
-  if (std::isinf(r.psnr))
-    std::snprintf(psnr, sizeof psnr, ", lossless (PSNR inf)");
-  else if (!std::isnan(r.psnr))
-    std::snprintf(psnr, sizeof psnr, ", PSNR %.3f dB", r.psnr);
+  // Only when measured; float images name their metric (log-PSNR) beside ordinary PSNR.
+  const std::string psnr = std::isinf(r.psnr) ? std::string(", lossless (PSNR inf)") : quality_text(image, r);
   std::fprintf(status, "%s: %zu bytes, %.4f bpp%s, %.3f s (%zux%zu, %zu channel(s), %s)\n",
-               opt.output.c_str(), r.bytes.size(), r.bpp, psnr, seconds, image.width, image.height,
+               opt.output.c_str(), r.bytes.size(), r.bpp, psnr.c_str(), seconds, image.width, image.height,
                image.channels, to_string(image.type).c_str());
   if (opt.verbosity.verbose)
     std::fprintf(status, "  transform %s, %s coder, base step %.6g\n",

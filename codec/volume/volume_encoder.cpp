@@ -102,6 +102,7 @@ double validate_blocked(const VolumeGrid& g, std::size_t& total) {
         throw EncodeError("grid '" + g.name + "': tile outside the 32-bit index range");
     largest = std::max(largest, std::fabs(t.value));
   }
+  return largest;
 }
 
 void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o) {

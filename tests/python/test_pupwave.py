@@ -158,7 +158,7 @@ def test_bad_arguments_raise(wmag):
     with pytest.raises(ValueError):
         pupwave.compress(np.zeros((0, 5), np.uint8))
     with pytest.raises(ValueError, match="channel"):
-        pupwave.compress(np.zeros((8, 8, 5), np.uint8))
+        pupwave.compress(np.zeros((8, 8, 65), np.uint8))  # at most 64 channels
     with pytest.raises(ValueError, match="at most one"):
         pupwave.compress(good, bpp=1, psnr=30)
     for kwargs in [{"bpp": -1}, {"psnr": 0}, {"step": float("nan")}, {"bpp": float("inf")}, {"levels": 99},
