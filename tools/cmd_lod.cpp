@@ -82,9 +82,53 @@ struct Pyramid {
   std::array<std::vector<double>, 3> gain;  // 1-D coarse-band response to a constant, per axis
 };
 
+// What the padding around a grid's box holds (--edge).
+enum class LodEdge { automatic, symmetric, background };
+
+// Whole-sample symmetric reflection of offset d (any integer) into [0, n): the extension the
+// CDF banks use at the ends of a line.
+std::int64_t reflect(std::int64_t d, std::int64_t n) {
+  if (n == 1) return 0;
+  const std::int64_t period = 2 * (n - 1);
+  d %= period;
+  if (d < 0) d += period;
+  return d < n ? d : period - d;
+}
+
+// Fills the padding of p (everything outside the box of `n` voxels at `shift`) by symmetric
+// extension of the box, axis by axis, so the corners are filled too.
+void extend_symmetrically(Pyramid& p, const std::array<std::int64_t, 3>& shift, const Extent& n) {
+  const Extent& d = p.dims;
+  auto at = [&](std::size_t x, std::size_t y, std::size_t z) -> double& {
+    return p.values[x + d[0] * (y + d[1] * z)];
+  };
+  auto inside = [&](std::size_t axis, std::size_t i) {
+    return std::int64_t(i) >= shift[axis] && std::int64_t(i) < shift[axis] + std::int64_t(n[axis]);
+  };
+  auto source = [&](std::size_t axis, std::size_t i) {
+    return std::size_t(shift[axis] + reflect(std::int64_t(i) - shift[axis], std::int64_t(n[axis])));
+  };
+  for (std::size_t z = 0; z < d[2]; ++z)
+    for (std::size_t y = 0; y < d[1]; ++y)
+      for (std::size_t x = 0; x < d[0]; ++x) {
+        if (!inside(1, y) || !inside(2, z) || inside(0, x)) continue;
+        at(x, y, z) = at(source(0, x), y, z);
+      }
+  for (std::size_t z = 0; z < d[2]; ++z)
+    for (std::size_t y = 0; y < d[1]; ++y)
+      if (inside(2, z) && !inside(1, y))
+        for (std::size_t x = 0; x < d[0]; ++x) at(x, y, z) = at(x, source(1, y), z);
+  for (std::size_t z = 0; z < d[2]; ++z)
+    if (!inside(2, z))
+      for (std::size_t y = 0; y < d[1]; ++y)
+        for (std::size_t x = 0; x < d[0]; ++x) at(x, y, z) = at(x, y, source(2, z));
+}
+
 // Pads the grid's box to multiples of B = 2^K plus one block of B on each side (enough room for
-// the dilated active topology of every level) with inactive background voxels.
-Pyramid pad_to_blocks(const VolumeGrid& g, int top_level) {
+// the dilated active topology of every level) with inactive voxels: background where the grid's
+// outside really is background, or the box extended symmetrically where the data ends at the
+// box (a dense grid: every voxel of its box active), so its border does not darken.
+Pyramid pad_to_blocks(const VolumeGrid& g, int top_level, LodEdge edge) {
   const std::int64_t block = std::int64_t(1) << top_level;
   const Volume& v = g.volume;
   Pyramid p;
@@ -111,6 +155,9 @@ Pyramid pad_to_blocks(const VolumeGrid& g, int top_level) {
         p.values[j] = v.samples[i];
         p.mask[j] = v.is_active(i) ? 1 : 0;
       }
+  if (edge == LodEdge::automatic)
+    edge = v.active_count() == v.count() ? LodEdge::symmetric : LodEdge::background;
+  if (edge == LodEdge::symmetric) extend_symmetrically(p, shift, v.dims);
   for (std::size_t a = 0; a < 3; ++a) p.gain[a].assign(p.dims[a], 1.0);
   return p;
 }
@@ -192,7 +239,7 @@ VolumeGrid level_grid(const VolumeGrid& in, const Pyramid& p, int level, int top
 
 // All requested levels of one grid, in ascending order.
 std::vector<VolumeGrid> level_of_detail(const VolumeGrid& in, const Transform1D& t,
-                                        const std::vector<int>& levels) {
+                                        const std::vector<int>& levels, LodEdge edge) {
   const int top = levels.back();
   std::vector<VolumeGrid> out;
   if (in.volume.count() == 0) {  // no active voxels: every level is empty as well
@@ -201,7 +248,7 @@ std::vector<VolumeGrid> level_of_detail(const VolumeGrid& in, const Transform1D&
   }
   const auto [lo_it, hi_it] = std::minmax_element(in.volume.samples.begin(), in.volume.samples.end());
   const double lo = std::min(*lo_it, in.volume.background), hi = std::max(*hi_it, in.volume.background);
-  Pyramid p = pad_to_blocks(in, top);
+  Pyramid p = pad_to_blocks(in, top, edge);
   for (int k = 0; k <= top; ++k) {
     if (k > 0) halve(p, t);
     if (std::find(levels.begin(), levels.end(), k) == levels.end()) continue;
@@ -230,7 +277,7 @@ std::vector<std::string> split_names(const std::string& text) {
 
 void add_lod_command(CLI::App& app) {
   struct Options {
-    std::string input, output, transform = "cdf97", range, names;
+    std::string input, output, transform = "cdf97", range, names, edge = "auto";
     int levels = -1;
   };
   auto opt = std::make_shared<Options>();
@@ -246,6 +293,11 @@ void add_lod_command(CLI::App& app) {
       ->check(non_negative_number());
   cmd->add_option("--range", opt->range, "levels FROM[-TO[:STEP]] as vdb_lod's -range (integers)");
   cmd->add_option("--transform", opt->transform, "wavelet whose low band makes each level (default cdf97)");
+  cmd->add_option("--edge", opt->edge,
+                  "what lies beyond a grid's box: auto (default: symmetric for a dense grid, whose data "
+                  "ends at its box; background for a sparse one, whose outside is background), symmetric, "
+                  "background")
+      ->transform(CLI::IsMember({"auto", "symmetric", "background"}, CLI::ignore_case));
   cmd->add_option("--name", opt->names,
                   "grid name(s) to process, comma separated (default: every float/double grid)");
   cmd->callback([opt] {
@@ -267,7 +319,10 @@ void add_lod_command(CLI::App& app) {
         out.push_back(g);
         continue;
       }
-      for (VolumeGrid& level : level_of_detail(g, *t, levels)) out.push_back(std::move(level));
+      const LodEdge edge = opt->edge == "symmetric"    ? LodEdge::symmetric
+                           : opt->edge == "background" ? LodEdge::background
+                                                       : LodEdge::automatic;
+      for (VolumeGrid& level : level_of_detail(g, *t, levels, edge)) out.push_back(std::move(level));
     }
     write_vdb(out, opt->output);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -16,9 +16,24 @@
 namespace pupwave::test {
 namespace {
 
+// Whole-sample symmetric reflection of coordinate q into [lo, hi] (the extension `lod` uses
+// beyond a dense grid's box).
+int mirror(int q, int lo, int hi) {
+  const int n = hi - lo + 1;
+  if (n == 1) return lo;
+  const int period = 2 * (n - 1);
+  int d = (q - lo) % period;
+  if (d < 0) d += period;
+  return lo + (d < n ? d : period - d);
+}
+
 // Average over the box of width 2^k centred on fine voxel p (end samples weighted 1/2), the
 // resolution-2^k footprint of the coarse voxel that sits at p.
-double box_average(openvdb::FloatGrid::ConstAccessor& acc, const openvdb::Coord& p, int k) {
+// Where the data ends at the box of a dense grid (`clamp_to` non-empty), the field beyond it is
+// its mirror image (whole-sample symmetric), not background (issue 12: lod extends dense grids
+// symmetrically).
+double box_average(openvdb::FloatGrid::ConstAccessor& acc, const openvdb::Coord& p, int k,
+                   const openvdb::CoordBBox& clamp_to) {
   const int h = 1 << (k - 1);
   double sum = 0.0;
   for (int dz = -h; dz <= h; ++dz)
@@ -26,7 +41,10 @@ double box_average(openvdb::FloatGrid::ConstAccessor& acc, const openvdb::Coord&
       for (int dx = -h; dx <= h; ++dx) {
         const double w = (std::abs(dx) == h ? 0.5 : 1.0) * (std::abs(dy) == h ? 0.5 : 1.0) *
                          (std::abs(dz) == h ? 0.5 : 1.0);
-        sum += w * acc.getValue(p + openvdb::Coord(dx, dy, dz));
+        openvdb::Coord q = p + openvdb::Coord(dx, dy, dz);
+        if (!clamp_to.empty())
+          for (int a = 0; a < 3; ++a) q[a] = mirror(q[a], clamp_to.min()[a], clamp_to.max()[a]);
+        sum += w * acc.getValue(q);
       }
   return sum / std::pow(2.0, 3 * k);
 }
@@ -36,13 +54,21 @@ struct Error {
 };
 
 // Error of a level-k grid against the box average of the fine grid, relative to `range`.
+// Every voxel of the grid's active bounding box is active: the data ends at the box.
+bool dense_grid(const openvdb::FloatGrid& g) {
+  return g.activeVoxelCount() == g.evalActiveVoxelBoundingBox().volume();
+}
+
 Error error_to_box(const openvdb::FloatGrid& level, const openvdb::FloatGrid& fine, int k, double range) {
   auto acc = fine.getConstAccessor();
+  const openvdb::CoordBBox box = fine.evalActiveVoxelBoundingBox();
+  const openvdb::CoordBBox clamp_to = dense_grid(fine) ? box : openvdb::CoordBBox();
   Error e;
   double n = 0;
   for (auto it = level.cbeginValueOn(); it; ++it, ++n) {
     const double d =
-        std::abs(double(*it) - box_average(acc, openvdb::Coord(it.getCoord().asVec3i() * (1 << k)), k)) /
+        std::abs(double(*it) -
+                 box_average(acc, openvdb::Coord(it.getCoord().asVec3i() * (1 << k)), k, clamp_to)) /
         range;
     e.rms += d * d;
     e.max = std::max(e.max, d);
@@ -86,7 +112,12 @@ void report(const std::string& dataset, const fs::path& in, const fs::path& dir,
     // half the band); a level shifted by one voxel or mis-scaled is far off.
     EXPECT_LT(e97.rms, 0.05) << dataset << " level " << k;
     EXPECT_LT(e97.max, 0.2) << dataset << " level " << k;
-    EXPECT_LT(ev.rms, 0.05) << dataset << " level " << k;
+    // vdb_lod pads every grid with background, so the border of a dense grid darkens (issue 12);
+    // `lod` extends dense grids symmetrically and must beat it there.
+    if (dense_grid(*fine))
+      EXPECT_LT(e97.rms, ev.rms) << dataset << " level " << k;
+    else
+      EXPECT_LT(ev.rms, 0.05) << dataset << " level " << k;
     EXPECT_LT(e53.rms, 0.2) << dataset << " level " << k;
     EXPECT_LT(e53.max, 0.6) << dataset << " level " << k;
   }

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
 
 #include "transforms/spec.h"
 #include "volumes/volume_test_util.h"
@@ -235,4 +238,89 @@ TEST_F(VolumeTest, LodRangeAndNames) {
 }
 
 }  // namespace
+
+namespace {
+
+// Whole-sample symmetric reflection of coordinate q into [lo, hi] (the extension `lod` uses
+// beyond a dense grid's box).
+int mirror(int q, int lo, int hi) {
+  const int n = hi - lo + 1;
+  if (n == 1) return lo;
+  const int period = 2 * (n - 1);
+  int d = (q - lo) % period;
+  if (d < 0) d += period;
+  return lo + (d < n ? d : period - d);
+}
+
+// Error of the active voxels of `level` (scale 2^k) near the box faces against the mean of the fine field
+// over the 2^k box centred on its fine position (mirrored at the fine grid's box), relative to the range.
+struct EdgeFidelity {
+  double rms = 0.0, max = 0.0;
+  std::size_t voxels = 0;
+};
+
+EdgeFidelity edge_fidelity(const openvdb::FloatGrid& fine, const openvdb::FloatGrid& level, int scale) {
+  const openvdb::CoordBBox box = fine.evalActiveVoxelBoundingBox();
+  float lo = 0, hi = 0;
+  fine.evalMinMax(lo, hi);
+  auto acc = fine.getConstAccessor();
+  EdgeFidelity f;
+  double sum = 0.0;
+  for (auto it = level.cbeginValueOn(); it; ++it) {
+    const openvdb::Coord p = openvdb::Coord(it.getCoord().asVec3i() * scale);
+    int border = std::numeric_limits<int>::max();  // fine voxels to the nearest face of the box
+    for (int a = 0; a < 3; ++a) border = std::min({border, p[a] - box.min()[a], box.max()[a] - p[a]});
+    if (border > 2 * scale) continue;  // the interior is the same either way
+    double mean = 0.0;
+    int n = 0;
+    for (int dz = -scale / 2; dz <= scale / 2; ++dz)
+      for (int dy = -scale / 2; dy <= scale / 2; ++dy)
+        for (int dx = -scale / 2; dx <= scale / 2; ++dx) {
+          openvdb::Coord q = p + openvdb::Coord(dx, dy, dz);
+          for (int a = 0; a < 3; ++a) q[a] = mirror(q[a], box.min()[a], box.max()[a]);
+          mean += acc.getValue(q), ++n;
+        }
+    const double e = std::abs(*it - mean / n) / double(hi - lo);
+    sum += e * e, f.max = std::max(f.max, e), ++f.voxels;
+  }
+  f.rms = std::sqrt(sum / double(std::max<std::size_t>(f.voxels, 1)));
+  return f;
+}
+
+}  // namespace
+
+// Issue 12: where a dense grid's data ends at its box, padding with background darkened the
+// border of every level; the default (--edge auto) extends such grids symmetrically, while
+// sparse grids (whose outside is background) keep background padding (the tests above).
+TEST_F(VolumeTest, LodDenseGridEdgesExtendSymmetrically) {
+  const fs::path raw = testimage("gray_scott64.raw"), vdb = dir_ / "gs.vdb";
+  ASSERT_EQ(run_cli({"convert-volume", raw.string(), vdb.string(), "--dims", "64,64,64", "--dtype", "f32"})
+                .exit_code,
+            0);
+  const auto fine = openvdb::gridPtrCast<openvdb::FloatGrid>(read_grids(vdb).front());
+  ASSERT_EQ(fine->activeVoxelCount(), openvdb::Index64(64 * 64 * 64));
+  std::map<std::string, std::array<EdgeFidelity, 3>> by_edge;
+  for (const std::string edge : {"auto", "symmetric", "background"}) {
+    const fs::path out = dir_ / ("lod_" + edge + ".vdb");
+    const CliResult r = run_cli({"lod", vdb.string(), out.string(), "--levels", "2", "--edge", edge});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const auto& base : read_grids(out)) {
+      const auto g = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+      const int scale = int(std::lround(g->voxelSize()[0]));
+      if (scale > 1) by_edge[edge][std::size_t(scale / 2)] = edge_fidelity(*fine, *g, scale);
+    }
+  }
+  for (std::size_t k : {1u, 2u}) {
+    const EdgeFidelity &a = by_edge["auto"][k], &s = by_edge["symmetric"][k], &b = by_edge["background"][k];
+    EXPECT_EQ(a.rms, s.rms) << "auto is symmetric for a dense grid";
+    EXPECT_GT(s.voxels, 0u);
+    std::printf("border RMS at scale %zu: symmetric %.3g, background %.3g of the range\n", 2 * k, s.rms,
+                b.rms);
+    // Background padding pulls the border toward 0; symmetric extension keeps it near the data.
+    EXPECT_LT(s.rms, 0.25 * b.rms) << "scale " << 2 * k << ": symmetric " << s.rms << ", background "
+                                   << b.rms;
+    EXPECT_LT(s.rms, 0.03) << "scale " << 2 * k;
+  }
+}
+
 }  // namespace pupwave::test
