@@ -220,6 +220,14 @@ void run_compress(const CompressOptions& opt) {
     throw std::invalid_argument(
         "--bpv, --max-error, --max-error-rel, --dtype and --grid apply to volumes only");
   const Image image = read_image(opt.input);
+  if (!image.metadata.not_kept.empty() && !opt.verbosity.quiet) {
+    std::string names;
+    for (const std::string& n : image.metadata.not_kept) names += (names.empty() ? "" : ", ") + n;
+    std::fprintf(stderr,
+                 "pupwave: warning: %zu attribute(s) of %s are not kept (only string, integer and "
+                 "float attributes are stored): %s\n",
+                 image.metadata.not_kept.size(), opt.input.c_str(), names.c_str());
+  }
   EncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;

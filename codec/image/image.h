@@ -40,12 +40,20 @@ struct ImageMetadata {
   std::int32_t full_x = 0, full_y = 0;            // display window origin
   std::uint32_t full_width = 0, full_height = 0;  // display window size; 0: same as the data window
   std::vector<ImageAttribute> attributes;
+  // Names (with their types) of attributes the reader found but the stream cannot hold (vectors,
+  // matrices, timecodes); never stored, so the CLI can say what is not kept instead of dropping
+  // it silently.
+  std::vector<std::string> not_kept;
 
   bool empty() const {
     return channel_names.empty() && x == 0 && y == 0 && full_x == 0 && full_y == 0 && full_width == 0 &&
            full_height == 0 && attributes.empty();
   }
-  bool operator==(const ImageMetadata&) const = default;
+  bool operator==(const ImageMetadata& o) const {  // what the stream keeps (not not_kept)
+    return channel_names == o.channel_names && x == o.x && y == o.y && full_x == o.full_x &&
+           full_y == o.full_y && full_width == o.full_width && full_height == o.full_height &&
+           attributes == o.attributes;
+  }
 };
 
 // A planar image: channel c occupies samples[c*width*height, (c+1)*width*height), rows of

@@ -60,6 +60,23 @@ TEST_F(ImageStructure, WindowsAndAttributesSurvive) {
   EXPECT_NE(info.find("data window 451x300+100+50"), std::string::npos) << info;
 }
 
+// Attributes the stream cannot hold (vectors, matrices) are never dropped silently: compress
+// names them in a warning, and the scalar ones beside them are still kept.
+TEST_F(ImageStructure, AttributesNotKeptAreNamed) {
+  const std::string in = tmp("vec.exr");
+  ASSERT_EQ(
+      test::run_shell("oiiotool " + test::testimage("camera.png") +
+                      " -d half --attrib:type=vector myshow:up 0,1,0 --attrib myshow:shot sh020 -o " + in),
+      0);
+  const auto c = test::run_cli({"compress", in, tmp("vec.pw"), "--psnr=40"});
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("pupwave: warning: 1 attribute(s)"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("myshow:up"), std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find("myshow:shot ("), std::string::npos) << c.output;  // kept, so not named
+  const auto q = test::run_cli({"compress", in, tmp("vec_q.pw"), "--psnr=40", "--quiet"});
+  EXPECT_EQ(q.output.find("warning"), std::string::npos) << q.output;
+}
+
 TEST_F(ImageStructure, ChannelNamesSurvive) {
   const std::string in = tmp("yd.exr");
   ASSERT_EQ(test::run_shell("oiiotool " + test::testimage("camera.png") +

@@ -130,7 +130,15 @@ ImageMetadata metadata_of(const OIIO::ImageSpec& spec, const std::string& format
   if (format != "openexr") return m;
   for (const OIIO::ParamValue& p : spec.extra_attribs) {
     const std::string name = p.name().string();
-    if (is_encoding_attribute(name) || p.nvalues() != 1) continue;
+    if (is_encoding_attribute(name)) continue;
+    // OpenEXR writes screenWindowCenter (0, 0) into every file by default: nothing is lost.
+    if (name == "screenWindowCenter" && p.type() == TypeDesc(TypeDesc::FLOAT, TypeDesc::VEC2) &&
+        static_cast<const float*>(p.data())[0] == 0.0f && static_cast<const float*>(p.data())[1] == 0.0f)
+      continue;
+    if (p.nvalues() != 1) {
+      m.not_kept.push_back(name + " (" + p.type().c_str() + " x " + std::to_string(p.nvalues()) + ")");
+      continue;
+    }
     ImageAttribute a;
     a.name = name;
     const TypeDesc t = p.type();
@@ -144,7 +152,8 @@ ImageMetadata metadata_of(const OIIO::ImageSpec& spec, const std::string& format
       a.kind = ImageAttribute::Kind::real;
       a.real = p.get_float();
     } else {
-      continue;  // vectors, matrices, timecodes...: not kept (see README)
+      m.not_kept.push_back(name + " (" + t.c_str() + ")");  // vectors, matrices, timecodes (README)
+      continue;
     }
     m.attributes.push_back(std::move(a));
   }
