@@ -1,5 +1,6 @@
 // `pupwave lod`: geometry and topology against OpenVDB's own tools::MultiResGrid (what vdb_lod
 // runs), values against an independent downsampling made here from 1-D analyses only.
+#include <openvdb/tools/Count.h>
 #include <openvdb/tools/MultiResGrid.h>
 
 #include <algorithm>
@@ -261,8 +262,8 @@ struct EdgeFidelity {
 
 EdgeFidelity edge_fidelity(const openvdb::FloatGrid& fine, const openvdb::FloatGrid& level, int scale) {
   const openvdb::CoordBBox box = fine.evalActiveVoxelBoundingBox();
-  float lo = 0, hi = 0;
-  fine.evalMinMax(lo, hi);
+  const auto minmax = openvdb::tools::minMax(fine.tree());
+  const float lo = minmax.min(), hi = minmax.max();
   auto acc = fine.getConstAccessor();
   EdgeFidelity f;
   double sum = 0.0;
