@@ -52,19 +52,6 @@ void expect_error(const test::CliResult& r, const std::string& needle) {
   EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in:\n" << r.output;
 }
 
-// Runs a shell command line (for pipes and redirections), capturing stdout only.
-test::CliResult run_shell(const std::string& command) {
-  test::CliResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) result.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return result;
-}
-
 // chelsea --psnr 30 used to give a 494,759-byte lossless-quality file (PSNR inf).
 TEST_F(RateCli, PsnrTargetGivesASmallFileJustAboveTheTarget) {
   for (const auto& [name, target] :
@@ -217,13 +204,13 @@ TEST_F(RateCli, ZstdPsnrTargetReportsItsPsnr) {
 
 TEST_F(RateCli, DashIsStdinAndStdoutWithStatusOnStderr) {
   const std::string cli = test::shell_quote(PUPWAVE_CLI);
-  const auto c =
-      run_shell(cli + " compress - - --psnr 38 < " + test::shell_quote(image("camera.png")) + " > " +
-                test::shell_quote(out("a.pw")) + " 2> " + test::shell_quote(out("status.txt")));
+  const auto c = test::run_shell_output(
+      cli + " compress - - --psnr 38 < " + test::shell_quote(image("camera.png")) + " > " +
+      test::shell_quote(out("a.pw")) + " 2> " + test::shell_quote(out("status.txt")));
   ASSERT_EQ(c.exit_code, 0);
   EXPECT_GT(fs::file_size(out("status.txt")), 0u);  // the status line went to stderr
-  const auto d = run_shell(cli + " decompress - - < " + test::shell_quote(out("a.pw")) + " > " +
-                           test::shell_quote(out("b.png")) + " 2>/dev/null");
+  const auto d = test::run_shell_output(cli + " decompress - - < " + test::shell_quote(out("a.pw")) + " > " +
+                                        test::shell_quote(out("b.png")) + " 2>/dev/null");
   ASSERT_EQ(d.exit_code, 0);
   const Image a = cli::read_image(image("camera.png"));
   const Image b = cli::read_image(out("b.png"));

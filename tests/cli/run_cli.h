@@ -22,11 +22,8 @@ inline std::string shell_quote(const std::string& arg) {
   return q + "'";
 }
 
-// Runs PUPWAVE_CLI with the given arguments (no shell interpretation of the arguments).
-inline CliResult run_cli(const std::vector<std::string>& args) {
-  std::string command = shell_quote(PUPWAVE_CLI);
-  for (const auto& a : args) command += " " + shell_quote(a);
-  command += " 2>&1 </dev/null";
+// Runs a shell command line (for pipes and redirections), capturing stdout only.
+inline CliResult run_shell_output(const std::string& command) {
   CliResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
@@ -36,6 +33,13 @@ inline CliResult run_cli(const std::vector<std::string>& args) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
+}
+
+// Runs PUPWAVE_CLI with the given arguments (no shell interpretation of the arguments).
+inline CliResult run_cli(const std::vector<std::string>& args) {
+  std::string command = shell_quote(PUPWAVE_CLI);
+  for (const auto& a : args) command += " " + shell_quote(a);
+  return run_shell_output(command + " 2>&1 </dev/null");
 }
 
 }  // namespace pupwave::test

@@ -16,17 +16,6 @@
 namespace pupwave::test {
 namespace {
 
-// Whole-sample symmetric reflection of coordinate q into [lo, hi] (the extension `lod` uses
-// beyond a dense grid's box).
-int mirror(int q, int lo, int hi) {
-  const int n = hi - lo + 1;
-  if (n == 1) return lo;
-  const int period = 2 * (n - 1);
-  int d = (q - lo) % period;
-  if (d < 0) d += period;
-  return lo + (d < n ? d : period - d);
-}
-
 // Average over the box of width 2^k centred on fine voxel p (end samples weighted 1/2), the
 // resolution-2^k footprint of the coarse voxel that sits at p.
 // Where the data ends at the box of a dense grid (`clamp_to` non-empty), the field beyond it is

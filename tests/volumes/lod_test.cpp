@@ -242,17 +242,6 @@ TEST_F(VolumeTest, LodRangeAndNames) {
 
 namespace {
 
-// Whole-sample symmetric reflection of coordinate q into [lo, hi] (the extension `lod` uses
-// beyond a dense grid's box).
-int mirror(int q, int lo, int hi) {
-  const int n = hi - lo + 1;
-  if (n == 1) return lo;
-  const int period = 2 * (n - 1);
-  int d = (q - lo) % period;
-  if (d < 0) d += period;
-  return lo + (d < n ? d : period - d);
-}
-
 // Error of the active voxels of `level` (scale 2^k) near the box faces against the mean of the fine field
 // over the 2^k box centred on its fine position (mirrored at the fine grid's box), relative to the range.
 struct EdgeFidelity {

@@ -97,4 +97,15 @@ template <class GridT>
   return ::testing::AssertionSuccess();
 }
 
+// Whole-sample symmetric reflection of coordinate q into [lo, hi] (the extension `lod` uses
+// beyond a dense grid's box).
+inline int mirror(int q, int lo, int hi) {
+  const int n = hi - lo + 1;
+  if (n == 1) return lo;
+  const int period = 2 * (n - 1);
+  int d = (q - lo) % period;
+  if (d < 0) d += period;
+  return lo + (d < n ? d : period - d);
+}
+
 }  // namespace pupwave::test

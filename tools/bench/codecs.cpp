@@ -24,19 +24,6 @@ std::string format_number(double v, const char* fmt = "%.6g") {
   return buf;
 }
 
-// Runs a tool and turns a failure (non-zero exit or no output file) into an exception that
-// quotes the tool's own message.
-double run_checked(const std::vector<std::string>& argv, const fs::path& log, const fs::path& product) {
-  const ProcessResult r = run_process(argv, log);
-  std::error_code ec;
-  if (r.exit_code != 0 || !fs::is_regular_file(product, ec)) {
-    const std::string tail = log_tail(log);
-    throw std::runtime_error(fs::path(argv[0]).filename().string() + " failed (exit " +
-                             std::to_string(r.exit_code) + (tail.empty() ? ")" : "): " + tail));
-  }
-  return r.seconds;
-}
-
 class PupwaveCodec final : public RdCodec {
  public:
   PupwaveCodec(fs::path cli, std::string spec) : cli_(std::move(cli)), spec_(std::move(spec)) {}

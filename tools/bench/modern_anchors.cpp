@@ -13,27 +13,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Runs a tool; a non-zero exit or a missing product becomes an exception quoting the tool.
-double run_tool(const std::vector<std::string>& argv, const fs::path& log, const fs::path& product) {
-  const ProcessResult r = run_process(argv, log);
-  std::error_code ec;
-  if (r.exit_code != 0 || !fs::is_regular_file(product, ec)) {
-    const std::string tail = log_tail(log);
-    throw std::runtime_error(fs::path(argv[0]).filename().string() + " failed (exit " +
-                             std::to_string(r.exit_code) + (tail.empty() ? ")" : "): " + tail));
-  }
-  return r.seconds;
-}
-
 std::string integer_text(double v) { return std::to_string(static_cast<long>(v)); }
 
 // ffmpeg as a lossless format converter between PPM/PGM and PNG. `grey` forces one 8-bit plane
 // (the luma of an RGB picture, equal to it when R = G = B).
 void convert(const fs::path& ffmpeg, const fs::path& in, const fs::path& out, bool grey,
              const fs::path& log) {
-  run_tool({ffmpeg.string(), "-hide_banner", "-loglevel", "error", "-y", "-i", in.string(), "-pix_fmt",
-            grey ? "gray" : "rgb24", out.string()},
-           log, out);
+  run_checked({ffmpeg.string(), "-hide_banner", "-loglevel", "error", "-y", "-i", in.string(), "-pix_fmt",
+               grey ? "gray" : "rgb24", out.string()},
+              log, out);
 }
 
 bool is_grey(const fs::path& decoded_target) { return decoded_target.extension() == ".pgm"; }
@@ -52,7 +40,7 @@ class AvifAnchor final : public RdCodec {
     const std::string yuv = q.channels == 1 ? "400" : "444";
     const auto trial = [&](double quantiser, const fs::path& product) {
       const std::string qs = integer_text(quantiser);
-      return run_tool(
+      return run_checked(
           {enc_.string(), "-s", "4", "-y", yuv, "--min", qs, "--max", qs, png.string(), product.string()},
           q.log, product);
     };
@@ -65,7 +53,7 @@ class AvifAnchor final : public RdCodec {
 
   double decode(const fs::path& compressed, const fs::path& decoded, const fs::path& log) const override {
     const fs::path png = decoded.string() + ".png";
-    const double seconds = run_tool({dec_.string(), compressed.string(), png.string()}, log, png);
+    const double seconds = run_checked({dec_.string(), compressed.string(), png.string()}, log, png);
     convert(ffmpeg_, png, decoded, is_grey(decoded), log);
     fs::remove(png);
     return seconds;
@@ -86,29 +74,29 @@ class HevcAnchor final : public RdCodec {
     // Full-range 4:4:4: limited range would cost the anchor about 1 dB at high rates.
     const std::string pix = q.channels == 1 ? "gray" : "yuvj444p";
     const auto trial = [&](double qp, const fs::path& product) {
-      return run_tool({ffmpeg_.string(),
-                       "-hide_banner",
-                       "-loglevel",
-                       "error",
-                       "-y",
-                       "-i",
-                       q.input.string(),
-                       "-frames:v",
-                       "1",
-                       "-c:v",
-                       "libx265",
-                       "-preset",
-                       "slow",
-                       "-tune",
-                       "psnr",
-                       "-x265-params",
-                       "qp=" + integer_text(qp) + ":info=0:log-level=error",
-                       "-pix_fmt",
-                       pix,
-                       "-f",
-                       "hevc",
-                       product.string()},
-                      q.log, product);
+      return run_checked({ffmpeg_.string(),
+                          "-hide_banner",
+                          "-loglevel",
+                          "error",
+                          "-y",
+                          "-i",
+                          q.input.string(),
+                          "-frames:v",
+                          "1",
+                          "-c:v",
+                          "libx265",
+                          "-preset",
+                          "slow",
+                          "-tune",
+                          "psnr",
+                          "-x265-params",
+                          "qp=" + integer_text(qp) + ":info=0:log-level=error",
+                          "-pix_fmt",
+                          pix,
+                          "-f",
+                          "hevc",
+                          product.string()},
+                         q.log, product);
     };
     return search_parameter(q, {0, 51, true, true, false}, trial, [&](double qp) {
       return "libx265 -preset slow -tune psnr " + pix + " qp=" + integer_text(qp);
@@ -116,9 +104,10 @@ class HevcAnchor final : public RdCodec {
   }
 
   double decode(const fs::path& compressed, const fs::path& decoded, const fs::path& log) const override {
-    return run_tool({ffmpeg_.string(), "-hide_banner", "-loglevel", "error", "-y", "-i", compressed.string(),
-                     "-pix_fmt", is_grey(decoded) ? "gray" : "rgb24", decoded.string()},
-                    log, decoded);
+    return run_checked(
+        {ffmpeg_.string(), "-hide_banner", "-loglevel", "error", "-y", "-i", compressed.string(), "-pix_fmt",
+         is_grey(decoded) ? "gray" : "rgb24", decoded.string()},
+        log, decoded);
   }
 
  private:
@@ -135,9 +124,9 @@ class WebpAnchor final : public RdCodec {
 
   EncodeOutcome encode(const EncodeRequest& q) const override {
     const auto trial = [&](double quality, const fs::path& product) {
-      return run_tool({enc_.string(), "-quiet", "-m", "6", "-q", integer_text(quality), q.input.string(),
-                       "-o", product.string()},
-                      q.log, product);
+      return run_checked({enc_.string(), "-quiet", "-m", "6", "-q", integer_text(quality), q.input.string(),
+                          "-o", product.string()},
+                         q.log, product);
     };
     return search_parameter(q, {0, 100, true, false, false}, trial,
                             [](double quality) { return "-m 6 -q " + integer_text(quality); });
@@ -145,10 +134,10 @@ class WebpAnchor final : public RdCodec {
 
   double decode(const fs::path& compressed, const fs::path& decoded, const fs::path& log) const override {
     if (!is_grey(decoded))
-      return run_tool({dec_.string(), compressed.string(), "-ppm", "-o", decoded.string()}, log, decoded);
+      return run_checked({dec_.string(), compressed.string(), "-ppm", "-o", decoded.string()}, log, decoded);
     const fs::path ppm = decoded.string() + ".ppm";
     const double seconds =
-        run_tool({dec_.string(), compressed.string(), "-ppm", "-o", ppm.string()}, log, ppm);
+        run_checked({dec_.string(), compressed.string(), "-ppm", "-o", ppm.string()}, log, ppm);
     convert(ffmpeg_, ppm, decoded, true, log);
     fs::remove(ppm);
     return seconds;

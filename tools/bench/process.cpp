@@ -97,4 +97,16 @@ std::string log_tail(const std::filesystem::path& log_file, std::size_t max_char
   return text;
 }
 
+double run_checked(const std::vector<std::string>& argv, const std::filesystem::path& log_file,
+                   const std::filesystem::path& product) {
+  const ProcessResult r = run_process(argv, log_file);
+  std::error_code ec;
+  if (r.exit_code != 0 || !std::filesystem::is_regular_file(product, ec)) {
+    const std::string tail = log_tail(log_file);
+    throw std::runtime_error(std::filesystem::path(argv[0]).filename().string() + " failed (exit " +
+                             std::to_string(r.exit_code) + (tail.empty() ? ")" : "): " + tail));
+  }
+  return r.seconds;
+}
+
 }  // namespace pupwave::bench

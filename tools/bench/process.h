@@ -23,6 +23,11 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
 // no directory holds an executable file of that name.
 std::optional<std::filesystem::path> find_tool(const std::string& name, const std::string& search_path);
 
+// Runs a tool like run_process; a non-zero exit or a missing `product` file becomes a
+// std::runtime_error quoting the tool's own message. Returns the wall time.
+double run_checked(const std::vector<std::string>& argv, const std::filesystem::path& log_file,
+                   const std::filesystem::path& product);
+
 // The process's PATH (empty when unset).
 std::string environment_path();
 
