@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_decoder.h"
 #include "codec/error.h"
 #include "codec/image/image_components.h"
@@ -48,8 +49,8 @@ namespace {
 
 // Index-unit magnitudes and signs of one block of transformed coefficients.
 template <class T>
-EncodedBlock code_one(const BrickCoding& c, const std::vector<T>& coef, const Extent& size,
-                      const CodeBlock& b, float step) {
+EncodedBlock code_one(const BrickCoding& c, std::span<const T> coef, const Extent& size, const CodeBlock& b,
+                      float step) {
   std::vector<T> values(b.count());
   copy_block_out(coef.data(), size, b, values.data());
   std::vector<float> magnitude(b.count());
@@ -71,13 +72,54 @@ CodedBrick code_brick(const BrickCoding& c, std::span<const double> samples, con
     forward(*c.transform, coef.data(), size, c.levels);
     for (std::int32_t v : coef)
       if (v >= (1 << 24) || v <= -(1 << 24)) throw EncodeError("reversible coefficient out of range");
-    for (const CodeBlock& b : out.blocks) out.coded.push_back(code_one(c, coef, size, b, 1.0f));
+    for (const CodeBlock& b : out.blocks)
+      out.coded.push_back(code_one(c, std::span<const std::int32_t>(coef), size, b, 1.0f));
   } else {
-    std::vector<float> coef(samples.begin(), samples.end());
-    forward(*c.transform, coef.data(), size, c.levels);
-    for (const CodeBlock& b : out.blocks) out.coded.push_back(code_one(c, coef, size, b, steps[b.band]));
+    return code_coefficients(c, analyze_brick(c, samples, size), size, base_step);
   }
   return out;
+}
+
+std::vector<float> analyze_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size) {
+  std::vector<float> coef(samples.begin(), samples.end());
+  forward(*c.transform, coef.data(), size, c.levels);
+  return coef;
+}
+
+CodedBrick code_coefficients(const BrickCoding& c, std::span<const float> coef, const Extent& size,
+                             double base_step) {
+  CodedBrick out;
+  out.blocks = brick_blocks(c, size);
+  const std::vector<float> steps = brick_steps(c, size, base_step);
+  out.coded.reserve(out.blocks.size());
+  for (const CodeBlock& b : out.blocks) out.coded.push_back(code_one(c, coef, size, b, steps[b.band]));
+  return out;
+}
+
+std::vector<double> requantized_brick(const BrickCoding& c, std::span<const float> coef, const Extent& size,
+                                      double base_step) {
+  const std::vector<float> steps = brick_steps(c, size, base_step);
+  std::vector<float> out(coef.size());
+  for (const CodeBlock& b : brick_blocks(c, size)) {
+    const float step = steps[b.band];
+    const float inv = 1.0f / step;  // as quantize() computes the index
+    for (std::size_t z = 0; z < b.size[2]; ++z)
+      for (std::size_t y = 0; y < b.size[1]; ++y) {
+        const std::size_t row = b.offset[0] + size[0] * ((b.offset[1] + y) + size[1] * (b.offset[2] + z));
+        for (std::size_t x = row; x < row + b.size[0]; ++x) {
+          const float v = coef[x];
+          const float m = (v < 0.0f ? -v : v) * inv;
+          if (!(m < float(1u << kMaxBitPlanes)))
+            throw IndexRangeError("quantization index too large for the block coder");
+          const std::uint32_t q = std::uint32_t(m);
+          // reconstruct() of a fully decoded coefficient: index + delta, in double, then float.
+          const float r = float(double(q) + c.delta);
+          out[x] = q == 0 ? 0.0f : (v < 0.0f ? -r : r) * step;
+        }
+      }
+  }
+  inverse(*c.transform, out.data(), size, c.levels, 0);
+  return std::vector<double>(out.begin(), out.end());
 }
 
 namespace {

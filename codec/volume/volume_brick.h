@@ -51,6 +51,18 @@ struct CodedBrick {
 CodedBrick code_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size,
                       double base_step);
 
+// Irreversible coding in two steps, so that one forward transform serves several base steps:
+// the float coefficients of a brick (in-place layout), then their code at one base step.
+std::vector<float> analyze_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size);
+CodedBrick code_coefficients(const BrickCoding& c, std::span<const float> coef, const Extent& size,
+                             double base_step);
+
+// What decode_brick returns at level 0 when every pass of every block is decoded, computed
+// from the coefficients with the decoder's arithmetic (quantize, reconstruct at delta, scale,
+// inverse transform) but without coding or decoding a bit. Irreversible coding only.
+std::vector<double> requantized_brick(const BrickCoding& c, std::span<const float> coef, const Extent& size,
+                                      double base_step);
+
 // Decodes a brick from its block entries and codewords (one per block, passes as entries say),
 // inverse-transforming down to `level` (the level-`level` coarse band scaled to sample units,
 // extent level_extent(size, level), x fastest). Throws DecodeError for inconsistent entries.

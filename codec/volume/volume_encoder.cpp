@@ -18,9 +18,6 @@
 namespace pupwave {
 namespace {
 
-// Base steps tried per brick in max-error mode, as multiples of the bound: a coarser step
-// gives fewer coefficient bits but more outliers; the smallest total wins.
-constexpr double kBoundStepFactors[] = {1.25, 1.9, 2.8};
 // Finest bound or step, relative to the largest sample magnitude: coefficients are coded as
 // float magnitudes (24 significant bits), and below this a transform's gain would push
 // indices past float precision and the block coder's range. Refused up front, never mid-way.
@@ -232,30 +229,15 @@ std::vector<int> all_passes(const CodedBrick& c) {
   return p;
 }
 
-// A brick coded at one base step with every pass, corrected to the bound when there is one.
+// A brick coded at one base step with every pass (step and lossless modes).
 BrickCode code_at_step(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
-                       const std::vector<double>& samples, const std::vector<std::uint8_t>& active,
-                       double base) {
+                       const std::vector<double>& samples, double base) {
   BrickCode code;
   code.base_step = base;
   code.coded = code_brick(plan.coding, samples, job.box.size, base);
   code.passes = all_passes(code.coded);
-  auto recon = reconstruct_brick(plan, job, code);
-  const double bound = plan.header.max_error;
-  if (bound > 0.0) {
-    for (double& v : recon) v = to_stored(v, grid.volume.type);
-    const auto outliers = find_outliers(samples, recon, active, bound, grid.volume.type);
-    code.outliers = encode_outliers(outliers);
-    code.outlier_count = outliers.size();
-  }
-  measure_brick(grid, job, std::move(recon), code);
+  measure_brick(grid, job, reconstruct_brick(plan, job, code), code);
   return code;
-}
-
-std::size_t code_bytes(const BrickCode& c) {
-  std::size_t n = c.outliers.size();
-  for (std::size_t i = 0; i < c.passes.size(); ++i) n += c.coded.coded[i].size(c.passes[i]);
-  return n;
 }
 
 // Fixed step (step, lossless) or the best step for the bound (max-error), brick by brick.
@@ -268,15 +250,10 @@ std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const Vo
     std::vector<double> samples;
     std::vector<std::uint8_t> active;
     brick_samples(grid, job, samples, active);
-    if (o.mode != VolumeRateMode::max_error) {
-      codes[i] =
-          code_at_step(plan, grid, job, samples, active, o.mode == VolumeRateMode::step ? o.target : 1.0);
-      return;
-    }
-    for (double f : kBoundStepFactors) {
-      BrickCode c = code_at_step(plan, grid, job, samples, active, f * o.target);
-      if (codes[i].passes.empty() || code_bytes(c) < code_bytes(codes[i])) codes[i] = std::move(c);
-    }
+    if (o.mode == VolumeRateMode::max_error)
+      codes[i] = code_within_bound(plan, grid, job, samples, active);
+    else
+      codes[i] = code_at_step(plan, grid, job, samples, o.mode == VolumeRateMode::step ? o.target : 1.0);
   });
   return codes;
 }

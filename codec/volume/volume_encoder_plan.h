@@ -55,6 +55,11 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncode
 void brick_samples(const VolumeGrid& grid, const BrickJob& job, std::vector<double>& samples,
                    std::vector<std::uint8_t>& active);
 
+// Max-error coding of a brick (its samples and voxels that count, as brick_samples gives them):
+// every pass of every block at the step chosen for the bound, and the corrections that hold it.
+BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
+                            std::span<const double> samples, std::span<const std::uint8_t> active);
+
 // Reconstructs a brick from its chosen passes (exactly as the decoder will, before outliers).
 std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& job, const BrickCode& code);
 
