@@ -57,11 +57,19 @@ std::vector<float> analyze_brick(const BrickCoding& c, std::span<const double> s
 CodedBrick code_coefficients(const BrickCoding& c, std::span<const float> coef, const Extent& size,
                              double base_step);
 
+// Statistics of a brick's quantization indices at one base step (the encoder's size model).
+struct IndexStats {
+  double significant = 0.0;  // indices >= 1
+  double log2_sum = 0.0;     // sum of log2(index) over them
+  double map_bits = 0.0;     // sum over code-blocks of n h(significant / n), n its coefficients
+};
+
 // What decode_brick returns at level 0 when every pass of every block is decoded, computed
 // from the coefficients with the decoder's arithmetic (quantize, reconstruct at delta, scale,
-// inverse transform) but without coding or decoding a bit. Irreversible coding only.
-std::vector<double> requantized_brick(const BrickCoding& c, std::span<const float> coef, const Extent& size,
-                                      double base_step);
+// inverse transform) but without coding or decoding a bit, into `out` (float, as the decoder
+// holds it before widening to double). Irreversible coding only. Fills `stats` when given.
+void requantize_brick(const BrickCoding& c, std::span<const float> coef, const Extent& size, double base_step,
+                      std::vector<float>& out, IndexStats* stats = nullptr);
 
 // Decodes a brick from its block entries and codewords (one per block, passes as entries say),
 // inverse-transforming down to `level` (the level-`level` coarse band scaled to sample units,
