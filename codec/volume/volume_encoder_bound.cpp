@@ -36,6 +36,12 @@ struct Candidate {
 struct Scratch {
   std::vector<float> requantized;
   Candidate best, trial;
+  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~5 MB, not the
+  // hundreds a 256^3 brick takes.
+  void trim() {
+    constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
+    if (requantized.capacity() > kKeptVoxels) *this = Scratch{};
+  }
 };
 
 struct BrickInput {
@@ -103,6 +109,7 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   code.outliers = best.outlier_bytes;
   code.outlier_count = best.outliers.size();
   measure(samples, active, best.stored, code);
+  scratch.trim();
   return code;
 }
 
