@@ -385,10 +385,16 @@ static void extract_sparse(const GridT& grid, VolumeGrid& out) {
     out.volume.dims[std::size_t(a)] = std::size_t(std::int64_t(box.max()[a]) - box.min()[a] + 1);
     out.origin[std::size_t(a)] = box.min()[a];
   }
-  std::map<std::array<int, 3>, std::vector<const LeafT*>> pages;
+  // Pages start at the lowest leaf origin, not at 0: a small grid around the origin is one block
+  // (one set of block edges) rather than up to eight.
+  openvdb::Coord first(std::numeric_limits<int>::max());
+  for (auto it = grid.tree().cbeginLeaf(); it; ++it) first.minComponent(it->origin());
+  std::map<std::array<std::int64_t, 3>, std::vector<const LeafT*>> pages;
   for (auto it = grid.tree().cbeginLeaf(); it; ++it) {
     const openvdb::Coord o = it->origin();
-    pages[{o.x() >> kPageLog2, o.y() >> kPageLog2, o.z() >> kPageLog2}].push_back(&*it);
+    std::array<std::int64_t, 3> page{};
+    for (int a = 0; a < 3; ++a) page[std::size_t(a)] = (std::int64_t(o[a]) - first[a]) >> kPageLog2;
+    pages[page].push_back(&*it);
   }
   for (const auto& [page, leaves] : pages) out.blocks.push_back(leaf_block(grid, leaves, type, background));
   auto it = grid.tree().cbeginValueAll();
