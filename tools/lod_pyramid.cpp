@@ -258,20 +258,29 @@ class Halving {
              std::size_t(n_) * (std::size_t(y - start.y()) + std::size_t(n_) * std::size_t(z - start.z()));
     };
     if (symmetric_ && !edges_.known.isInside(CoordBBox(start, end))) {
+      // Per axis: the mirrored coordinate and whether the coordinate itself is known.
       const CoordBBox& b = edges_.mirror;
-      for (int z = start.z(); z <= end.z(); ++z)
-        for (int y = start.y(); y <= end.y(); ++y)
-          for (int x = start.x(); x <= end.x(); ++x) {
-            const Coord p(x, y, z);
-            if (edges_.known.isInside(p)) {
-              record(index(x, y, z), acc.getValue(p), acc.isValueOn(p));
+      std::array<std::vector<int>, 3> mirrored;
+      std::array<std::vector<char>, 3> known;
+      for (int a = 0; a < 3; ++a)
+        for (int i = start[a]; i <= end[a]; ++i) {
+          mirrored[std::size_t(a)].push_back(reflect_into(i, b.min()[a], b.max()[a]));
+          known[std::size_t(a)].push_back(i >= edges_.known.min()[a] && i <= edges_.known.max()[a]);
+        }
+      for (int k = 0; k < n_; ++k)
+        for (int j = 0; j < n_; ++j)
+          for (int i = 0; i < n_; ++i) {
+            const std::size_t at =
+                std::size_t(i) + std::size_t(n_) * (std::size_t(j) + std::size_t(n_) * std::size_t(k));
+            const Coord p = start.offsetBy(i, j, k);
+            if (known[0][std::size_t(i)] && known[1][std::size_t(j)] && known[2][std::size_t(k)]) {
+              record(at, acc.getValue(p), acc.isValueOn(p));
               continue;
             }
             // Beyond what is known: the mirror image, inactive (the topology is not extended).
-            const Coord q(reflect_into(x, b.min().x(), b.max().x()),
-                          reflect_into(y, b.min().y(), b.max().y()),
-                          reflect_into(z, b.min().z(), b.max().z()));
-            record(index(x, y, z), acc.getValue(q), false);
+            const Coord q(mirrored[0][std::size_t(i)], mirrored[1][std::size_t(j)],
+                          mirrored[2][std::size_t(k)]);
+            record(at, acc.getValue(q), false);
           }
       return uniform;
     }
@@ -419,14 +428,14 @@ openvdb::GridPtrVec lod_typed(GridT& in, const LowPass& h, const std::vector<int
   const auto range = value_range(in.tree());
   // Symmetric edges: level k is computed over its box widened by reach[k] coarse voxels, what the
   // active voxels of the levels above need (1 at the top, 2 reach[k+1] + radius + 2 below), but at
-  // most one box width plus the filter (reads beyond that mirror at the box).
+  // most 2 radius + 4 (reads beyond mirror at the box: near exact, the mirror image of the low band
+  // being the low band of the mirror image up to half a sample; keeps --levels 8 on a dense grid
+  // from computing a box many times the grid's).
   std::vector<int> reach(std::size_t(top + 1), 1);
   std::vector<CoordBBox> boxes{box};
   for (int k = 1; k <= top; ++k) boxes.push_back(halve_box(boxes.back()));
   for (int k = top - 1; k >= 1; --k)
-    reach[std::size_t(k)] =
-        std::min(2 * reach[std::size_t(k + 1)] + h.radius + 2,
-                 int(boxes[std::size_t(k)].dim()[boxes[std::size_t(k)].dim().maxIndex()]) + h.radius + 2);
+    reach[std::size_t(k)] = std::min(2 * reach[std::size_t(k + 1)] + h.radius + 2, 2 * h.radius + 4);
   typename Halving<TreeT>::Edges edges{box, box, {}};
   openvdb::GridPtrVec out;
   typename TreeT::ConstPtr work = in.constTreePtr();
