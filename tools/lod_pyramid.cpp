@@ -49,7 +49,7 @@ void set_component(V& v, int c, double x) {
   using E = typename openvdb::VecTraits<V>::ElementType;
   if constexpr (std::is_integral_v<V>)  // integer grids: the nearest integer, as vdb_lod keeps them
     v = V(std::clamp(std::round(x), double(std::numeric_limits<V>::lowest()),
-                     double(std::numeric_limits<V>::max())));
+                     std::nextafter(double(std::numeric_limits<V>::max()), 0.0)));
   else if constexpr (openvdb::VecTraits<V>::IsVec)
     v[c] = E(x);
   else

@@ -160,6 +160,8 @@ TEST_F(VolumeTest, MultiGridFileRoundTripsEveryGridType) {
   ASSERT_EQ(c.exit_code, 0) << c.output;
   const CliResult d = run_cli({"decompress", (dir_ / "m.pw").string(), (dir_ / "out.vdb").string()});
   ASSERT_EQ(d.exit_code, 0) << d.output;
+  const CliResult info = run_cli({"info", (dir_ / "m.pw").string()});
+  EXPECT_NE(info.output.find("'velocity', component 2 of a vec3s grid"), std::string::npos) << info.output;
   const openvdb::GridPtrVec out = read_grids(dir_ / "out.vdb");
   ASSERT_EQ(out.size(), in.size());
   for (std::size_t i = 0; i < in.size(); ++i) {
