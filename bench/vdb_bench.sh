@@ -16,12 +16,12 @@ vdb_tool -sphere radius=$((R / 2)) voxel=1 name=fog -ls2fog -o "$DIR/fog.vdb" >/
 measure() { /usr/bin/time -f "%e %M" -o "$DIR/t" "$@" >/dev/null 2>&1 || true; tail -1 "$DIR/t"; }
 size() { stat -c %s "$1"; }
 
-echo "| volume | active voxels | input .vdb B | vdb_tool bits=16 B | pupwave 1e-3 of range B | compress s / MB | decompress s / MB | pupwave lod 3 s / MB | vdb_lod 0-3 s / MB | pupwave lod 8 s / MB | vdb_lod 0-8 s / MB |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| volume | active voxels | input .vdb B | vdb_tool bits=16 B | pupwave 1e-3 of range B | compress s / MB | decompress s / MB | vdb_tool read + write bits=16 s / MB | pupwave lod 3 s / MB | vdb_lod 0-3 s / MB | pupwave lod 8 s / MB | vdb_lod 0-8 s / MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for v in ls fog; do
   in="$DIR/$v.vdb"
   active=$(vdb_print "$in" 2>/dev/null | grep -m1 -o "[0-9.]*[KM]Vox" || echo "?")
-  vdb_tool -read "$in" -write bits=16 "$DIR/${v}_half.vdb" >/dev/null
+  h=$(measure vdb_tool -read "$in" -write bits=16 "$DIR/${v}_half.vdb")
   c=$(measure "$PW" compress "$in" "$DIR/$v.pw" --max-error-rel 1e-3)
   d=$(measure "$PW" decompress "$DIR/$v.pw" "$DIR/${v}_out.vdb")
   l3=$(measure "$PW" lod "$in" "$DIR/${v}_l3.vdb" --levels 3 || echo "fail -")
@@ -29,5 +29,5 @@ for v in ls fog; do
   l8=$(measure "$PW" lod "$in" "$DIR/${v}_l8.vdb" --levels 8 || echo "fail -")
   v8=$(measure vdb_lod "$in" "$DIR/${v}_v8.vdb" -range 0-8)
   mb() { awk '{ if ($2 == "-") print $1; else printf "%s / %.0f", $1, $2 / 1024 }' <<<"$1"; }
-  echo "| $v | $active | $(size "$in") | $(size "$DIR/${v}_half.vdb") | $(size "$DIR/$v.pw") | $(mb "$c") | $(mb "$d") | $(mb "$l3") | $(mb "$v3") | $(mb "$l8") | $(mb "$v8") |"
+  echo "| $v | $active | $(size "$in") | $(size "$DIR/${v}_half.vdb") | $(size "$DIR/$v.pw") | $(mb "$c") | $(mb "$d") | $(mb "$h") | $(mb "$l3") | $(mb "$v3") | $(mb "$l8") | $(mb "$v8") |"
 done

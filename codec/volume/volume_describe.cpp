@@ -60,8 +60,15 @@ std::string describe_volume_stream(std::span<const std::uint8_t> bytes) {
     }
     const GridCounts n = count_grid(s, g);
     const auto size = grid.voxel_size();
-    out << "  grid " << g << "      '" << grid.name << "', " << to_string(grid.grid_class) << ", "
-        << to_string(v.type)
+    // One component of an OpenVDB vector grid (the reader codes vec3 grids per component).
+    const auto component = grid.metadata.find("vdb_vector_component");
+    const auto vector = grid.metadata.find("vdb_vector_type");
+    const std::string part = component != grid.metadata.end() && vector != grid.metadata.end()
+                                 ? ", component " + std::to_string(component->second.integer) + " of a " +
+                                       vector->second.text + " grid"
+                                 : std::string();
+    out << "  grid " << g << "      '" << grid.name << "'" << part << ", " << to_string(grid.grid_class)
+        << ", " << to_string(v.type)
         << (h.blocked[g]    ? ", sparse (blocks and tiles)"
             : v.is_sparse() ? ", sparse"
                             : ", dense")

@@ -46,10 +46,11 @@ void expect_like_vdb_lod(const openvdb::FloatGrid& ours,
   EXPECT_EQ(ours.metaValue<openvdb::Int64>("MultiResGrid_Levels"), openvdb::Int64(mrg.numLevels()));
 }
 
-// The expected level-k field over the box documented in tools/cmd_lod.cpp (active bounding box
-// padded to multiples of 2^top plus one such block per side): k levels of 1-D analysis along x,
-// then y, then z keeping the coarse part, divided by the coarse response to a constant line,
-// clamped to the input's value range.
+// The expected level-k field of a sparse grid, whose outside is its background (tools/cmd_lod.cpp):
+// over its active bounding box padded to multiples of 2^top plus five such blocks per side (so
+// the symmetric extension at the ends of these finite lines only ever mirrors background), k
+// levels of 1-D analysis along x, then y, then z keeping the coarse part, divided by the coarse
+// response to a constant line, clamped to the input's value range.
 struct Expected {
   openvdb::Coord origin;  // index of sample 0 at level k
   std::array<std::size_t, 3> n{};
@@ -74,8 +75,8 @@ Expected expected_level(const openvdb::FloatGrid& grid, const Transform1D& t, in
   const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
   openvdb::Coord lo, size;
   for (int a = 0; a < 3; ++a) {
-    lo[a] = (floor_div(active.min()[a], block) - 1) * block;
-    size[a] = (floor_div(active.max()[a] + block, block) + 1) * block - lo[a];
+    lo[a] = (floor_div(active.min()[a], block) - 5) * block;
+    size[a] = (floor_div(active.max()[a] + block, block) + 5) * block - lo[a];
   }
   double vmin = grid.background(), vmax = grid.background();
   auto acc = grid.getConstAccessor();

@@ -102,6 +102,9 @@ openvdb::GridPtrVec multi_grids() {
     flags->tree().setValueOn(c, i % 2 == 0);
   }
   mask->insertMeta("count", openvdb::Int64Metadata(300));
+  // Metadata of types the stream has no kind for (issue 18: every type kept).
+  density->insertMeta("camera", openvdb::Mat4DMetadata(openvdb::Mat4d(openvdb::Mat4d::identity() * 2.0)));
+  velocity->insertMeta("window", openvdb::Vec2IMetadata(openvdb::Vec2i(3, -4)));
   return {density, temperature, velocity, mask, flags};
 }
 
@@ -115,14 +118,50 @@ TEST_F(VolumeTest, InfoListsEveryGridOfAVdbFile) {
     EXPECT_NE(r.output.find(want), std::string::npos) << want << " in\n" << r.output;
 }
 
+// File-level metadata of several types, as OpenVDB writes it beside the grids.
+openvdb::MetaMap file_metadata() {
+  openvdb::MetaMap m;
+  m.insertMeta("creator", openvdb::StringMetadata("pupwave test"));
+  m.insertMeta("frame", openvdb::Int32Metadata(42));
+  m.insertMeta("time", openvdb::DoubleMetadata(1.25));
+  m.insertMeta("origin", openvdb::Vec3DMetadata(openvdb::Vec3d(1, 2, 3)));
+  m.insertMeta("frustum", openvdb::Mat4SMetadata(openvdb::Mat4s(openvdb::Mat4s::identity() * 3.0f)));
+  return m;
+}
+
+void write_with_file_metadata(const openvdb::GridPtrVec& grids, const fs::path& path) {
+  openvdb::io::File file(path.string());
+  file.write(grids, file_metadata());
+  file.close();
+}
+
+openvdb::MetaMap read_file_metadata(const fs::path& path) {
+  openvdb::io::File file(path.string());
+  file.open(false);
+  const openvdb::MetaMap::Ptr m = file.getMetadata();
+  file.close();
+  return *m;
+}
+
+void expect_file_metadata(const fs::path& path) {
+  const openvdb::MetaMap m = read_file_metadata(path);
+  EXPECT_EQ(m.metaValue<std::string>("creator"), "pupwave test");
+  EXPECT_EQ(m.metaValue<openvdb::Int32>("frame"), 42);
+  EXPECT_EQ(m.metaValue<double>("time"), 1.25);
+  EXPECT_EQ(m.metaValue<openvdb::Vec3d>("origin"), openvdb::Vec3d(1, 2, 3));
+  EXPECT_EQ(m.metaValue<openvdb::Mat4s>("frustum"), openvdb::Mat4s(openvdb::Mat4s::identity() * 3.0f));
+}
+
 TEST_F(VolumeTest, MultiGridFileRoundTripsEveryGridType) {
-  write_grids(multi_grids(), dir_ / "multi.vdb");
+  write_with_file_metadata(multi_grids(), dir_ / "multi.vdb");
   const openvdb::GridPtrVec in = read_grids(dir_ / "multi.vdb");  // OpenVDB lists grids by name
   const CliResult c =
       run_cli({"compress", (dir_ / "multi.vdb").string(), (dir_ / "m.pw").string(), "--max-error", "1e-3"});
   ASSERT_EQ(c.exit_code, 0) << c.output;
   const CliResult d = run_cli({"decompress", (dir_ / "m.pw").string(), (dir_ / "out.vdb").string()});
   ASSERT_EQ(d.exit_code, 0) << d.output;
+  const CliResult info = run_cli({"info", (dir_ / "m.pw").string()});
+  EXPECT_NE(info.output.find("'velocity', component 2 of a vec3s grid"), std::string::npos) << info.output;
   const openvdb::GridPtrVec out = read_grids(dir_ / "out.vdb");
   ASSERT_EQ(out.size(), in.size());
   for (std::size_t i = 0; i < in.size(); ++i) {
@@ -134,7 +173,10 @@ TEST_F(VolumeTest, MultiGridFileRoundTripsEveryGridType) {
   }
   // Names in OpenVDB's order: density, flags, mask, temperature, velocity.
   EXPECT_EQ(out[0]->metaValue<std::string>("units"), "kg/m3");
+  EXPECT_EQ(out[0]->metaValue<openvdb::Mat4d>("camera"), openvdb::Mat4d(openvdb::Mat4d::identity() * 2.0));
   EXPECT_EQ(out[2]->metaValue<openvdb::Int64>("count"), 300);
+  EXPECT_EQ(out[4]->metaValue<openvdb::Vec2i>("window"), openvdb::Vec2i(3, -4));
+  expect_file_metadata(dir_ / "out.vdb");
   // Lossless grids: bit exact values and topology, backgrounds included.
   const auto m_in = openvdb::gridPtrCast<openvdb::Int32Grid>(in[2]);
   const auto m_out = openvdb::gridPtrCast<openvdb::Int32Grid>(out[2]);
@@ -147,10 +189,18 @@ TEST_F(VolumeTest, MultiGridFileRoundTripsEveryGridType) {
   const auto v_in = openvdb::gridPtrCast<openvdb::Vec3SGrid>(in[4]);
   const auto v_out = openvdb::gridPtrCast<openvdb::Vec3SGrid>(out[4]);
   ASSERT_TRUE(v_in && v_out);
+  // Vector grids: lossy per component, the bound held by each component of every active voxel.
   EXPECT_EQ(v_out->background(), openvdb::Vec3s(0, 0, 1));
   EXPECT_TRUE(v_out->tree().hasSameTopology(v_in->tree()));
   auto vacc = v_out->getConstAccessor();
-  for (auto it = v_in->cbeginValueOn(); it; ++it) EXPECT_EQ(vacc.getValue(it.getCoord()), *it);
+  std::size_t lossy = 0;
+  for (auto it = v_in->cbeginValueOn(); it; ++it) {
+    const openvdb::Vec3s got = vacc.getValue(it.getCoord());
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LE(std::abs(got[c] - (*it)[c]), 1e-3) << it.getCoord() << " component " << c;
+    lossy += got != *it;
+  }
+  EXPECT_GT(lossy, 0u) << "the vector grid was coded lossy, not copied";
   // Lossy grids: the bound on every active voxel, topology kept.
   const auto f_in = openvdb::gridPtrCast<openvdb::FloatGrid>(in[0]);
   const auto f_out = openvdb::gridPtrCast<openvdb::FloatGrid>(out[0]);
@@ -167,23 +217,69 @@ TEST_F(VolumeTest, MultiGridFileRoundTripsEveryGridType) {
     EXPECT_LE(std::abs(dacc.getValue(it.getCoord()) - *it), 1e-3);
 }
 
-// lod keeps the grids it has no pyramid for (vector, integer, bool) instead of dropping them.
+// lod keeps the integer and bool grids (no pyramid for them) instead of dropping them, makes one
+// of vector grids per component, and keeps the file metadata.
 TEST_F(VolumeTest, LodCopiesOtherGridTypes) {
   const openvdb::GridPtrVec in = multi_grids();
-  write_grids(in, dir_ / "multi.vdb");
+  write_with_file_metadata(in, dir_ / "multi.vdb");
   const CliResult r =
       run_cli({"lod", (dir_ / "multi.vdb").string(), (dir_ / "lod.vdb").string(), "--levels", "1"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::map<std::string, openvdb::GridBase::Ptr> out;
   for (const auto& g : read_grids(dir_ / "lod.vdb")) out[g->getName()] = g;
-  EXPECT_EQ(out.size(), 7u);         // density and temperature at levels 0 and 1, three copied grids
-  for (std::size_t i : {2, 3, 4}) {  // velocity, mask, flags in multi_grids()
+  EXPECT_EQ(out.size(), 9u);   // density, temperature, velocity, mask at levels 0 and 1; flags copied
+  for (std::size_t i : {4}) {  // flags in multi_grids() (vdb_lod skips bool grids; never dropped here)
     const std::string name = in[i]->getName();
     ASSERT_TRUE(out.count(name)) << name;
     EXPECT_EQ(out[name]->activeVoxelCount(), in[i]->activeVoxelCount()) << name;
     EXPECT_EQ(out[name]->valueType(), in[i]->valueType()) << name;
   }
   EXPECT_TRUE(out.count("density_level_1"));
+  ASSERT_TRUE(out.count("velocity_level_1"));
+  EXPECT_EQ(out["velocity_level_1"]->valueType(), "vec3s");
+  EXPECT_EQ(out["velocity_level_1"]->getGridClass(), openvdb::GRID_STAGGERED);
+  ASSERT_TRUE(out.count("mask_level_1"));  // integer grids get levels, as in vdb_lod
+  EXPECT_EQ(out["mask_level_1"]->valueType(), "int32");
+  expect_file_metadata(dir_ / "lod.vdb");
+}
+
+// A vector grid's levels are the levels of its components, each made as for a scalar grid.
+TEST_F(VolumeTest, LodOfVectorGridIsPerComponent) {
+  const auto v = openvdb::gridPtrCast<openvdb::Vec3SGrid>(multi_grids()[2]);
+  openvdb::GridPtrVec parts;
+  for (int c = 0; c < 3; ++c) {
+    auto g = openvdb::FloatGrid::create(v->background()[c]);
+    for (auto it = v->cbeginValueOn(); it; ++it) g->tree().setValueOn(it.getCoord(), (*it)[c]);
+    g->setName("c" + std::to_string(c));
+    parts.push_back(g);
+  }
+  write_grids({v}, dir_ / "v.vdb");
+  write_grids(parts, dir_ / "parts.vdb");
+  for (const char* name : {"v", "parts"}) {
+    const fs::path in = dir_ / (std::string(name) + ".vdb"), out = dir_ / (std::string(name) + "_lod.vdb");
+    const CliResult r = run_cli({"lod", in.string(), out.string(), "--levels", "2"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  std::map<std::string, openvdb::GridBase::Ptr> levels;
+  for (const auto& g : read_grids(dir_ / "v_lod.vdb")) levels[g->getName()] = g;
+  for (const auto& g : read_grids(dir_ / "parts_lod.vdb")) levels[g->getName()] = g;
+  for (int k = 1; k <= 2; ++k) {
+    const auto vk = openvdb::gridPtrCast<openvdb::Vec3SGrid>(levels["velocity_level_" + std::to_string(k)]);
+    ASSERT_TRUE(vk) << k;
+    std::size_t checked = 0;
+    for (int c = 0; c < 3; ++c) {
+      const auto ck = openvdb::gridPtrCast<openvdb::FloatGrid>(
+          levels["c" + std::to_string(c) + "_level_" + std::to_string(k)]);
+      ASSERT_TRUE(ck) << k << ' ' << c;
+      EXPECT_EQ(vk->activeVoxelCount(), ck->activeVoxelCount());
+      auto acc = vk->getConstAccessor();
+      for (auto it = ck->cbeginValueOn(); it; ++it, ++checked) {
+        ASSERT_TRUE(acc.isValueOn(it.getCoord()));
+        ASSERT_EQ(acc.getValue(it.getCoord())[c], *it) << "level " << k << " component " << c;
+      }
+    }
+    EXPECT_GT(checked, 300u);
+  }
 }
 
 }  // namespace

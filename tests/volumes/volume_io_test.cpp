@@ -164,20 +164,35 @@ TEST_F(VolumeTest, VdbSparseGridsOddSizesMetadataTransform) {
 TEST_F(VolumeTest, VdbNamedGridAndUnsupportedTypes) {
   auto f = random_grid<openvdb::FloatGrid>({0, 0, 0}, {5, 6, 7}, 0.5, 4);
   f->setName("a");
+  auto m = openvdb::Int32Grid::create();
+  m->tree().setValue(openvdb::Coord(1, 2, 3), 7);
+  m->setName("mask");
   auto v = openvdb::Vec3SGrid::create();
   v->tree().setValue(openvdb::Coord(1, 2, 3), openvdb::Vec3s(1, 2, 3));
   v->setName("velocity");
-  write_grids({v, f}, dir_ / "mixed.vdb");
+  write_grids({v, f, m}, dir_ / "mixed.vdb");
   std::vector<std::string> skipped;
   const auto all = read_vdb(dir_ / "mixed.vdb", {}, &skipped);
-  // The vec3s grid is kept (carried as OpenVDB bytes), never dropped.
-  ASSERT_EQ(all.size(), 2u);  // in OpenVDB's order (by name)
+  // The int32 grid is kept (carried as OpenVDB bytes), never dropped; the vec3s grid becomes its
+  // three components (coded lossy, joined again by write_vdb).
+  ASSERT_EQ(all.size(), 5u);  // in OpenVDB's order (by name)
   EXPECT_EQ(all[0].name, "a");
   EXPECT_FALSE(all[0].is_opaque());
-  EXPECT_EQ(all[1].name, "velocity");
+  EXPECT_EQ(all[1].name, "mask");
   EXPECT_TRUE(all[1].is_opaque());
-  EXPECT_EQ(skipped, (std::vector<std::string>{"velocity"}));
-  EXPECT_TRUE(read_vdb(dir_ / "mixed.vdb", "velocity").at(0).is_opaque());
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_EQ(all[2 + c].name, "velocity");
+    EXPECT_FALSE(all[2 + c].is_opaque());
+    EXPECT_EQ(all[2 + c].active_voxels(), 1u);
+  }
+  EXPECT_EQ(skipped, (std::vector<std::string>{"mask"}));
+  EXPECT_TRUE(read_vdb(dir_ / "mixed.vdb", "mask").at(0).is_opaque());
+  write_vdb(all, dir_ / "back.vdb");
+  const openvdb::GridPtrVec back = read_grids(dir_ / "back.vdb");
+  ASSERT_EQ(back.size(), 3u);
+  const auto v_back = openvdb::gridPtrCast<openvdb::Vec3SGrid>(back[2]);
+  ASSERT_TRUE(v_back);
+  EXPECT_TRUE(same_voxels(*v, *v_back));
   try {
     read_vdb(dir_ / "mixed.vdb", "nope");
     FAIL() << "missing grid accepted";
