@@ -105,10 +105,8 @@ void float_component(const ImageView& image, ColourTransform colour, std::size_t
   std::vector<float> rows(3 * w);
   for (std::size_t y = 0; y < image.height; ++y) {
     for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
-    for (std::size_t x = 0; x < w; ++x) {
-      const float rgb[3] = {rows[x] - shift, rows[w + x] - shift, rows[2 * w + x] - shift};
-      forward_ict(rgb, c, out.data() + y * w + x);
-    }
+    const float* const rgb[3] = {rows.data(), rows.data() + w, rows.data() + 2 * w};
+    forward_ict_row(rgb, shift, c, out.data() + y * w, w);
   }
 }
 

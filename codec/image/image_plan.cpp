@@ -22,12 +22,12 @@ namespace {
 // and subtracting 2^23 rounds a float in [0, 2^23) to an integer, so only integers come back.
 bool row_is_valid(const std::vector<float>& row, bool integer, float top) {
   constexpr float kRound = 8388608.0f;  // 2^23
-  bool ok = true;
+  int bad = 0;                          // an int OR of comparisons: GCC vectorizes this form
   if (integer)
-    for (float v : row) ok &= (v >= 0.0f) & (v <= top) & ((v + kRound) - kRound == v);
+    for (float v : row) bad |= int(v < 0.0f) | int(v > top) | int((v + kRound) - kRound != v);
   else
-    for (float v : row) ok &= (v - v == 0.0f);  // NaN for NaN and infinities
-  return ok;
+    for (float v : row) bad |= int(v - v != 0.0f);  // NaN for NaN and infinities
+  return bad == 0;
 }
 
 void validate_image(const ImageView& image) {
