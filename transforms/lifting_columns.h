@@ -15,23 +15,33 @@
 
 namespace pupwave::lifting::columns {
 
+// Copies one row of a block. Rows of the separable engine's usual 32 columns are copied with a
+// constant size, which compiles to a few vector moves instead of a memcpy call per row.
+template <class T>
+inline void copy_row(T* dst, const T* src, std::size_t width) {
+  if (width == 32)
+    std::memcpy(dst, src, 32 * sizeof(T));
+  else
+    std::memcpy(dst, src, width * sizeof(T));
+}
+
 // Reorders the rows of a block of n rows into [even rows | odd rows] (lifting::split per
 // column). scratch: at least floor(n/2) * width samples.
 template <class T>
 void split(T* block, std::size_t n, std::size_t width, T* scratch) {
-  const std::size_t ne = (n + 1) / 2, no = n / 2, row = width * sizeof(T);
-  for (std::size_t j = 0; j < no; ++j) std::memcpy(scratch + j * width, block + (2 * j + 1) * width, row);
-  for (std::size_t j = 1; j < ne; ++j) std::memcpy(block + j * width, block + 2 * j * width, row);
-  std::memcpy(block + ne * width, scratch, no * row);
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  for (std::size_t j = 0; j < no; ++j) copy_row(scratch + j * width, block + (2 * j + 1) * width, width);
+  for (std::size_t j = 1; j < ne; ++j) copy_row(block + j * width, block + 2 * j * width, width);
+  std::memcpy(block + ne * width, scratch, no * width * sizeof(T));
 }
 
 // Inverse of split (lifting::merge per column). scratch: at least floor(n/2) * width samples.
 template <class T>
 void merge(T* block, std::size_t n, std::size_t width, T* scratch) {
-  const std::size_t ne = (n + 1) / 2, no = n / 2, row = width * sizeof(T);
-  std::memcpy(scratch, block + ne * width, no * row);
-  for (std::size_t j = ne; j-- > 1;) std::memcpy(block + 2 * j * width, block + j * width, row);
-  for (std::size_t j = 0; j < no; ++j) std::memcpy(block + (2 * j + 1) * width, scratch + j * width, row);
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  std::memcpy(scratch, block + ne * width, no * width * sizeof(T));
+  for (std::size_t j = ne; j-- > 1;) copy_row(block + 2 * j * width, block + j * width, width);
+  for (std::size_t j = 0; j < no; ++j) copy_row(block + (2 * j + 1) * width, scratch + j * width, width);
 }
 
 // lifting::detail::apply per column: target rows [0, mt) += sign * filtered source rows [0, ms).

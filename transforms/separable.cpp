@@ -1,5 +1,7 @@
 #include "transforms/separable.h"
 
+#include "transforms/lifting_columns.h"
+
 #include <algorithm>
 #include <functional>
 #include <limits>
@@ -70,13 +72,15 @@ void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Exten
       const std::size_t x0 = (k % blocks) * kColumnBlock;
       const std::size_t nb = std::min(kColumnBlock, r[0] - x0);
       T* base = data + (k / blocks) * other_stride + x0;
-      for (std::size_t i = 0; i < len; ++i) std::copy_n(base + i * stride, nb, buf.data() + i * nb);
+      for (std::size_t i = 0; i < len; ++i)
+        lifting::columns::copy_row(buf.data() + i * nb, base + i * stride, nb);
       const std::span<T> block(buf.data(), len * nb);
       if (analysis)
         t.analyze_columns(block, nb);
       else
         t.synthesize_columns(block, nb);
-      for (std::size_t i = 0; i < len; ++i) std::copy_n(buf.data() + i * nb, nb, base + i * stride);
+      for (std::size_t i = 0; i < len; ++i)
+        lifting::columns::copy_row(base + i * stride, buf.data() + i * nb, nb);
     }
   });
 }
