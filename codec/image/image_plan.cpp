@@ -172,12 +172,12 @@ void transform_component(ImagePlan& plan, std::size_t c) {
   if (h.reversible) {
     plan.icoef.resize(h.channels);
     plan.icoef[c].swap(plan.ispare);
-    integer_component(plan.source, h.colour, c, plan.icoef[c]);
+    integer_component(plan.source, h.colour, c, plan.icoef[c], *plan.executor);
     forward(*plan.transform, plan.icoef[c].data(), h.dims, h.levels, *plan.executor);
   } else {
     plan.coef.resize(h.channels);
     plan.coef[c].swap(plan.spare);
-    float_component(plan.source, h.colour, c, plan.coef[c]);
+    float_component(plan.source, h.colour, c, plan.coef[c], *plan.executor);
     forward(*plan.transform, plan.coef[c].data(), h.dims, h.levels, *plan.executor);
   }
 }
