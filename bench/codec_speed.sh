@@ -98,6 +98,10 @@ for image in rgb grey; do
   done
 done
 
+# Hand-written notes after this marker in the results file survive a rerun.
+marker='<!-- notes: kept by codec_speed.sh -->'
+notes=$( [[ -f $out ]] && sed -n "/^$marker\$/,\$p" "$out" || true)
+
 gbench=$("$build/bench/codec_bench" --benchmark_min_time=1 2>/dev/null | grep -E '^bm_' || true)
 
 {
@@ -123,5 +127,9 @@ gbench=$("$build/bench/codec_bench" --benchmark_min_time=1 2>/dev/null | grep -E
   echo '```'
   echo "$gbench"
   echo '```'
+  if [[ -n $notes ]]; then
+    echo
+    echo "$notes"
+  fi
 } >"$out"
 cat "$out"
