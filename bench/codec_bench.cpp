@@ -2,9 +2,11 @@
 // threads: in-process encode and decode throughput (input megapixels per second).
 // Run: build/bench/codec_bench --benchmark_min_time=2s
 // `codec_bench --write-mosaic OUT.ppm` writes the mosaic instead, so the whole-process
-// comparison with OpenJPEG (bench/codec_speed.sh) codes exactly the same pixels.
+// comparison with OpenJPEG (bench/codec_speed.sh) codes exactly the same pixels;
+// `--write-grey-mosaic OUT.pgm` writes its luma.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -32,6 +34,17 @@ pupwave::Image make_mosaic() {
     }
   }
   return mosaic;
+}
+
+// The mosaic in grey (Rec. 601 luma, rounded), for the grey rows of bench/codec_speed.sh.
+pupwave::Image grey_mosaic() {
+  const pupwave::Image rgb = make_mosaic();
+  pupwave::Image grey(kSide, kSide, 1, pupwave::SampleType::u8);
+  for (std::size_t y = 0; y < kSide; ++y)
+    for (std::size_t x = 0; x < kSide; ++x)
+      grey.at(0, x, y) =
+          std::round(0.299f * rgb.at(0, x, y) + 0.587f * rgb.at(1, x, y) + 0.114f * rgb.at(2, x, y));
+  return grey;
 }
 
 const pupwave::Image& mosaic() {
@@ -75,6 +88,10 @@ BENCHMARK(bm_decode)->Unit(benchmark::kMillisecond)->UseRealTime();
 int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--write-mosaic") == 0) {
     pupwave::cli::write_image(mosaic(), argv[2]);
+    return 0;
+  }
+  if (argc == 3 && std::strcmp(argv[1], "--write-grey-mosaic") == 0) {
+    pupwave::cli::write_image(grey_mosaic(), argv[2]);
     return 0;
   }
   benchmark::Initialize(&argc, argv);

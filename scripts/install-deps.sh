@@ -14,6 +14,8 @@ packages=(
   libopenjp2-tools libjxl-tools zfp libopenvdb-tools gnuplot-nox
   # the modern anchors of `pupwave bench rd`: AVIF (libaom), HEVC intra (ffmpeg + libx265), WebP
   libavif-bin ffmpeg webp
+  # bench/codec_speed.sh only: Grok and OpenJPH (HTJ2K) as speed peers
+  grokj2k-tools openjph-tools
   # sqrt(3) meshes: OpenMesh for the subdivision cross-check test, Draco and the CGAL sample
   # meshes for bench/mesh_vs_draco.py
   libopenmesh-dev draco libcgal-demo

@@ -1,5 +1,6 @@
 #include "transforms/cdf.h"
 #include "transforms/lifting.h"
+#include "transforms/lifting_columns.h"
 #include "transforms/scratch.h"
 
 #include <type_traits>
@@ -50,6 +51,45 @@ void synthesize53(std::span<T> line) {
   lifting::merge(line, thread_scratch<T>(n / 2));
 }
 
+// analyze53 / synthesize53 on every column of a block of rows (lifting_columns.h).
+template <class T>
+void analyze53_columns(std::span<T> block, std::size_t width) {
+  namespace col = lifting::columns;
+  const std::size_t n = width ? block.size() / width : 0;
+  if (n < 2) return;
+  col::split(block.data(), n, width, thread_scratch<T>(n / 2 * width).data());
+  T* e = block.data();
+  T* o = e + (n + 1) / 2 * width;
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  const auto w = lifting::whole_sample_symmetric_wires(n);
+  if constexpr (std::is_same_v<T, int32_t>) {
+    col::lift_integer(e, ne, w.even, o, no, kPredictInt, lifting::Direction::subtract, width);
+    col::lift_integer(o, no, w.odd, e, ne, kUpdateInt, lifting::Direction::add, width);
+  } else {
+    col::apply<T>(e, ne, w.even, o, no, kPredict, T(1), width);
+    col::apply<T>(o, no, w.odd, e, ne, kUpdate, T(1), width);
+  }
+}
+
+template <class T>
+void synthesize53_columns(std::span<T> block, std::size_t width) {
+  namespace col = lifting::columns;
+  const std::size_t n = width ? block.size() / width : 0;
+  if (n < 2) return;
+  T* e = block.data();
+  T* o = e + (n + 1) / 2 * width;
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  const auto w = lifting::whole_sample_symmetric_wires(n);
+  if constexpr (std::is_same_v<T, int32_t>) {
+    col::lift_integer(o, no, w.odd, e, ne, kUpdateInt, lifting::Direction::subtract, width);
+    col::lift_integer(e, ne, w.even, o, no, kPredictInt, lifting::Direction::add, width);
+  } else {
+    col::apply<T>(o, no, w.odd, e, ne, kUpdate, T(-1), width);
+    col::apply<T>(e, ne, w.even, o, no, kPredict, T(-1), width);
+  }
+  col::merge(block.data(), n, width, thread_scratch<T>(n / 2 * width).data());
+}
+
 class Cdf53 final : public Transform1D {
  public:
   std::string spec() const override { return "cdf53"; }
@@ -60,6 +100,20 @@ class Cdf53 final : public Transform1D {
   void synthesize(std::span<float> line) const override { synthesize53(line); }
   void analyze(std::span<int32_t> line) const override { analyze53(line); }
   void synthesize(std::span<int32_t> line) const override { synthesize53(line); }
+  void analyze_columns(std::span<float> b, std::size_t width) const override { analyze53_columns(b, width); }
+  void synthesize_columns(std::span<float> b, std::size_t width) const override {
+    synthesize53_columns(b, width);
+  }
+  void analyze_columns(std::span<double> b, std::size_t width) const override { analyze53_columns(b, width); }
+  void synthesize_columns(std::span<double> b, std::size_t width) const override {
+    synthesize53_columns(b, width);
+  }
+  void analyze_columns(std::span<int32_t> b, std::size_t width) const override {
+    analyze53_columns(b, width);
+  }
+  void synthesize_columns(std::span<int32_t> b, std::size_t width) const override {
+    synthesize53_columns(b, width);
+  }
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "transforms/cdf.h"
 #include "transforms/lifting.h"
+#include "transforms/lifting_columns.h"
 #include "transforms/scratch.h"
 
 namespace pupwave {
@@ -46,6 +47,43 @@ void synthesize97(std::span<T> line) {
   lifting::merge(line, thread_scratch<T>(n / 2));
 }
 
+// analyze97 / synthesize97 on every column of a block of rows (lifting_columns.h).
+template <class T>
+void analyze97_columns(std::span<T> block, std::size_t width) {
+  namespace col = lifting::columns;
+  const std::size_t n = width ? block.size() / width : 0;
+  if (n < 2) return;
+  col::split(block.data(), n, width, thread_scratch<T>(n / 2 * width).data());
+  T* e = block.data();
+  T* o = e + (n + 1) / 2 * width;
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  const auto w = lifting::whole_sample_symmetric_wires(n);
+  col::apply<T>(e, ne, w.even, o, no, kPredict1, T(1), width);
+  col::apply<T>(o, no, w.odd, e, ne, kUpdate1, T(1), width);
+  col::apply<T>(e, ne, w.even, o, no, kPredict2, T(1), width);
+  col::apply<T>(o, no, w.odd, e, ne, kUpdate2, T(1), width);
+  col::undo_scale(e, ne * width, C::K);
+  col::scale(o, no * width, C::K);
+}
+
+template <class T>
+void synthesize97_columns(std::span<T> block, std::size_t width) {
+  namespace col = lifting::columns;
+  const std::size_t n = width ? block.size() / width : 0;
+  if (n < 2) return;
+  T* e = block.data();
+  T* o = e + (n + 1) / 2 * width;
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  const auto w = lifting::whole_sample_symmetric_wires(n);
+  col::undo_scale(o, no * width, C::K);
+  col::scale(e, ne * width, C::K);
+  col::apply<T>(o, no, w.odd, e, ne, kUpdate2, T(-1), width);
+  col::apply<T>(e, ne, w.even, o, no, kPredict2, T(-1), width);
+  col::apply<T>(o, no, w.odd, e, ne, kUpdate1, T(-1), width);
+  col::apply<T>(e, ne, w.even, o, no, kPredict1, T(-1), width);
+  col::merge(block.data(), n, width, thread_scratch<T>(n / 2 * width).data());
+}
+
 class Cdf97 final : public Transform1D {
  public:
   std::string spec() const override { return "cdf97"; }
@@ -53,8 +91,18 @@ class Cdf97 final : public Transform1D {
   void synthesize(std::span<double> line) const override { synthesize97(line); }
   void analyze(std::span<float> line) const override { analyze97(line); }
   void synthesize(std::span<float> line) const override { synthesize97(line); }
+  void analyze_columns(std::span<float> b, std::size_t width) const override { analyze97_columns(b, width); }
+  void synthesize_columns(std::span<float> b, std::size_t width) const override {
+    synthesize97_columns(b, width);
+  }
+  void analyze_columns(std::span<double> b, std::size_t width) const override { analyze97_columns(b, width); }
+  void synthesize_columns(std::span<double> b, std::size_t width) const override {
+    synthesize97_columns(b, width);
+  }
   using Transform1D::analyze;
+  using Transform1D::analyze_columns;
   using Transform1D::synthesize;
+  using Transform1D::synthesize_columns;
 };
 
 }  // namespace

@@ -33,6 +33,18 @@ class Transform1D {
   virtual bool is_reversible() const { return false; }
   virtual void analyze(std::span<int32_t> line) const;
   virtual void synthesize(std::span<int32_t> line) const;
+
+  // The same on every column of a block of rows: block holds block.size() / width rows of
+  // `width` samples, row i at block[i * width], and each column is transformed as one line.
+  // The separable engine's column passes use these; the defaults copy each column to a line,
+  // and transforms override them with row-wise lifting that vectorizes over the columns
+  // (results bit-identical to the line form).
+  virtual void analyze_columns(std::span<float> block, std::size_t width) const;
+  virtual void synthesize_columns(std::span<float> block, std::size_t width) const;
+  virtual void analyze_columns(std::span<double> block, std::size_t width) const;
+  virtual void synthesize_columns(std::span<double> block, std::size_t width) const;
+  virtual void analyze_columns(std::span<int32_t> block, std::size_t width) const;
+  virtual void synthesize_columns(std::span<int32_t> block, std::size_t width) const;
 };
 
 using Transform1DPtr = std::shared_ptr<const Transform1D>;

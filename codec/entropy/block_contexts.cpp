@@ -83,6 +83,8 @@ BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
   flags_.assign(stride_z_ * (size[2] + 2), 0);
   neighbours_.assign(flags_.size(), 0);
   sig_table_ = kSigTable[std::size_t(table_)].data();
+  stripes_ = (size[1] + kStripe - 1) / kStripe;
+  active_.assign(stripes_ * size[2], 0);
   // Most coefficients of a block stay insignificant with no significant neighbour.
   models[0] = BitModel(std::uint16_t(kProbabilityOne * 15 / 16));
   models[kRunContext] = BitModel(std::uint16_t(kProbabilityOne * 7 / 8));

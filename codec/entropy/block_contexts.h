@@ -93,6 +93,25 @@ class BlockState {
   // Clears kVisited on every coefficient (end of each cleanup pass).
   void clear_visited();
 
+  // A stripe (4 rows of one slice, index z * stripes + y / 4) is active once a coefficient in
+  // it is significant or has a significant neighbour. An inactive stripe codes nothing in the
+  // significance and refinement passes, and only run bits in the cleanup pass, so the passes
+  // skip it (or take the run-only path) instead of testing every coefficient: most stripes of
+  // the top bit-planes of a block are inactive.
+  bool stripe_active(std::size_t stripe) const { return active_[stripe] != 0; }
+  // Marks the stripes whose contexts change when the coefficient at row y of slice z becomes
+  // significant: rows y - 1 .. y + 1 of its slice and row y of the adjacent slices.
+  void mark_active(std::size_t y, std::size_t z) {
+    const std::size_t s = z * stripes_;
+    active_[s + y / kStripe] = 1;
+    if (y > 0) active_[s + (y - 1) / kStripe] = 1;
+    if (y + 1 < size_[1]) active_[s + (y + 1) / kStripe] = 1;
+    if (volume_) {
+      if (z > 0) active_[s - stripes_ + y / kStripe] = 1;
+      if (z + 1 < size_[2]) active_[s + stripes_ + y / kStripe] = 1;
+    }
+  }
+
   std::array<BitModel, kBlockContexts> models;
 
  private:
@@ -114,26 +133,32 @@ class BlockState {
   // v (bits 2-3, 0..2) and diagonal plus across-slice (bits 4-7, 0..6).
   std::vector<std::uint8_t> neighbours_;
   const std::uint8_t* sig_table_ = nullptr;  // context by packed neighbour word, per orientation
+  std::size_t stripes_ = 0;                  // stripes per slice
+  std::vector<std::uint8_t> active_;         // per stripe: see stripe_active
 
   static constexpr std::uint8_t kHorizontalUnit = 1;
   static constexpr std::uint8_t kVerticalUnit = 4;
   static constexpr std::uint8_t kDiagonalUnit = 16;
 };
 
-// Calls visit(f, i, rows) for every stripe column, in scan order (slice, stripe, column):
-// `rows` (1..4) coefficients downwards, the top one at padded flag position f (see
-// BlockState::at) and block index i; row r is at f + r * (size[0] + 2) and i + r * size[0].
-// Positions are stepped, not recomputed, because this loop runs for every coding pass.
+// One stripe of the scan: up to kStripe rows from y0 in slice z; its first coefficient is at
+// padded flag position f0 (see BlockState::at) and block index i0, row r of column x at
+// f0 + x + r * (size[0] + 2) and i0 + x + r * size[0].
+struct Stripe {
+  std::size_t index, y0, z, f0, i0, rows;
+};
+
+// Calls visit(stripe) for every stripe in scan order (slice, then stripe).
 template <class Visit>
-void for_each_stripe_column(const Extent& size, Visit&& visit) {
+void for_each_stripe(const Extent& size, Visit&& visit) {
   const std::size_t flag_row = size[0] + 2;
   const std::size_t flag_slice = flag_row * (size[1] + 2);
+  std::size_t index = 0;
   for (std::size_t z = 0; z < size[2]; ++z)
-    for (std::size_t y0 = 0; y0 < size[1]; y0 += kStripe) {
+    for (std::size_t y0 = 0; y0 < size[1]; y0 += kStripe, ++index) {
       const std::size_t rows = size[1] - y0 < kStripe ? size[1] - y0 : kStripe;
-      const std::size_t f0 = 1 + (y0 + 1) * flag_row + (z + 1) * flag_slice;
-      const std::size_t i0 = size[0] * (y0 + size[1] * z);
-      for (std::size_t x = 0; x < size[0]; ++x) visit(f0 + x, i0 + x, rows);
+      visit(Stripe{index, y0, z, 1 + (y0 + 1) * flag_row + (z + 1) * flag_slice, size[0] * (y0 + size[1] * z),
+                   rows});
     }
 }
 

@@ -35,13 +35,14 @@ class BitPlaneDecoder {
   }
 
  private:
-  void decode_significance(std::size_t f, std::size_t i, int p, int ctx) {
-    if (rc_.decode(state_.models[std::size_t(ctx)])) become_significant(f, i, p);
+  void decode_significance(std::size_t f, std::size_t i, int p, int ctx, std::size_t y, std::size_t z) {
+    if (rc_.decode(state_.models[std::size_t(ctx)])) become_significant(f, i, p, y, z);
   }
-  void become_significant(std::size_t f, std::size_t i, int p) {
+  void become_significant(std::size_t f, std::size_t i, int p, std::size_t y, std::size_t z) {
     const auto [ctx, flip] = state_.sign_context(f);
     const bool negative = (rc_.decode(state_.models[std::size_t(ctx)]) ^ flip) != 0;
     state_.make_significant(f, negative);
+    state_.mark_active(y, z);
     const std::int32_t bit = std::int32_t(1u << p);
     out_.known[i] = negative ? -bit : bit;
     out_.low_plane[i] = std::uint8_t(p);
@@ -49,50 +50,59 @@ class BitPlaneDecoder {
 
   void significance_pass(int p) {
     const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
-      for (std::size_t r = 0; r < rows; ++r) {
-        const std::size_t f = f0 + r * fs;
-        if (state_.flags(f) & kSignificant) continue;
-        const int ctx = state_.significance_context(f);
-        if (ctx == 0) continue;
-        decode_significance(f, i0 + r * is, p, ctx);
-        state_.flags(f) |= kVisited;
-      }
+    for_each_stripe(size_, [&](const Stripe& s) {
+      if (!state_.stripe_active(s.index)) return;  // every context 0: nothing coded
+      for (std::size_t x = 0; x < is; ++x)
+        for (std::size_t r = 0; r < s.rows; ++r) {
+          const std::size_t f = s.f0 + x + r * fs;
+          if (state_.flags(f) & kSignificant) continue;
+          const int ctx = state_.significance_context(f);
+          if (ctx == 0) continue;
+          decode_significance(f, s.i0 + x + r * is, p, ctx, s.y0 + r, s.z);
+          state_.flags(f) |= kVisited;
+        }
     });
   }
 
   void refinement_pass(int p) {
     const std::size_t fs = flag_row_, is = size_[0];
     const std::int32_t bit_value = std::int32_t(1u << p);
-    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
-      for (std::size_t r = 0; r < rows; ++r) {
-        const std::size_t f = f0 + r * fs;
-        if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
-        const std::size_t i = i0 + r * is;
-        const int bit = rc_.decode(state_.models[std::size_t(state_.refinement_context(f))]);
-        state_.flags(f) |= kRefined;
-        const std::int32_t add = bit ? bit_value : 0;
-        out_.known[i] += out_.known[i] < 0 ? -add : add;
-        out_.low_plane[i] = std::uint8_t(p);
-      }
+    for_each_stripe(size_, [&](const Stripe& s) {
+      if (!state_.stripe_active(s.index)) return;  // nothing significant
+      for (std::size_t x = 0; x < is; ++x)
+        for (std::size_t r = 0; r < s.rows; ++r) {
+          const std::size_t f = s.f0 + x + r * fs;
+          if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
+          const std::size_t i = s.i0 + x + r * is;
+          const int bit = rc_.decode(state_.models[std::size_t(state_.refinement_context(f))]);
+          state_.flags(f) |= kRefined;
+          const std::int32_t add = bit ? bit_value : 0;
+          out_.known[i] += out_.known[i] < 0 ? -add : add;
+          out_.low_plane[i] = std::uint8_t(p);
+        }
     });
   }
 
   void cleanup_pass(int p) {
     const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
-      std::size_t r = 0;
-      if (rows == kStripe && state_.run_eligible(f0)) {
-        if (!rc_.decode(state_.models[kRunContext])) return;
-        std::size_t first = std::size_t(rc_.decode_equiprobable()) << 1;
-        first |= std::size_t(rc_.decode_equiprobable());
-        become_significant(f0 + first * fs, i0 + first * is, p);
-        r = first + 1;
-      }
-      for (; r < rows; ++r) {
-        const std::size_t f = f0 + r * fs;
-        if (state_.flags(f) & (kSignificant | kVisited)) continue;
-        decode_significance(f, i0 + r * is, p, state_.significance_context(f));
+    for_each_stripe(size_, [&](const Stripe& s) {
+      bool quiet = s.rows == kStripe && !state_.stripe_active(s.index);  // as in the encoder
+      for (std::size_t x = 0; x < is; ++x) {
+        const std::size_t f0 = s.f0 + x, i0 = s.i0 + x;
+        std::size_t r = 0;
+        if (s.rows == kStripe && (quiet || state_.run_eligible(f0))) {
+          if (!rc_.decode(state_.models[kRunContext])) continue;
+          std::size_t first = std::size_t(rc_.decode_equiprobable()) << 1;
+          first |= std::size_t(rc_.decode_equiprobable());
+          become_significant(f0 + first * fs, i0 + first * is, p, s.y0 + first, s.z);
+          quiet = false;
+          r = first + 1;
+        }
+        for (; r < s.rows; ++r) {
+          const std::size_t f = f0 + r * fs;
+          if (state_.flags(f) & (kSignificant | kVisited)) continue;
+          decode_significance(f, i0 + r * is, p, state_.significance_context(f), s.y0 + r, s.z);
+        }
       }
     });
     state_.clear_visited();

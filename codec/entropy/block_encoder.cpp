@@ -64,67 +64,79 @@ class BitPlaneEncoder {
     gain_ = 0.0;
   }
 
-  // Codes bit-plane p of a coefficient not yet significant; returns the coded bit.
-  int code_significance(std::size_t p_flag, std::size_t i, int p, int ctx) {
+  // Codes bit-plane p of a coefficient not yet significant (at row y of slice z).
+  void code_significance(std::size_t p_flag, std::size_t i, int p, int ctx, std::size_t y, std::size_t z) {
     const int bit = int((q_[i] >> p) & 1u);
     rc_.encode(bit, state_.models[std::size_t(ctx)]);
-    if (bit) become_significant(p_flag, i, p);
-    return bit;
+    if (bit) become_significant(p_flag, i, p, y, z);
   }
-  void become_significant(std::size_t p_flag, std::size_t i, int p) {
+  void become_significant(std::size_t p_flag, std::size_t i, int p, std::size_t y, std::size_t z) {
     const auto [ctx, flip] = state_.sign_context(p_flag);
     rc_.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
     state_.make_significant(p_flag, negative_[i] != 0);
+    state_.mark_active(y, z);
     add_gain(m_[i], 0.0, reconstruction(q_[i], p));
   }
 
   void significance_pass(int p) {
     const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
-      for (std::size_t r = 0; r < rows; ++r) {
-        const std::size_t f = f0 + r * fs;
-        if (state_.flags(f) & kSignificant) continue;
-        const int ctx = state_.significance_context(f);
-        if (ctx == 0) continue;
-        code_significance(f, i0 + r * is, p, ctx);
-        state_.flags(f) |= kVisited;
-      }
+    for_each_stripe(size_, [&](const Stripe& s) {
+      if (!state_.stripe_active(s.index)) return;  // every context 0: nothing to code
+      for (std::size_t x = 0; x < is; ++x)
+        for (std::size_t r = 0; r < s.rows; ++r) {
+          const std::size_t f = s.f0 + x + r * fs;
+          if (state_.flags(f) & kSignificant) continue;
+          const int ctx = state_.significance_context(f);
+          if (ctx == 0) continue;
+          code_significance(f, s.i0 + x + r * is, p, ctx, s.y0 + r, s.z);
+          state_.flags(f) |= kVisited;
+        }
     });
   }
 
   void refinement_pass(int p) {
     const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
-      for (std::size_t r = 0; r < rows; ++r) {
-        const std::size_t f = f0 + r * fs;
-        if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
-        const std::size_t i = i0 + r * is;
-        rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
-        state_.flags(f) |= kRefined;
-        add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
-      }
+    for_each_stripe(size_, [&](const Stripe& s) {
+      if (!state_.stripe_active(s.index)) return;  // nothing significant
+      for (std::size_t x = 0; x < is; ++x)
+        for (std::size_t r = 0; r < s.rows; ++r) {
+          const std::size_t f = s.f0 + x + r * fs;
+          if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
+          const std::size_t i = s.i0 + x + r * is;
+          rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
+          state_.flags(f) |= kRefined;
+          add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
+        }
     });
   }
 
   void cleanup_pass(int p) {
     const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe_column(size_, [&](std::size_t f0, std::size_t i0, std::size_t rows) {
-      std::size_t r = 0;
-      if (rows == kStripe && state_.run_eligible(f0)) {
-        std::size_t first = kStripe;  // first coefficient of the column with bit p set
-        for (std::size_t k = 0; k < kStripe && first == kStripe; ++k)
-          if ((q_[i0 + k * is] >> p) & 1u) first = k;
-        rc_.encode(first != kStripe, state_.models[kRunContext]);
-        if (first == kStripe) return;
-        rc_.encode_equiprobable(int(first >> 1));
-        rc_.encode_equiprobable(int(first & 1));
-        become_significant(f0 + first * fs, i0 + first * is, p);
-        r = first + 1;
-      }
-      for (; r < rows; ++r) {
-        const std::size_t f = f0 + r * fs;
-        if (state_.flags(f) & (kSignificant | kVisited)) continue;
-        code_significance(f, i0 + r * is, p, state_.significance_context(f));
+    for_each_stripe(size_, [&](const Stripe& s) {
+      // An inactive full stripe has every column run-eligible until something in it becomes
+      // significant, so run_eligible need not be asked until then.
+      bool quiet = s.rows == kStripe && !state_.stripe_active(s.index);
+      for (std::size_t x = 0; x < is; ++x) {
+        const std::size_t f0 = s.f0 + x, i0 = s.i0 + x;
+        std::size_t r = 0;
+        if (s.rows == kStripe && (quiet || state_.run_eligible(f0))) {
+          const std::uint32_t column = q_[i0] | q_[i0 + is] | q_[i0 + 2 * is] | q_[i0 + 3 * is];
+          const bool any = (column >> p) & 1u;
+          rc_.encode(any, state_.models[kRunContext]);
+          if (!any) continue;
+          std::size_t first = 0;  // first coefficient of the column with bit p set
+          while (!((q_[i0 + first * is] >> p) & 1u)) ++first;
+          rc_.encode_equiprobable(int(first >> 1));
+          rc_.encode_equiprobable(int(first & 1));
+          become_significant(f0 + first * fs, i0 + first * is, p, s.y0 + first, s.z);
+          quiet = false;
+          r = first + 1;
+        }
+        for (; r < s.rows; ++r) {
+          const std::size_t f = f0 + r * fs;
+          if (state_.flags(f) & (kSignificant | kVisited)) continue;
+          code_significance(f, i0 + r * is, p, state_.significance_context(f), s.y0 + r, s.z);
+        }
       }
     });
     state_.clear_visited();

@@ -18,6 +18,9 @@ void forward_ict(float* r, float* g, float* b, std::size_t n);
 void inverse_ict(float* y, float* cb, float* cr, std::size_t n);
 // Component c (0: Y, 1: Cb, 2: Cr) of the ICT of one pixel, exactly as forward_ict gives it.
 void forward_ict(const float rgb[3], std::size_t c, float* out);
+// Component c of the ICT of n pixels whose samples are rgb[k][i] - shift, exactly as above,
+// in one loop the compiler vectorizes (the encoder's colour conversion, row by row).
+void forward_ict_row(const float* const rgb[3], float shift, std::size_t c, float* out, std::size_t n);
 
 // R, G, B -> Yr, Ur, Vr (integer, bit-exactly invertible) and back.
 void forward_rct(std::int32_t* r, std::int32_t* g, std::int32_t* b, std::size_t n);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <span>
 
 #include "codec/rate/metrics.h"
@@ -26,6 +27,20 @@ float finish_sample(double v, SampleType type) {
   if (is_integer(type)) return float(std::clamp(std::nearbyint(v), 0.0, nominal_max(type)));
   if (type == SampleType::f16) return float(std::clamp(v, -65504.0, 65504.0));
   return float(v);
+}
+
+// finish_sample of n integer-type samples in place, written so the compiler vectorizes it (no
+// libm call per sample): clamping before rounding gives the same value, since rounding is
+// monotone and keeps the integer bounds, and adding and subtracting 2^52 rounds a double in
+// [0, 2^52) to the nearest integer, ties to even, as std::nearbyint does.
+void finish_integer_samples(float* p, std::size_t n, double shift, double top) {
+  constexpr double kRound = 4503599627370496.0;  // 2^52
+  for (std::size_t i = 0; i < n; ++i) {
+    double v = double(p[i]) + shift;
+    v = v < 0.0 ? 0.0 : v;
+    v = v > top ? top : v;
+    p[i] = float((v + kRound) - kRound);
+  }
 }
 
 // Writes component planes to the output image, freeing each plane once written so the
@@ -76,49 +91,67 @@ ColourTransform colour_for(std::size_t channels, bool reversible) {
 
 double level_shift(SampleType type) { return is_integer(type) ? (nominal_max(type) + 1.0) / 2.0 : 0.0; }
 
-void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out) {
+namespace {
+
+// Runs body(y0, y1) over row ranges of an image of `height` rows of `width` samples, in
+// parallel chunks of at least 2^16 samples (each row is independent of the others).
+void for_row_chunks(const Executor& ex, std::size_t width, std::size_t height,
+                    const std::function<void(std::size_t, std::size_t)>& body) {
+  const std::size_t rows = std::max<std::size_t>(1, (std::size_t(1) << 16) / std::max<std::size_t>(width, 1));
+  const std::size_t chunks = (height + rows - 1) / rows;
+  ex.run(chunks, [&](std::size_t k) { body(k * rows, std::min(height, (k + 1) * rows)); });
+}
+
+}  // namespace
+
+void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out,
+                     const Executor& ex) {
   const std::size_t w = image.width;
   const auto shift = float(level_shift(image.type));
   out.resize(image.plane_size());
   if (colour != ColourTransform::ict || c >= 3) {
-    for (std::size_t y = 0; y < image.height; ++y) {
-      float* row = out.data() + y * w;
-      image.read_row(c, y, row);
-      for (std::size_t x = 0; x < w; ++x) row[x] -= shift;
-    }
+    for_row_chunks(ex, w, image.height, [&](std::size_t y0, std::size_t y1) {
+      for (std::size_t y = y0; y < y1; ++y) {
+        float* row = out.data() + y * w;
+        image.read_row(c, y, row);
+        for (std::size_t x = 0; x < w; ++x) row[x] -= shift;
+      }
+    });
     return;
   }
-  std::vector<float> rows(3 * w);
-  for (std::size_t y = 0; y < image.height; ++y) {
-    for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
-    for (std::size_t x = 0; x < w; ++x) {
-      const float rgb[3] = {rows[x] - shift, rows[w + x] - shift, rows[2 * w + x] - shift};
-      forward_ict(rgb, c, out.data() + y * w + x);
+  for_row_chunks(ex, w, image.height, [&](std::size_t y0, std::size_t y1) {
+    std::vector<float> rows(3 * w);
+    for (std::size_t y = y0; y < y1; ++y) {
+      for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
+      const float* const rgb[3] = {rows.data(), rows.data() + w, rows.data() + 2 * w};
+      forward_ict_row(rgb, shift, c, out.data() + y * w, w);
     }
-  }
+  });
 }
 
 void integer_component(const ImageView& image, ColourTransform colour, std::size_t c,
-                       std::vector<std::int32_t>& out) {
+                       std::vector<std::int32_t>& out, const Executor& ex) {
   const std::size_t w = image.width;
   const auto shift = std::int32_t(level_shift(image.type));
   out.resize(image.plane_size());
   const std::size_t used = colour == ColourTransform::rct && c < 3 ? 3 : 1;
-  std::vector<float> rows(used * w);
-  for (std::size_t y = 0; y < image.height; ++y) {
-    std::int32_t* dst = out.data() + y * w;
-    if (used == 1) {
-      image.read_row(c, y, rows.data());
-      for (std::size_t x = 0; x < w; ++x) dst[x] = std::int32_t(rows[x]) - shift;
-      continue;
+  for_row_chunks(ex, w, image.height, [&](std::size_t y0, std::size_t y1) {
+    std::vector<float> rows(used * w);
+    for (std::size_t y = y0; y < y1; ++y) {
+      std::int32_t* dst = out.data() + y * w;
+      if (used == 1) {
+        image.read_row(c, y, rows.data());
+        for (std::size_t x = 0; x < w; ++x) dst[x] = std::int32_t(rows[x]) - shift;
+        continue;
+      }
+      for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::int32_t rgb[3] = {std::int32_t(rows[x]) - shift, std::int32_t(rows[w + x]) - shift,
+                                     std::int32_t(rows[2 * w + x]) - shift};
+        forward_rct(rgb, c, dst + x);
+      }
     }
-    for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
-    for (std::size_t x = 0; x < w; ++x) {
-      const std::int32_t rgb[3] = {std::int32_t(rows[x]) - shift, std::int32_t(rows[w + x]) - shift,
-                                   std::int32_t(rows[2 * w + x]) - shift};
-      forward_rct(rgb, c, dst + x);
-    }
-  }
+  });
 }
 
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour) {
@@ -179,6 +212,10 @@ void finish_image_in_place(Image& image, ColourTransform colour, const Executor&
       inverse_ict(image.plane(0) + first, image.plane(1) + first, image.plane(2) + first, count);
     for (std::size_t c = 0; c < image.channels; ++c) {
       float* p = image.plane(c) + first;
+      if (is_integer(image.type)) {
+        finish_integer_samples(p, count, shift, nominal_max(image.type));
+        continue;
+      }
       for (std::size_t i = 0; i < count; ++i) p[i] = finish_sample(double(p[i]) + shift, image.type);
     }
   });

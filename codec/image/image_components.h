@@ -23,10 +23,11 @@ double level_shift(SampleType type);
 
 // Component c after level shift and colour transform (forward_ict / forward_rct), one at a
 // time so an encoder holds a single transformed component. `out` is resized to the plane size
-// (its capacity is reused).
-void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out);
+// (its capacity is reused). Rows are converted in parallel on `ex`.
+void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out,
+                     const Executor& ex = serial_executor());
 void integer_component(const ImageView& image, ColourTransform colour, std::size_t c,
-                       std::vector<std::int32_t>& out);
+                       std::vector<std::int32_t>& out, const Executor& ex = serial_executor());
 
 // Squared output error per unit error of each component (ICT components weigh more).
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour);

@@ -39,6 +39,24 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   return values;
 }
 
+// Bit-plane block i reconstructed, dequantized and written straight into its place in the
+// plane (the same float operations as block_values then the step, without the copies).
+template <class T>
+void dequantize_into(const ParsedStream& s, std::size_t i, const Extent& region, T* plane) {
+  const CodeBlock& b = s.blocks[i];
+  const BlockEntry& e = s.index[i];
+  const StreamHeader& h = s.header;
+  const DecodedBlock d = decode_block(s.codeword(i), e.planes, e.passes, b.size, b.orientation);
+  const float step = h.steps[b.component * s.bands.size() + b.band];
+  std::size_t k = 0;
+  for (std::size_t z = 0; z < b.size[2]; ++z)
+    for (std::size_t y = 0; y < b.size[1]; ++y) {
+      T* row = plane + b.offset[0] + region[0] * ((b.offset[1] + y) + region[1] * (b.offset[2] + z));
+      for (std::size_t x = 0; x < b.size[0]; ++x, ++k)
+        row[x] = T(reconstruct(d, k, h.delta, h.reversible)) * step;
+    }
+}
+
 // Decodes every block of the read resolutions into the component planes at planes[c] (each
 // `region`-sized and zeroed: the low corner of the Mallat layout that holds those resolutions).
 template <class T>
@@ -47,6 +65,10 @@ void decode_into(const ParsedStream& s, const Extent& region, const Executor& ex
   const StreamHeader& h = s.header;
   ex.run(s.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
+    if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
+    if constexpr (std::is_floating_point_v<T>) {
+      if (h.entropy != EntropyCoder::zstd) return dequantize_into(s, i, region, planes[b.component]);
+    }
     std::vector<T> values = block_values<T>(s, i);
     if constexpr (std::is_floating_point_v<T>) {
       const float step = h.steps[b.component * s.bands.size() + b.band];
