@@ -391,7 +391,10 @@ void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<doub
   }
 }
 
-std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes) {
+namespace {
+
+// Signature, header and the per-grid chunks before the bricks.
+std::vector<std::uint8_t> stream_head(const VolumePlan& plan) {
   std::vector<std::uint8_t> out;
   write_volume_signature(out);
   write_header_chunk(out, plan.header);
@@ -400,19 +403,42 @@ std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::ve
     if (plan.header.blocked[g] == 2) write_opaque_chunk(out, g, plan.opaque[g]);
     if (plan.header.grids[g].volume.is_sparse()) write_mask_chunk(out, g, plan.masks[g]);
   }
-  for (std::size_t i = 0; i < codes.size(); ++i) {
-    const BrickCode& c = codes[i];
-    BrickChunk chunk{plan.jobs[i].grid, plan.jobs[i].brick, c.base_step, {}, {}, c.outliers};
-    std::vector<std::vector<std::uint8_t>> words(c.passes.size());
-    for (std::size_t k = 0; k < c.passes.size(); ++k) {
-      const EncodedBlock& b = c.coded.coded[k];
-      chunk.entries.push_back(
-          {c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
-      words[k] = b.codeword(c.passes[k]);
-      chunk.codewords.emplace_back(words[k]);
-    }
-    write_brick_chunk(out, chunk);
+  return out;
+}
+
+void write_brick(std::vector<std::uint8_t>& out, const BrickJob& job, const BrickCode& c) {
+  BrickChunk chunk{job.grid, job.brick, c.base_step, {}, {}, c.outliers};
+  std::vector<std::vector<std::uint8_t>> words(c.passes.size());
+  for (std::size_t k = 0; k < c.passes.size(); ++k) {
+    const EncodedBlock& b = c.coded.coded[k];
+    chunk.entries.push_back(
+        {c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
+    words[k] = b.codeword(c.passes[k]);
+    chunk.codewords.emplace_back(words[k]);
   }
+  write_brick_chunk(out, chunk);
+}
+
+// The final stream, releasing each brick's coded form once its chunk is written, into a buffer
+// reserved at about the bytes the chunks take: the coded bricks are held about once, not twice
+// (with a doubling buffer's copies on top), at the end of an encode.
+std::vector<std::uint8_t> assemble_releasing(const VolumePlan& plan, std::vector<BrickCode>& codes) {
+  std::vector<std::uint8_t> out = stream_head(plan);
+  std::size_t estimate = out.size();
+  for (const BrickCode& c : codes) estimate += code_bytes(c) + 2 * c.passes.size() + 64;  // + index, framing
+  out.reserve(estimate);
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    write_brick(out, plan.jobs[i], codes[i]);
+    codes[i] = BrickCode{};
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes) {
+  std::vector<std::uint8_t> out = stream_head(plan);
+  for (std::size_t i = 0; i < codes.size(); ++i) write_brick(out, plan.jobs[i], codes[i]);
   return out;
 }
 
@@ -434,11 +460,9 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::spa
   VolumePlan plan = plan_volumes(grids, views, options);
   // Bricks are the parallel tasks; each brick's own transform runs serially inside its task.
   const bool rate = options.mode == VolumeRateMode::bpv || options.mode == VolumeRateMode::psnr;
-  const std::vector<BrickCode> codes =
+  std::vector<BrickCode> codes =
       rate ? code_for_rate(grids, plan, options) : code_fixed(grids, plan, options);
   VolumeEncodeResult r;
-  r.bytes = assemble_volumes(plan, codes);
-  r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
   double sse = 0.0;
   const std::size_t counted = plan.voxels;
   for (const BrickCode& c : codes) {
@@ -446,6 +470,8 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::spa
     r.outliers += c.outlier_count;
     sse += c.sse;
   }
+  r.bytes = assemble_releasing(plan, codes);
+  r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
   const double mse = counted > 0 ? sse / double(counted) : 0.0;
   r.psnr =
       mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
