@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -167,19 +168,30 @@ void run_compress_volume(const CompressOptions& opt) {
   enc.executor = executor.get();
   set_volume_rate(opt, in, enc);
   const auto start = std::chrono::steady_clock::now();
-  const VolumeEncodeResult r = [&] {
+  VolumeEncodeResult r;
+  {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
-    return encode_volumes(grids, in.views, enc);
-  }();
+    if (is_stdio(opt.output)) {
+      r = encode_volumes(grids, in.views, enc);
+    } else {  // chunks go to the file as they are assembled; atomic: nothing is left on failure
+      write_atomically(opt.output, [&](const std::filesystem::path& path) {
+        std::ofstream file(path, std::ios::binary);
+        r = encode_volumes(grids, in.views, enc, [&](std::span<const std::uint8_t> piece) {
+          file.write(reinterpret_cast<const char*>(piece.data()), std::streamsize(piece.size()));
+        });
+        file.close();
+        if (!file) throw std::runtime_error("cannot write " + opt.output);
+      });
+    }
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_output(opt, r.bytes);
+  if (is_stdio(opt.output)) write_output(opt, r.bytes);
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   std::fprintf(status,
                "%s: %zu bytes, %.4f bpv (bits per active voxel), max error %.6g, PSNR %.3f dB, %zu "
                "outlier(s), %.3f s (%zu grid(s))\n",
-               opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds,
-               grids.size());
+               opt.output.c_str(), r.size, r.bpv, r.max_error, r.psnr, r.outliers, seconds, grids.size());
 }
 
 // Why a rate target gave the lossless stream (EncodeResult::switched_to_lossless).

@@ -43,7 +43,8 @@ struct VolumeEncodeOptions {
 };
 
 struct VolumeEncodeResult {
-  std::vector<std::uint8_t> bytes;  // the complete .pw volume stream
+  std::vector<std::uint8_t> bytes;  // the complete .pw volume stream (empty when given to a writer)
+  std::size_t size = 0;             // bytes of the stream
   double bpv = 0.0;                 // bits per active voxel (all grids; active tiles count their voxels)
   double max_error = 0.0;           // largest |x - x'| over active voxels of all grids
   double psnr = 0.0;                // peak = value range of each grid's active voxels (worst grid)
@@ -65,6 +66,15 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
 // std::invalid_argument for a view that does not fit its grid.
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
                                   const VolumeEncodeOptions& options);
+
+// Receives the stream piece by piece, in order (see encode_volumes with a writer).
+using StreamWriter = std::function<void(std::span<const std::uint8_t>)>;
+
+// The same, handing the stream to `write` piece by piece instead of returning it (result.bytes
+// stays empty): the head, then each brick's chunk as its coded form is released, so an encode
+// writing to a file never holds the stream and its coded bricks at once. A null writer: as above.
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                  const VolumeEncodeOptions& options, const StreamWriter& write);
 
 // A box grid's description for encode_volumes with a view: dims, type and background of the
 // view, no samples.

@@ -419,19 +419,18 @@ void write_brick(std::vector<std::uint8_t>& out, const BrickJob& job, const Bric
   write_brick_chunk(out, chunk);
 }
 
-// The final stream, releasing each brick's coded form once its chunk is written, into a buffer
-// reserved at about the bytes the chunks take: the coded bricks are held about once, not twice
-// (with a doubling buffer's copies on top), at the end of an encode.
-std::vector<std::uint8_t> assemble_releasing(const VolumePlan& plan, std::vector<BrickCode>& codes) {
-  std::vector<std::uint8_t> out = stream_head(plan);
-  std::size_t estimate = out.size();
-  for (const BrickCode& c : codes) estimate += code_bytes(c) + 2 * c.passes.size() + 64;  // + index, framing
-  out.reserve(estimate);
+// Hands the final stream to `write` piece by piece (the head, then one chunk per brick),
+// releasing each brick's coded form once its chunk is written: the coded bricks are the only
+// whole-stream-sized thing an encode holds, and a caller writing to a file holds nothing more.
+void assemble_streaming(const VolumePlan& plan, std::vector<BrickCode>& codes, const StreamWriter& write) {
+  write(stream_head(plan));
+  std::vector<std::uint8_t> chunk;
   for (std::size_t i = 0; i < codes.size(); ++i) {
-    write_brick(out, plan.jobs[i], codes[i]);
+    chunk.clear();
+    write_brick(chunk, plan.jobs[i], codes[i]);
     codes[i] = BrickCode{};
+    write(chunk);
   }
-  return out;
 }
 
 }  // namespace
@@ -457,6 +456,11 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
 
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
                                   const VolumeEncodeOptions& options) {
+  return encode_volumes(grids, views, options, nullptr);
+}
+
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                  const VolumeEncodeOptions& options, const StreamWriter& write) {
   VolumePlan plan = plan_volumes(grids, views, options);
   // Bricks are the parallel tasks; each brick's own transform runs serially inside its task.
   const bool rate = options.mode == VolumeRateMode::bpv || options.mode == VolumeRateMode::psnr;
@@ -470,8 +474,22 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::spa
     r.outliers += c.outlier_count;
     sse += c.sse;
   }
-  r.bytes = assemble_releasing(plan, codes);
-  r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
+  if (write) {
+    assemble_streaming(plan, codes, [&](std::span<const std::uint8_t> piece) {
+      r.size += piece.size();
+      write(piece);
+    });
+  } else {
+    std::size_t estimate = 0;  // reserved once: no doubling copies of the stream
+    for (const BrickCode& c : codes)
+      estimate += code_bytes(c) + 2 * c.passes.size() + 64;  // + index, framing
+    r.bytes.reserve(estimate);
+    assemble_streaming(plan, codes, [&](std::span<const std::uint8_t> piece) {
+      r.bytes.insert(r.bytes.end(), piece.begin(), piece.end());
+    });
+    r.size = r.bytes.size();
+  }
+  r.bpv = double(r.size) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
   const double mse = counted > 0 ? sse / double(counted) : 0.0;
   r.psnr =
       mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
