@@ -133,7 +133,8 @@ void validate(const std::vector<VolumeGrid>& grids, const std::vector<std::vecto
 
 // Voxel states and inactive values of a sparse grid (appended to m).
 void append_mask(const VolumeView& v, MaskChunk& m) {
-  m.states.reserve(m.states.size() + v.count());
+  std::size_t i = m.states.size();
+  m.states.resize(i + v.count());  // grows geometrically over the blocks of a grid
   for_each_voxel(v, [&](double value, bool active) {
     VoxelState s = VoxelState::active;
     if (!active) {
@@ -146,7 +147,7 @@ void append_mask(const VolumeView& v, MaskChunk& m) {
         m.other_values.push_back(value);
       }
     }
-    m.states.push_back(std::uint8_t(s));
+    m.states[i++] = std::uint8_t(s);
   });
 }
 
