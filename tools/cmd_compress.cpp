@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -24,6 +25,7 @@
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/volume_io.h"
+#include "tools/volume_raw.h"
 #include "transforms/separable.h"
 
 namespace pupwave::cli {
@@ -72,37 +74,52 @@ void write_output(const CompressOptions& opt, std::span<const std::uint8_t> byte
 
 bool is_volume_input(const CompressOptions& opt) { return !opt.dims.empty() || is_vdb_path(opt.input); }
 
-std::vector<VolumeGrid> read_volume_input(const CompressOptions& opt) {
+// The grids to encode and, for a raw file, the file mapped in its own type: `grids` then holds
+// only the description and `views` the voxels, read in place by the encoder.
+struct VolumeInput {
+  std::vector<VolumeGrid> grids;
+  std::unique_ptr<MappedRawVolume> raw;
+  std::vector<VolumeView> views;  // empty, or one per grid (null data: the grid's own values)
+};
+
+VolumeInput read_volume_input(const CompressOptions& opt) {
+  VolumeInput in;
   if (is_vdb_path(opt.input)) {
     if (!opt.dims.empty() || !opt.dtype.empty())
       throw std::invalid_argument("--dims/--dtype apply to raw input only");
-    auto grids = read_vdb(opt.input, opt.grid);
-    if (grids.empty()) throw std::runtime_error(opt.input + " holds no float or double grid");
-    return grids;
+    in.grids = read_vdb(opt.input, opt.grid);
+    if (in.grids.empty()) throw std::runtime_error(opt.input + " holds no float or double grid");
+    return in;
   }
   if (opt.dtype.empty())
     throw std::invalid_argument("raw volume input needs --dtype u8|u16|f32|f64 with --dims");
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to .vdb input only");
-  VolumeGrid g;
-  g.name = std::filesystem::path(opt.input).stem().string();
-  g.volume = read_raw_volume(opt.input, parse_dims(opt.dims), parse_voxel_type(opt.dtype));
-  return {std::move(g)};
+  in.raw = std::make_unique<MappedRawVolume>(opt.input, parse_dims(opt.dims), parse_voxel_type(opt.dtype),
+                                             kMaxRawVoxels);
+  in.grids.push_back(describe_view(in.raw->view(), std::filesystem::path(opt.input).stem().string()));
+  in.views.push_back(in.raw->view());
+  return in;
 }
 
-// Widens [lo, hi] by the active voxels of a box volume.
-void widen(const Volume& v, double& lo, double& hi) {
-  for (std::size_t i = 0; i < v.count(); ++i)
-    if (v.is_active(i)) lo = std::min(lo, v.samples[i]), hi = std::max(hi, v.samples[i]);
+// Widens [lo, hi] by the active voxels of a box.
+void widen(const VolumeView& v, double& lo, double& hi) {
+  for_each_voxel(v, [&](double value, bool active) {
+    if (active) lo = std::min(lo, value), hi = std::max(hi, value);
+  });
 }
 
 // Largest value range (max - min of the active voxels, active tiles included) of the grids, for
 // --max-error-rel.
-double largest_range(const std::vector<VolumeGrid>& grids) {
+double largest_range(const VolumeInput& in) {
   double range = 0.0;
-  for (const VolumeGrid& g : grids) {
+  for (std::size_t i = 0; i < in.grids.size(); ++i) {
+    const VolumeGrid& g = in.grids[i];
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    if (!g.is_blocked()) widen(g.volume, lo, hi);
-    for (const VolumeBlock& b : g.blocks) widen(b.volume, lo, hi);
+    if (!in.views.empty() && in.views[i].data != nullptr)
+      widen(in.views[i], lo, hi);
+    else if (!g.is_blocked() && !g.is_opaque())
+      widen(view_of(g.volume), lo, hi);
+    for (const VolumeBlock& b : g.blocks) widen(view_of(b.volume), lo, hi);
     for (const VolumeTile& t : g.tiles)
       if (t.active) lo = std::min(lo, t.value), hi = std::max(hi, t.value);
     if (hi > lo) range = std::max(range, hi - lo);
@@ -112,8 +129,8 @@ double largest_range(const std::vector<VolumeGrid>& grids) {
 
 // Volume rate flags to the library's mode. Default: lossless for integer volumes, otherwise
 // a point-wise bound of 1e-3 of the value range.
-void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& grids,
-                     VolumeEncodeOptions& enc) {
+void set_volume_rate(const CompressOptions& opt, const VolumeInput& in, VolumeEncodeOptions& enc) {
+  const std::vector<VolumeGrid>& grids = in.grids;
   if (opt.bpp > 0.0) throw std::invalid_argument("use --bpv (bits per voxel) for volumes, not --bpp");
   bool all_integer = true;
   for (const VolumeGrid& g : grids) all_integer = all_integer && is_integer(g.volume.type);
@@ -133,7 +150,7 @@ void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& 
     enc.target = opt.step;
   } else {
     enc.mode = VolumeRateMode::max_error;
-    const double range = largest_range(grids);
+    const double range = largest_range(in);
     const double rel = opt.max_error_rel > 0.0 ? opt.max_error_rel : 1e-3;
     enc.target = opt.max_error > 0.0 ? opt.max_error : rel * (range > 0.0 ? range : 1.0);
   }
@@ -141,28 +158,40 @@ void set_volume_rate(const CompressOptions& opt, const std::vector<VolumeGrid>& 
 
 void run_compress_volume(const CompressOptions& opt) {
   if (opt.entropy != "ebcot") throw std::invalid_argument("--entropy applies to images only");
-  const auto grids = read_volume_input(opt);
+  const VolumeInput in = read_volume_input(opt);
+  const std::vector<VolumeGrid>& grids = in.grids;
   VolumeEncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
   enc.brick = opt.brick;
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
-  set_volume_rate(opt, grids, enc);
+  set_volume_rate(opt, in, enc);
   const auto start = std::chrono::steady_clock::now();
-  const VolumeEncodeResult r = [&] {
+  VolumeEncodeResult r;
+  {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
-    return encode_volumes(grids, enc);
-  }();
+    if (is_stdio(opt.output)) {
+      r = encode_volumes(grids, in.views, enc);
+    } else {  // chunks go to the file as they are assembled; atomic: nothing is left on failure
+      write_atomically(opt.output, [&](const std::filesystem::path& path) {
+        std::ofstream file(path, std::ios::binary);
+        r = encode_volumes(grids, in.views, enc, [&](std::span<const std::uint8_t> piece) {
+          file.write(reinterpret_cast<const char*>(piece.data()), std::streamsize(piece.size()));
+        });
+        file.close();
+        if (!file) throw std::runtime_error("cannot write " + opt.output);
+      });
+    }
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_output(opt, r.bytes);
+  if (is_stdio(opt.output)) write_output(opt, r.bytes);
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   std::fprintf(status,
                "%s: %zu bytes, %.4f bpv (bits per active voxel), max error %.6g, PSNR %.3f dB, %zu "
                "outlier(s), %.3f s (%zu grid(s))\n",
-               opt.output.c_str(), r.bytes.size(), r.bpv, r.max_error, r.psnr, r.outliers, seconds,
-               grids.size());
+               opt.output.c_str(), r.size, r.bpv, r.max_error, r.psnr, r.outliers, seconds, grids.size());
 }
 
 // Why a rate target gave the lossless stream (EncodeResult::switched_to_lossless).

@@ -15,6 +15,7 @@
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/volume_io.h"
+#include "tools/volume_raw.h"
 #include "transforms/separable.h"
 
 namespace pupwave::cli {
@@ -51,7 +52,39 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
   write_stdout(read_file_bytes(scratch.path()));
 }
 
+// One box grid to raw, decoded brick by brick into a buffer of its stored type (never held as
+// double). False, having written nothing, when the grid needs decode_volumes (see
+// decode_volume_into) or the output is .vdb.
+bool decompress_raw_in_place(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
+  if (is_vdb_path(opt.output)) return false;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::uint8_t> voxels;
+  const auto grid = [&] {
+    ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
+    return decode_volume_into(bytes, opt.grid, opt.level, *make_pool_executor(opt.threads), opt.limits,
+                              [&](const VolumeGrid& g) {
+                                voxels.resize(g.volume.count() * bytes_per_voxel(g.volume.type));
+                                return contiguous_output(voxels.data(), g.volume.dims, g.volume.type);
+                              });
+  }();
+  if (!grid) return false;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (is_stdio(opt.output)) {
+    const ScratchFile scratch(".raw");
+    write_raw_bytes(std::move(voxels), grid->volume.type, scratch.path());
+    write_stdout(read_file_bytes(scratch.path()));
+  } else {
+    write_raw_bytes(std::move(voxels), grid->volume.type, opt.output);
+  }
+  if (std::FILE* status = opt.verbosity.stream())
+    std::fprintf(status, "%s: grid '%s' %zux%zux%zu, %s, decoded in %.3f s\n", opt.output.c_str(),
+                 grid->name.c_str(), grid->volume.dims[0], grid->volume.dims[1], grid->volume.dims[2],
+                 to_string(grid->volume.type).c_str(), seconds);
+  return true;
+}
+
 void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
+  if (decompress_raw_in_place(bytes, opt)) return;
   const auto start = std::chrono::steady_clock::now();
   auto grids = [&] {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);

@@ -25,22 +25,6 @@ pupwave::VoxelType internal_type(VoxelType type) {
 }
 
 template <class T>
-void load(const void* data, std::size_t n, double* out) {
-  const T* src = static_cast<const T*>(data);
-  for (std::size_t i = 0; i < n; ++i) out[i] = double(src[i]);
-}
-
-// Copies n voxels of `type` to doubles (the codec's Volume holds every type exactly as double).
-void load_voxels(const void* data, std::size_t n, VoxelType type, double* out) {
-  switch (type) {
-    case VoxelType::u8: return load<std::uint8_t>(data, n, out);
-    case VoxelType::u16: return load<std::uint16_t>(data, n, out);
-    case VoxelType::f32: return load<float>(data, n, out);
-    case VoxelType::f64: return load<double>(data, n, out);
-  }
-}
-
-template <class T>
 void store(const std::vector<double>& in, std::byte* out) {
   T* dst = reinterpret_cast<T*>(out);
   for (std::size_t i = 0; i < in.size(); ++i) dst[i] = T(in[i]);
@@ -59,19 +43,19 @@ std::size_t checked_count(const std::array<std::size_t, 3>& dims) {
 }
 
 // Largest active value range over the grid (for max_error_rel), as the CLI computes it.
-double value_range(const pupwave::Volume& v) {
+double value_range(const pupwave::VolumeView& v) {
   double lo = 0.0, hi = 0.0;
   bool any = false;
-  for (std::size_t i = 0; i < v.count(); ++i)
-    if (v.is_active(i)) {
-      lo = any ? std::min(lo, v.samples[i]) : v.samples[i];
-      hi = any ? std::max(hi, v.samples[i]) : v.samples[i];
-      any = true;
-    }
+  for_each_voxel(v, [&](double value, bool active) {
+    if (!active) return;
+    lo = any ? std::min(lo, value) : value;
+    hi = any ? std::max(hi, value) : value;
+    any = true;
+  });
   return hi - lo;
 }
 
-VolumeEncodeOptions encode_options(const VolumeOptions& options, const VolumeGrid& grid) {
+VolumeEncodeOptions encode_options(const VolumeOptions& options, const pupwave::VolumeView& view) {
   VolumeEncodeOptions enc;
   enc.levels = options.levels;
   enc.brick = options.brick;
@@ -84,7 +68,7 @@ VolumeEncodeOptions encode_options(const VolumeOptions& options, const VolumeGri
     case VolumeRate::max_error: enc.mode = VolumeRateMode::max_error; break;
     case VolumeRate::max_error_rel: {
       enc.mode = VolumeRateMode::max_error;
-      const double range = value_range(grid.volume);
+      const double range = value_range(view);
       enc.target = options.target * (range > 0.0 ? range : 1.0);
       break;
     }
@@ -100,11 +84,70 @@ VolumeEncodeOptions encode_options(const VolumeOptions& options, const VolumeGri
   return enc;
 }
 
-std::vector<std::uint8_t> encode_grid(const VolumeGrid& grid, const VolumeOptions& options) {
-  VolumeEncodeOptions enc = encode_options(options, grid);
+// Encodes one box grid read in place through `view` (nothing is copied or widened to double).
+std::vector<std::uint8_t> encode_grid(const pupwave::VolumeView& view,
+                                      const std::array<std::int64_t, 3>& origin,
+                                      const VolumeOptions& options) {
+  VolumeEncodeOptions enc = encode_options(options, view);
   const std::unique_ptr<Executor> executor = make_pool_executor(options.threads);
   enc.executor = executor.get();
-  return encode_volumes({grid}, enc).bytes;
+  VolumeGrid grid = describe_view(view, "volume");
+  grid.origin = origin;
+  const pupwave::VolumeView views[] = {view};
+  return encode_volumes({grid}, views, enc).bytes;
+}
+
+// The codec's view of a caller's dense array (strides 0: contiguous, x fastest).
+pupwave::VolumeView internal_view(const VolumeView& volume) {
+  const Extent dims{volume.dims[0], volume.dims[1], volume.dims[2]};
+  pupwave::VolumeView v = contiguous_view(volume.data, dims, internal_type(volume.type));
+  if (volume.strides != std::array<std::ptrdiff_t, 3>{0, 0, 0}) v.strides = volume.strides;
+  return v;
+}
+
+// A box held as type T when the background is one of its values (else as double), filled with
+// the background: what the bricks of a sparse grid are copied into.
+struct SparseBox {
+  std::vector<std::byte> bytes;
+  pupwave::VolumeView view;
+  std::vector<std::uint8_t> active;
+};
+
+bool holds_value(pupwave::VoxelType type, double v) {
+  switch (type) {
+    case pupwave::VoxelType::u8: return v >= 0 && v <= 255 && v == std::floor(v);
+    case pupwave::VoxelType::u16: return v >= 0 && v <= 65535 && v == std::floor(v);
+    case pupwave::VoxelType::f32: return double(float(v)) == v;
+    case pupwave::VoxelType::f64: return true;
+  }
+  return false;
+}
+
+template <class T>
+void fill_as(std::vector<std::byte>& bytes, double value) {
+  T* p = reinterpret_cast<T*>(bytes.data());
+  std::fill(p, p + bytes.size() / sizeof(T), T(value));
+}
+
+void fill(std::vector<std::byte>& bytes, pupwave::VoxelType storage, double value) {
+  switch (storage) {
+    case pupwave::VoxelType::u8: return fill_as<std::uint8_t>(bytes, value);
+    case pupwave::VoxelType::u16: return fill_as<std::uint16_t>(bytes, value);
+    case pupwave::VoxelType::f32: return fill_as<float>(bytes, value);
+    case pupwave::VoxelType::f64: return fill_as<double>(bytes, value);
+  }
+}
+
+// Copies row `n` voxels from a brick (its own type) into the box storage at element `at`.
+template <class T>
+void copy_row_as(const void* src, pupwave::VoxelType type, std::size_t n, std::byte* box, std::size_t at) {
+  T* out = reinterpret_cast<T*>(box) + at;
+  switch (type) {
+    case pupwave::VoxelType::u8: std::copy_n(static_cast<const std::uint8_t*>(src), n, out); break;
+    case pupwave::VoxelType::u16: std::copy_n(static_cast<const std::uint16_t*>(src), n, out); break;
+    case pupwave::VoxelType::f32: std::copy_n(static_cast<const float*>(src), n, out); break;
+    case pupwave::VoxelType::f64: std::copy_n(static_cast<const double*>(src), n, out); break;
+  }
 }
 
 void check_data(const void* data) {
@@ -117,14 +160,9 @@ std::size_t bytes_per_voxel(VoxelType type) { return pupwave::bytes_per_voxel(in
 
 std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const VolumeOptions& options) {
   return detail::translate_errors([&] {
-    const std::size_t n = checked_count(volume.dims);
+    checked_count(volume.dims);
     check_data(volume.data);
-    VolumeGrid grid;
-    grid.name = "volume";
-    grid.volume =
-        pupwave::Volume(Extent{volume.dims[0], volume.dims[1], volume.dims[2]}, internal_type(volume.type));
-    load_voxels(volume.data, n, volume.type, grid.volume.samples.data());
-    return encode_grid(grid, options);
+    return encode_grid(internal_view(volume), {0, 0, 0}, options);
   });
 }
 
@@ -146,38 +184,52 @@ std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bric
     const std::array<std::size_t, 3> box{std::size_t(hi[0] - lo[0]), std::size_t(hi[1] - lo[1]),
                                          std::size_t(hi[2] - lo[2])};
     checked_count(box);
-    VolumeGrid grid;
-    grid.name = "volume";
-    grid.origin = lo;
-    pupwave::Volume& v = grid.volume;
-    v = pupwave::Volume(Extent{box[0], box[1], box[2]}, internal_type(bricks[0].voxels.type));
-    std::fill(v.samples.begin(), v.samples.end(), background);
-    v.active.assign(v.count(), 0);
-    v.background = background;
-    std::vector<std::uint8_t> covered(v.count(), 0);  // by some brick (masked voxels included)
-    std::vector<double> row;
+    const pupwave::VoxelType type = internal_type(bricks[0].voxels.type);
+    const pupwave::VoxelType storage = holds_value(type, background) ? type : pupwave::VoxelType::f64;
+    const Extent dims{box[0], box[1], box[2]};
+    SparseBox out;
+    out.bytes.resize(box[0] * box[1] * box[2] * pupwave::bytes_per_voxel(storage));
+    fill(out.bytes, storage, background);
+    out.active.assign(box[0] * box[1] * box[2], 0);
+    out.view = contiguous_view(out.bytes.data(), dims, storage);
+    out.view.type = type;
+    out.view.active = out.active.data();
+    out.view.background = background;
+    std::vector<std::uint8_t> covered(out.active.size(), 0);  // by some brick (masked voxels included)
+    const pupwave::VolumeOutput flat =
+        contiguous_output(out.bytes.data(), {out.active.size(), 1, 1}, storage);
     for (const BrickView& b : bricks) {
       const auto& d = b.voxels.dims;
       const std::size_t bytes = bytes_per_voxel(b.voxels.type);
-      row.resize(d[0]);
       for (std::size_t z = 0; z < d[2]; ++z)
         for (std::size_t y = 0; y < d[1]; ++y) {
           const std::size_t src = d[0] * (y + d[1] * z);
-          load_voxels(static_cast<const std::byte*>(b.voxels.data) + src * bytes, d[0], b.voxels.type,
-                      row.data());
-          const std::size_t dst =
-              v.index(std::size_t(b.origin[0] - lo[0]), std::size_t(b.origin[1] - lo[1]) + y,
-                      std::size_t(b.origin[2] - lo[2]) + z);
+          const std::size_t dst = std::size_t(out.view.offset(std::size_t(b.origin[0] - lo[0]),
+                                                              std::size_t(b.origin[1] - lo[1]) + y,
+                                                              std::size_t(b.origin[2] - lo[2]) + z));
+          const std::byte* row = static_cast<const std::byte*>(b.voxels.data) + src * bytes;
           for (std::size_t x = 0; x < d[0]; ++x) {
             if (covered[dst + x]) detail::fail("bricks overlap");
             covered[dst + x] = 1;
+          }
+          switch (storage) {
+            case pupwave::VoxelType::u8:
+              copy_row_as<std::uint8_t>(row, type, d[0], out.bytes.data(), dst);
+              break;
+            case pupwave::VoxelType::u16:
+              copy_row_as<std::uint16_t>(row, type, d[0], out.bytes.data(), dst);
+              break;
+            case pupwave::VoxelType::f32: copy_row_as<float>(row, type, d[0], out.bytes.data(), dst); break;
+            case pupwave::VoxelType::f64: copy_row_as<double>(row, type, d[0], out.bytes.data(), dst); break;
+          }
+          for (std::size_t x = 0; x < d[0]; ++x) {
             const bool on = !b.active || b.active[src + x] != 0;
-            v.active[dst + x] = on ? 1 : 0;
-            v.samples[dst + x] = on ? row[x] : background;
+            out.active[dst + x] = on ? 1 : 0;
+            if (!on) flat.set(dst + x, 0, 0, background);  // masked voxels hold the background
           }
         }
     }
-    return encode_grid(grid, options);
+    return encode_grid(out.view, lo, options);
   });
 }
 
@@ -186,6 +238,22 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
     if (level < 0) detail::fail("level must be >= 0, got " + std::to_string(level));
     if (!is_volume_stream(stream)) throw DecodeError("not a Pupwave volume stream (no PUPV signature)");
     const std::unique_ptr<Executor> executor = make_pool_executor(threads);
+    Volume typed;  // a single box grid, decoded straight into its own type
+    const auto grid =
+        decode_volume_into(stream, "", level, *executor, DecodeLimits{}, [&](const VolumeGrid& g) {
+          typed.type = VoxelType(g.volume.type);  // same numbering (volume.h)
+          typed.data.resize(g.volume.count() * bytes_per_voxel(typed.type));
+          pupwave::VolumeOutput o = contiguous_output(typed.data.data(), g.volume.dims, g.volume.type);
+          if (g.volume.is_sparse()) typed.active.resize(g.volume.count()), o.active = typed.active.data();
+          return o;
+        });
+    if (grid) {
+      typed.name = grid->name;
+      typed.origin = grid->origin;
+      typed.dims = {grid->volume.dims[0], grid->volume.dims[1], grid->volume.dims[2]};
+      typed.background = grid->volume.background;
+      return std::vector<Volume>{std::move(typed)};
+    }
     std::vector<VolumeGrid> grids = decode_volumes(stream, level, *executor);
     std::vector<Volume> out;
     for (VolumeGrid& g : grids) {

@@ -9,12 +9,16 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "codec/format/decode_limits.h"
 #include "codec/volume/volume.h"
+#include "codec/volume/volume_view.h"
 #include "transforms/executor.h"
 
 namespace pupwave {
@@ -39,7 +43,8 @@ struct VolumeEncodeOptions {
 };
 
 struct VolumeEncodeResult {
-  std::vector<std::uint8_t> bytes;  // the complete .pw volume stream
+  std::vector<std::uint8_t> bytes;  // the complete .pw volume stream (empty when given to a writer)
+  std::size_t size = 0;             // bytes of the stream
   double bpv = 0.0;                 // bits per active voxel (all grids; active tiles count their voxels)
   double max_error = 0.0;           // largest |x - x'| over active voxels of all grids
   double psnr = 0.0;                // peak = value range of each grid's active voxels (worst grid)
@@ -52,6 +57,29 @@ struct VolumeEncodeResult {
 // volumes the format cannot hold (no grids, empty or too large volumes, non-finite samples).
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options);
 
+// The same with box grids read in place through views of the caller's memory (typed, strided;
+// see volume_view.h): bricks are gathered from a view and widened to double one at a time, so
+// a volume is never copied. views[i] with data set gives grid i's values: grids[i] then carries
+// only the description (name, class, placement, metadata; volume.dims, type and background
+// equal to the view's, volume.samples and active empty; the mask comes from the view). A view
+// with null data (or an empty span) means the grid's own values. Throws like the above, and
+// std::invalid_argument for a view that does not fit its grid.
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                  const VolumeEncodeOptions& options);
+
+// Receives the stream piece by piece, in order (see encode_volumes with a writer).
+using StreamWriter = std::function<void(std::span<const std::uint8_t>)>;
+
+// The same, handing the stream to `write` piece by piece instead of returning it (result.bytes
+// stays empty): the head, then each brick's chunk as its coded form is released, so an encode
+// writing to a file never holds the stream and its coded bricks at once. A null writer: as above.
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                  const VolumeEncodeOptions& options, const StreamWriter& write);
+
+// A box grid's description for encode_volumes with a view: dims, type and background of the
+// view, no samples.
+VolumeGrid describe_view(const VolumeView& view, std::string name);
+
 // Decodes all grids at full resolution (level 0) or at 1/2^level resolution (each brick stops
 // its inverse transform early; mask voxels of a coarse cell are active when any child is).
 // Throws DecodeError for a corrupt or truncated stream and std::invalid_argument when level
@@ -62,6 +90,19 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
 // resolution); a larger stream throws DecodeError before any mask or output is allocated.
 std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level,
                                        const Executor& executor, const DecodeLimits& limits);
+
+// Decodes one box grid straight into the caller's typed buffer, brick by brick, so the grid is
+// never held as double: `allocate` is called once with the grid's description at `level` (name,
+// placement, volume.dims, type, background; no samples; volume.is_sparse() tells a sparse box,
+// its `active` then only a marker) and returns where to write (dims equal
+// to the described ones, storage able to hold the type; `active`, if set, receives the mask of a
+// sparse grid). `name` selects the grid ("": the only one). Returns nullopt, having decoded
+// nothing, when there is no such grid, when `name` is empty and the stream holds several, or
+// for a grid decode_volumes must give (sparse-native, opaque, or a sparse box below full
+// resolution). Throws like decode_volumes.
+std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes, std::string_view name,
+                                             int level, const Executor& executor, const DecodeLimits& limits,
+                                             const std::function<VolumeOutput(const VolumeGrid&)>& allocate);
 
 // True when bytes start with the volume stream signature (cheap; validates nothing else).
 bool is_volume_stream(std::span<const std::uint8_t> bytes);

@@ -3,6 +3,7 @@
 // topology and inactive values exactly.
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "codec/error.h"
@@ -246,6 +247,49 @@ void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s,
   }
 }
 
+// A brick's decoded values at `level` (outliers applied at full resolution), rounded to the
+// grid's stored type, x fastest.
+std::vector<double> brick_values(const ParsedVolumeStream& s, const BrickCoding& coding, const BrickChunk& b,
+                                 const BrickBox& box, int level) {
+  const VoxelType type = s.header.grids[b.grid].volume.type;
+  auto values = decode_brick(coding, box.size, b.base_step, b.entries, b.codewords, level);
+  if (level == 0 && s.header.max_error > 0.0)
+    apply_outliers(values, decode_outliers(b.outliers, box.count()), s.header.max_error, type);
+  for (double& v : values) v = to_stored(v, type);
+  return values;
+}
+
+void fill_output(const VolumeOutput& out, double value, VoxelType type) {
+  value = to_stored(value, type);
+  for (std::size_t z = 0; z < out.dims[2]; ++z)
+    for (std::size_t y = 0; y < out.dims[1]; ++y)
+      for (std::size_t x = 0; x < out.dims[0]; ++x) out.set(x, y, z, value);
+}
+
+// restore_states for a typed output: inactive voxels get their exact values, `out.active` (if
+// set) the mask.
+void restore_output_states(const VolumeOutput& out, double background, VoxelType type,
+                           const MaskChunk& mask) {
+  std::size_t i = 0, other = 0;
+  for (std::size_t z = 0; z < out.dims[2]; ++z)
+    for (std::size_t y = 0; y < out.dims[1]; ++y)
+      for (std::size_t x = 0; x < out.dims[0]; ++x, ++i) {
+        const auto state = VoxelState(mask.states[i]);
+        if (out.active != nullptr) out.active[i] = state == VoxelState::active ? 1 : 0;
+        switch (state) {
+          case VoxelState::active: break;
+          case VoxelState::inactive_background: out.set(x, y, z, to_stored(background, type)); break;
+          case VoxelState::inactive_negative: out.set(x, y, z, to_stored(-background, type)); break;
+          case VoxelState::inactive_other:
+            require_stream(other < mask.other_values.size(), "volume stream: missing inactive values");
+            out.set(x, y, z, to_stored(mask.other_values[other++], type));
+            break;
+          default: throw DecodeError("volume stream: bad voxel state");
+        }
+      }
+  require_stream(other == mask.other_values.size(), "volume stream: extra inactive values");
+}
+
 }  // namespace
 
 bool is_volume_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kVolumeSignature); }
@@ -282,11 +326,7 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
   ex.run(s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
     const BrickBox& box = bricks[b.grid].boxes[b.brick];
-    const VoxelType type = h.grids[b.grid].volume.type;
-    auto values = decode_brick(coding, box.size, b.base_step, b.entries, b.codewords, level);
-    if (level == 0 && h.max_error > 0.0)
-      apply_outliers(values, decode_outliers(b.outliers, box.count()), h.max_error, type);
-    for (double& v : values) v = to_stored(v, type);
+    const auto values = brick_values(s, coding, b, box, level);
     const Extent at{box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level};
     VolumeGrid& g = grids[b.grid];
     Volume& target = h.blocked[b.grid] == 1 ? g.blocks[bricks[b.grid].block[b.brick]].volume : g.volume;
@@ -294,6 +334,47 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
   });
   restore_sparse(grids, s, level);
   return grids;
+}
+
+std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes, std::string_view name,
+                                             int level, const Executor& ex, const DecodeLimits& limits,
+                                             const std::function<VolumeOutput(const VolumeGrid&)>& allocate) {
+  const ParsedVolumeStream s = parse_volume_stream(bytes, limits);
+  const VolumeStreamHeader& h = s.header;
+  if (level < 0 || level > h.levels)
+    throw std::invalid_argument("level " + std::to_string(level) + " exceeds the stream's " +
+                                std::to_string(h.levels) + " levels");
+  std::size_t g = 0;
+  while (g < h.grids.size() && !name.empty() && h.grids[g].name != name) ++g;
+  if (g == h.grids.size() || (name.empty() && h.grids.size() != 1)) return std::nullopt;
+  const bool sparse = h.grids[g].volume.is_sparse();
+  if (h.blocked[g] != 0 || (sparse && level > 0)) return std::nullopt;  // decode_volumes' forms
+  const auto t = stream_transform(h);
+  const BrickCoding coding{t.get(), h.levels, std::size_t(1) << h.block_log2, h.delta, h.reversible};
+  const auto bricks = grid_bricks(s);
+  check_brick_set(s, bricks);
+  VolumeGrid grid = h.grids[g];
+  if (level > 0) scale_placement(grid, level);
+  grid.volume.dims = level_extent(grid.volume.dims, level);  // volume.active: the header's sparse marker
+  const VolumeOutput out = allocate(grid);
+  if (out.data == nullptr || out.dims != grid.volume.dims)
+    throw std::invalid_argument("decode_volume_into: the output does not match the grid's dims");
+  if (sparse) fill_output(out, grid.volume.background, grid.volume.type);  // voxels of bricks not coded
+  ex.run(s.bricks.size(), [&](std::size_t i) {
+    const BrickChunk& b = s.bricks[i];
+    if (b.grid != g) return;
+    const BrickBox& box = bricks[g].boxes[b.brick];
+    const auto values = brick_values(s, coding, b, box, level);
+    const Extent part = level_extent(box.size, level);
+    std::size_t k = 0;
+    for (std::size_t z = 0; z < part[2]; ++z)
+      for (std::size_t y = 0; y < part[1]; ++y)
+        for (std::size_t x = 0; x < part[0]; ++x)
+          out.set((box.offset[0] >> level) + x, (box.offset[1] >> level) + y, (box.offset[2] >> level) + z,
+                  values[k++]);
+  });
+  if (sparse) restore_output_states(out, grid.volume.background, grid.volume.type, s.masks[g]);
+  return grid;
 }
 
 }  // namespace pupwave

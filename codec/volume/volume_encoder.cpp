@@ -54,21 +54,20 @@ int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) 
   return k;
 }
 
-// Dims, sizes and finiteness of one dense box (a box grid or a block); `total` is the running
-// voxel count of all grids.
-// Checks one dense box; returns its largest |sample| (for the precision check).
-double validate_volume(const Volume& v, std::size_t total) {
+// Checks one dense box (a box grid or a block); `total` is the running voxel count of all grids.
+// Returns its largest |sample| (for the precision check).
+double validate_volume(const VolumeView& v, std::size_t total) {
   for (std::size_t d : v.dims)
     if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
   if (total > kMaxVolumeVoxels) throw EncodeError("volumes exceed 2^31 voxels");
-  if (v.samples.size() != v.count() || (v.is_sparse() && v.active.size() != v.count()))
-    throw std::invalid_argument("volume sample or mask count does not match its dims");
   if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
   double largest = 0.0;
-  for (double s : v.samples) {
-    if (!std::isfinite(s)) throw EncodeError("volume has non-finite samples (NaN or infinity)");
+  bool finite = true;
+  for_each_voxel(v, [&](double s, bool) {
+    finite = finite && std::isfinite(s);
     largest = std::max(largest, std::fabs(s));
-  }
+  });
+  if (!finite) throw EncodeError("volume has non-finite samples (NaN or infinity)");
   return largest;
 }
 
@@ -78,16 +77,17 @@ bool in_coord_range(std::int64_t o, std::int64_t extent) {
 }
 
 // Checks a sparse-native grid; returns its largest |sample| or |tile value|.
-double validate_blocked(const VolumeGrid& g, std::size_t& total) {
+double validate_blocked(const VolumeGrid& g, const std::vector<VolumeView>& parts, std::size_t& total) {
   double largest = 0.0;
   if (g.active_voxels() == 0)
     throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
   for (std::size_t d : g.volume.dims)
     if (d < 1 || d > kMaxVolumeAxis)
       throw EncodeError("grid '" + g.name + "' bounding box must be in [1, 2^20] per axis");
-  for (const VolumeBlock& b : g.blocks) {
+  for (std::size_t k = 0; k < g.blocks.size(); ++k) {
+    const VolumeBlock& b = g.blocks[k];
     total += b.volume.count();
-    largest = std::max(largest, validate_volume(b.volume, total));
+    largest = std::max(largest, validate_volume(parts[k], total));
     if (b.volume.type != g.volume.type || b.volume.background != g.volume.background)
       throw std::invalid_argument("grid '" + g.name + "': block type or background differs from the grid's");
     for (std::size_t a = 0; a < 3; ++a)
@@ -106,22 +106,24 @@ double validate_blocked(const VolumeGrid& g, std::size_t& total) {
   return largest;
 }
 
-void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o) {
+void validate(const std::vector<VolumeGrid>& grids, const std::vector<std::vector<VolumeView>>& parts,
+              const VolumeEncodeOptions& o) {
   if (grids.empty()) throw EncodeError("no grids to encode");
   if (grids.size() > kMaxVolumeGrids) throw EncodeError("more than 1024 grids");
   if (o.mode != VolumeRateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   std::size_t total = 0;
   double largest = 0.0;
-  for (const VolumeGrid& g : grids) {
+  for (std::size_t i = 0; i < grids.size(); ++i) {
+    const VolumeGrid& g = grids[i];
     if (g.is_opaque()) continue;  // carried verbatim
     if (g.is_blocked()) {
-      largest = std::max(largest, validate_blocked(g, total));
+      largest = std::max(largest, validate_blocked(g, parts[i], total));
     } else {
-      if (g.volume.count() == 0)
+      if (parts[i][0].count() == 0)
         throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
-      total += g.volume.count();
-      largest = std::max(largest, validate_volume(g.volume, total));
+      total += parts[i][0].count();
+      largest = std::max(largest, validate_volume(parts[i][0], total));
     }
     if (o.mode == VolumeRateMode::lossless && !is_integer(g.volume.type))
       throw std::invalid_argument(
@@ -131,74 +133,74 @@ void validate(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o
 }
 
 // Voxel states and inactive values of a sparse grid (appended to m).
-void append_mask(const Volume& v, MaskChunk& m) {
-  const std::size_t base = m.states.size();
-  m.states.resize(base + v.count());
-  for (std::size_t i = 0; i < v.count(); ++i) {
+void append_mask(const VolumeView& v, MaskChunk& m) {
+  std::size_t i = m.states.size();
+  m.states.resize(i + v.count());  // grows geometrically over the blocks of a grid
+  for_each_voxel(v, [&](double value, bool active) {
     VoxelState s = VoxelState::active;
-    if (!v.is_active(i)) {
-      if (v.samples[i] == v.background)
+    if (!active) {
+      if (value == v.background)
         s = VoxelState::inactive_background;
-      else if (v.samples[i] == -v.background)
+      else if (value == -v.background)
         s = VoxelState::inactive_negative;
       else {
         s = VoxelState::inactive_other;
-        m.other_values.push_back(v.samples[i]);
+        m.other_values.push_back(value);
       }
     }
-    m.states[base + i] = std::uint8_t(s);
-  }
+    m.states[i++] = std::uint8_t(s);
+  });
 }
 
-MaskChunk make_mask(const Volume& v) {
+MaskChunk make_mask(const VolumeView& v) {
   MaskChunk m;
   append_mask(v, m);
   return m;
 }
 
 // Geometry (no samples), tiles and voxel states of a sparse-native grid.
-BlocksChunk make_layout(const VolumeGrid& g) {
+BlocksChunk make_layout(const VolumeGrid& g, const std::vector<VolumeView>& parts) {
   BlocksChunk c;
   c.tiles = g.tiles;
-  for (const VolumeBlock& b : g.blocks) {
+  for (std::size_t k = 0; k < g.blocks.size(); ++k) {
     VolumeBlock geometry;
-    geometry.origin = b.origin;
-    geometry.volume.dims = b.volume.dims;
+    geometry.origin = g.blocks[k].origin;
+    geometry.volume.dims = g.blocks[k].volume.dims;
     c.blocks.push_back(std::move(geometry));
-    append_mask(b.volume, c.mask);
+    append_mask(parts[k], c.mask);
   }
   return c;
 }
 
-bool brick_has_active(const Volume& v, const BrickBox& box) {
+bool brick_has_active(const VolumeView& v, const BrickBox& box) {
   if (!v.is_sparse()) return true;
   for (std::size_t z = 0; z < box.size[2]; ++z)
     for (std::size_t y = 0; y < box.size[1]; ++y)
       for (std::size_t x = 0; x < box.size[0]; ++x)
-        if (v.active[v.index(box.offset[0] + x, box.offset[1] + y, box.offset[2] + z)]) return true;
+        if (v.is_active(box.offset[0] + x, box.offset[1] + y, box.offset[2] + z)) return true;
   return false;
 }
 
-void widen_range(const Volume& v, double& lo, double& hi) {
-  for (std::size_t i = 0; i < v.count(); ++i)
-    if (v.is_active(i)) {
-      lo = std::min(lo, v.samples[i]);
-      hi = std::max(hi, v.samples[i]);
-    }
+void widen_range(const VolumeView& v, double& lo, double& hi) {
+  for_each_voxel(v, [&](double value, bool active) {
+    if (!active) return;
+    lo = std::min(lo, value);
+    hi = std::max(hi, value);
+  });
 }
 
 // Value range of the active voxels (active tiles included).
-double value_range(const VolumeGrid& g) {
+double value_range(const VolumeGrid& g, const std::vector<VolumeView>& parts) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  if (!g.is_blocked()) widen_range(g.volume, lo, hi);
-  for (const VolumeBlock& b : g.blocks) widen_range(b.volume, lo, hi);
+  for (const VolumeView& v : parts) widen_range(v, lo, hi);
   for (const VolumeTile& t : g.tiles)
     if (t.active) lo = std::min(lo, t.value), hi = std::max(hi, t.value);
   return hi > lo ? hi - lo : 0.0;
 }
 
-// Grid description for the header: everything but the values.
-VolumeGrid describe(const VolumeGrid& g) {
+// Grid description for the header: everything but the values (a box grid's sparse marker from
+// the view its values come from).
+VolumeGrid describe(const VolumeGrid& g, const std::vector<VolumeView>& parts) {
   VolumeGrid d;
   d.name = g.name;
   d.grid_class = g.grid_class;
@@ -208,20 +210,17 @@ VolumeGrid describe(const VolumeGrid& g) {
   d.volume.dims = g.volume.dims;
   d.volume.type = g.volume.type;
   d.volume.background = g.volume.background;
-  d.volume.active.assign(!g.is_blocked() && g.volume.is_sparse() ? 1 : 0, 1);
+  d.volume.active.assign(!g.is_blocked() && !parts.empty() && parts[0].is_sparse() ? 1 : 0, 1);
   if (g.is_opaque()) d.volume = Volume({1, 1, 1}, VoxelType::f32), d.volume.samples.clear();
   return d;
 }
 
 // Bricks holding an active voxel, of the grid's box or of each of its blocks in turn.
-void add_jobs(VolumePlan& plan, const VolumeGrid& g, std::uint32_t grid, std::size_t edge) {
-  if (g.is_opaque()) return;
+void add_jobs(VolumePlan& plan, const std::vector<VolumeView>& parts, std::uint32_t grid, std::size_t edge) {
   std::uint32_t index = 0;
-  const std::size_t parts = g.is_blocked() ? g.blocks.size() : 1;
-  for (std::uint32_t k = 0; k < parts; ++k) {
-    const Volume& v = g.is_blocked() ? g.blocks[k].volume : g.volume;
-    for (const BrickBox& box : brick_boxes(v.dims, edge)) {
-      if (brick_has_active(v, box)) plan.jobs.push_back({grid, index, box, k});
+  for (std::uint32_t k = 0; k < parts.size(); ++k) {
+    for (const BrickBox& box : brick_boxes(parts[k].dims, edge)) {
+      if (brick_has_active(parts[k], box)) plan.jobs.push_back({grid, index, box, k, parts[k]});
       ++index;
     }
   }
@@ -244,6 +243,13 @@ BrickCode code_at_step(const VolumePlan& plan, const VolumeGrid& grid, const Bri
   return code;
 }
 
+// Coded bytes of a brick (passes kept + outlier list), for sizing the assembled stream.
+std::size_t code_bytes(const BrickCode& c) {
+  std::size_t n = c.outliers.size();
+  for (std::size_t i = 0; i < c.passes.size(); ++i) n += c.coded.coded[i].size(c.passes[i]);
+  return n;
+}
+
 // Fixed step (step, lossless) or the best step for the bound (max-error), brick by brick.
 std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
                                   const VolumeEncodeOptions& o) {
@@ -253,7 +259,7 @@ std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const Vo
     const VolumeGrid& grid = grids[job.grid];
     std::vector<double> samples;
     std::vector<std::uint8_t> active;
-    brick_samples(grid, job, samples, active);
+    brick_samples(job, samples, active);
     if (o.mode == VolumeRateMode::max_error)
       codes[i] = code_within_bound(plan, grid, job, samples, active);
     else
@@ -262,10 +268,42 @@ std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const Vo
   return codes;
 }
 
+// Checks a caller's view of box grid `g` against the grid's description.
+void check_grid_view(const VolumeGrid& g, const VolumeView& v) {
+  check_view(v);
+  if (g.is_opaque() || g.is_blocked() || !g.volume.samples.empty() || !g.volume.active.empty())
+    throw std::invalid_argument("grid '" + g.name + "' is given both by a view and by its own values");
+  if (g.volume.dims != v.dims || g.volume.type != v.type || g.volume.background != v.background)
+    throw std::invalid_argument("grid '" + g.name + "': dims, type or background differ from its view's");
+}
+
+// Where each grid's values are read from: its box (the caller's view, or a view of its own
+// Volume) or each of its blocks in turn; nothing for opaque grids.
+std::vector<std::vector<VolumeView>> grid_parts(const std::vector<VolumeGrid>& grids,
+                                                std::span<const VolumeView> views) {
+  if (!views.empty() && views.size() != grids.size())
+    throw std::invalid_argument("one view per grid is needed (null data: the grid's own values)");
+  std::vector<std::vector<VolumeView>> parts(grids.size());
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    const VolumeGrid& grid = grids[g];
+    if (!views.empty() && views[g].data != nullptr) {
+      check_grid_view(grid, views[g]);
+      parts[g].push_back(views[g]);
+    } else if (grid.is_blocked()) {
+      for (const VolumeBlock& b : grid.blocks) parts[g].push_back(view_of(b.volume));
+    } else if (!grid.is_opaque()) {
+      parts[g].push_back(view_of(grid.volume));
+    }
+  }
+  return parts;
+}
+
 }  // namespace
 
-VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o) {
-  validate(grids, o);
+VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                        const VolumeEncodeOptions& o) {
+  const std::vector<std::vector<VolumeView>> parts = grid_parts(grids, views);
+  validate(grids, parts, o);
   VolumePlan plan;
   plan.transform = make_transform(o.transform);
   check_stream_spec(plan.transform->spec());  // never write a stream the decoder's bounds refuse
@@ -293,35 +331,27 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncode
   plan.opaque.resize(grids.size());
   for (std::uint32_t g = 0; g < grids.size(); ++g) {
     const VolumeGrid& grid = grids[g];
-    h.grids.push_back(describe(grid));
+    h.grids.push_back(describe(grid, parts[g]));
     h.blocked.push_back(grid.is_opaque() ? 2 : grid.is_blocked() ? 1 : 0);
     if (grid.is_opaque())
       plan.opaque[g] = grid.opaque;
     else if (grid.is_blocked())
-      plan.layouts[g] = make_layout(grid);
-    else if (grid.volume.is_sparse())
-      plan.masks[g] = make_mask(grid.volume);
-    add_jobs(plan, grid, g, o.brick);
-    if (!grid.is_opaque()) plan.voxels += grid.active_voxels();
-    plan.range = std::max(plan.range, value_range(grid));
+      plan.layouts[g] = make_layout(grid, parts[g]);
+    else if (parts[g][0].is_sparse())
+      plan.masks[g] = make_mask(parts[g][0]);
+    add_jobs(plan, parts[g], g, o.brick);
+    if (grid.is_blocked())
+      plan.voxels += grid.active_voxels();
+    else if (!grid.is_opaque())
+      plan.voxels += active_count(parts[g][0]);
+    plan.range = std::max(plan.range, value_range(grid, parts[g]));
   }
   h.brick_chunks = std::uint32_t(plan.jobs.size());
   return plan;
 }
 
-void brick_samples(const VolumeGrid& grid, const BrickJob& job, std::vector<double>& samples,
-                   std::vector<std::uint8_t>& active) {
-  const Volume& v = job_volume(grid, job);
-  const BrickBox& box = job.box;
-  samples.clear();
-  active.clear();
-  for (std::size_t z = 0; z < box.size[2]; ++z)
-    for (std::size_t y = 0; y < box.size[1]; ++y)
-      for (std::size_t x = 0; x < box.size[0]; ++x) {
-        const std::size_t i = v.index(box.offset[0] + x, box.offset[1] + y, box.offset[2] + z);
-        samples.push_back(v.samples[i]);
-        if (v.is_sparse()) active.push_back(v.active[i]);
-      }
+void brick_samples(const BrickJob& job, std::vector<double>& samples, std::vector<std::uint8_t>& active) {
+  gather_box(job.view, job.box.offset, job.box.size, samples, active);
 }
 
 std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& job, const BrickCode& code) {
@@ -341,7 +371,7 @@ void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<doub
                    BrickCode& code) {
   std::vector<double> samples;
   std::vector<std::uint8_t> active;
-  brick_samples(grid, job, samples, active);
+  brick_samples(job, samples, active);
   code.max_error = 0.0;
   code.sse = 0.0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -352,7 +382,10 @@ void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<doub
   }
 }
 
-std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes) {
+namespace {
+
+// Signature, header and the per-grid chunks before the bricks.
+std::vector<std::uint8_t> stream_head(const VolumePlan& plan) {
   std::vector<std::uint8_t> out;
   write_volume_signature(out);
   write_header_chunk(out, plan.header);
@@ -361,31 +394,70 @@ std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::ve
     if (plan.header.blocked[g] == 2) write_opaque_chunk(out, g, plan.opaque[g]);
     if (plan.header.grids[g].volume.is_sparse()) write_mask_chunk(out, g, plan.masks[g]);
   }
-  for (std::size_t i = 0; i < codes.size(); ++i) {
-    const BrickCode& c = codes[i];
-    BrickChunk chunk{plan.jobs[i].grid, plan.jobs[i].brick, c.base_step, {}, {}, c.outliers};
-    std::vector<std::vector<std::uint8_t>> words(c.passes.size());
-    for (std::size_t k = 0; k < c.passes.size(); ++k) {
-      const EncodedBlock& b = c.coded.coded[k];
-      chunk.entries.push_back(
-          {c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
-      words[k] = b.codeword(c.passes[k]);
-      chunk.codewords.emplace_back(words[k]);
-    }
-    write_brick_chunk(out, chunk);
-  }
   return out;
 }
 
+void write_brick(std::vector<std::uint8_t>& out, const BrickJob& job, const BrickCode& c) {
+  BrickChunk chunk{job.grid, job.brick, c.base_step, {}, {}, c.outliers};
+  std::vector<std::vector<std::uint8_t>> words(c.passes.size());
+  for (std::size_t k = 0; k < c.passes.size(); ++k) {
+    const EncodedBlock& b = c.coded.coded[k];
+    chunk.entries.push_back(
+        {c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
+    words[k] = b.codeword(c.passes[k]);
+    chunk.codewords.emplace_back(words[k]);
+  }
+  write_brick_chunk(out, chunk);
+}
+
+// Hands the final stream to `write` piece by piece (the head, then one chunk per brick),
+// releasing each brick's coded form once its chunk is written: the coded bricks are the only
+// whole-stream-sized thing an encode holds, and a caller writing to a file holds nothing more.
+void assemble_streaming(const VolumePlan& plan, std::vector<BrickCode>& codes, const StreamWriter& write) {
+  write(stream_head(plan));
+  std::vector<std::uint8_t> chunk;
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    chunk.clear();
+    write_brick(chunk, plan.jobs[i], codes[i]);
+    codes[i] = BrickCode{};
+    write(chunk);
+  }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes) {
+  std::vector<std::uint8_t> out = stream_head(plan);
+  for (std::size_t i = 0; i < codes.size(); ++i) write_brick(out, plan.jobs[i], codes[i]);
+  return out;
+}
+
+VolumeGrid describe_view(const VolumeView& view, std::string name) {
+  VolumeGrid g;
+  g.name = std::move(name);
+  g.volume.dims = view.dims;
+  g.volume.type = view.type;
+  g.volume.background = view.background;
+  return g;
+}
+
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options) {
-  VolumePlan plan = plan_volumes(grids, options);
+  return encode_volumes(grids, {}, options);
+}
+
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                  const VolumeEncodeOptions& options) {
+  return encode_volumes(grids, views, options, nullptr);
+}
+
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                  const VolumeEncodeOptions& options, const StreamWriter& write) {
+  VolumePlan plan = plan_volumes(grids, views, options);
   // Bricks are the parallel tasks; each brick's own transform runs serially inside its task.
   const bool rate = options.mode == VolumeRateMode::bpv || options.mode == VolumeRateMode::psnr;
-  const std::vector<BrickCode> codes =
+  std::vector<BrickCode> codes =
       rate ? code_for_rate(grids, plan, options) : code_fixed(grids, plan, options);
   VolumeEncodeResult r;
-  r.bytes = assemble_volumes(plan, codes);
-  r.bpv = double(r.bytes.size()) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
   double sse = 0.0;
   const std::size_t counted = plan.voxels;
   for (const BrickCode& c : codes) {
@@ -393,6 +465,22 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
     r.outliers += c.outlier_count;
     sse += c.sse;
   }
+  if (write) {
+    assemble_streaming(plan, codes, [&](std::span<const std::uint8_t> piece) {
+      r.size += piece.size();
+      write(piece);
+    });
+  } else {
+    std::size_t estimate = 0;  // reserved once: no doubling copies of the stream
+    for (const BrickCode& c : codes)
+      estimate += code_bytes(c) + 2 * c.passes.size() + 64;  // + index, framing
+    r.bytes.reserve(estimate);
+    assemble_streaming(plan, codes, [&](std::span<const std::uint8_t> piece) {
+      r.bytes.insert(r.bytes.end(), piece.begin(), piece.end());
+    });
+    r.size = r.bytes.size();
+  }
+  r.bpv = double(r.size) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
   const double mse = counted > 0 ? sse / double(counted) : 0.0;
   r.psnr =
       mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();

@@ -3,27 +3,26 @@
 // bricks to code, shared by the fixed-step / max-error path (volume_encoder.cpp) and the
 // rate-controlled path (volume_encoder_rate.cpp).
 
+#include <span>
 #include <vector>
 
 #include "codec/volume/volume_brick.h"
 #include "codec/volume/volume_codec.h"
 #include "codec/volume/volume_format.h"
+#include "codec/volume/volume_view.h"
 
 namespace pupwave {
 
 // One brick to code: its grid, its index among the grid's bricks (over all blocks of a
-// sparse-native grid in turn), the block it lies in (0 for box grids) and its box in there.
+// sparse-native grid in turn), the block it lies in (0 for box grids), its box in there and the
+// view of that box grid or block the brick is gathered from.
 struct BrickJob {
   std::uint32_t grid = 0;
   std::uint32_t brick = 0;
   BrickBox box;
   std::uint32_t block = 0;
+  VolumeView view;
 };
-
-// The volume a job's box refers to: the grid's own or one of its blocks.
-inline const Volume& job_volume(const VolumeGrid& g, const BrickJob& job) {
-  return g.is_blocked() ? g.blocks[job.block].volume : g.volume;
-}
 
 struct VolumePlan {
   VolumeStreamHeader header;
@@ -49,11 +48,13 @@ struct BrickCode {
   double sse = 0.0;        // squared error over the same voxels
 };
 
-VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options);
+// `views[g]` (when its data is set) holds the values of box grid g; see encode_volumes.
+VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                        const VolumeEncodeOptions& options);
 
-// Samples of a job's brick (x fastest) and the flags of voxels that count (empty: all).
-void brick_samples(const VolumeGrid& grid, const BrickJob& job, std::vector<double>& samples,
-                   std::vector<std::uint8_t>& active);
+// Samples of a job's brick (x fastest) and the flags of voxels that count (empty: all),
+// gathered from its view: the only place the encoder reads voxel values after planning.
+void brick_samples(const BrickJob& job, std::vector<double>& samples, std::vector<std::uint8_t>& active);
 
 // Max-error coding of a brick (its samples and voxels that count, as brick_samples gives them):
 // every pass of every block at the step chosen for the bound, and the corrections that hold it.

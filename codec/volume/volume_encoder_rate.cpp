@@ -23,13 +23,13 @@ struct Coded {
   double initial = 0.0;                                    // index units^2 with nothing coded
 };
 
-Coded code_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan, double base) {
+Coded code_all(const VolumePlan& plan, double base) {
   Coded c;
   c.codes.resize(plan.jobs.size());
   plan.executor->run(plan.jobs.size(), [&](std::size_t i) {
     std::vector<double> samples;
     std::vector<std::uint8_t> active;
-    brick_samples(grids[plan.jobs[i].grid], plan.jobs[i], samples, active);
+    brick_samples(plan.jobs[i], samples, active);
     c.codes[i].base_step = base;
     c.codes[i].coded = code_brick(plan.coding, samples, plan.jobs[i].box.size, base);
   });
@@ -76,17 +76,11 @@ double measure_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
   return sse;
 }
 
-std::size_t counted_voxels(const std::vector<VolumeGrid>& grids) {
-  std::size_t n = 0;
-  for (const VolumeGrid& g : grids) n += g.active_voxels();
-  return std::max<std::size_t>(n, 1);
-}
-
 std::vector<BrickCode> for_size(const std::vector<VolumeGrid>& grids, VolumePlan& plan, double bpv) {
   const double budget = std::floor(bpv * double(plan.voxels) / 8.0);
   double base = plan.range > 0.0 ? plan.range / 1024.0 : 1.0;
   for (int round = 0;; ++round, base /= 4.0) {
-    Coded c = code_all(grids, plan, base);
+    Coded c = code_all(plan, base);
     set_passes(c, std::vector<int>(c.hulls.size(), 0));
     const double overhead = double(assemble_volumes(plan, c.codes).size());
     std::vector<int> all;
@@ -111,8 +105,8 @@ std::vector<BrickCode> for_psnr(const std::vector<VolumeGrid>& grids, VolumePlan
   const double peak = plan.range > 0.0 ? plan.range : 1.0;
   const double target_mse = peak * peak / std::pow(10.0, psnr / 10.0);
   const double base = 0.3 * std::sqrt(target_mse);
-  const double voxels = double(counted_voxels(grids));
-  Coded c = code_all(grids, plan, base);
+  const double voxels = double(std::max<std::size_t>(plan.voxels, 1));  // active voxels of all grids
+  Coded c = code_all(plan, base);
   double allowed = target_mse * voxels / (base * base);
   std::vector<int> best;
   for (int k = 0; k < kMaxRounds; ++k) {

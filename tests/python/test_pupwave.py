@@ -125,6 +125,9 @@ def test_non_contiguous_arrays_are_handled(real_image, wmag):
     crop = wmag[:30, :40, :50]
     fortran = np.asfortranarray(crop)
     assert pupwave.compress_volume(fortran, max_error=1) == pupwave.compress_volume(crop, max_error=1)
+    backwards = wmag[::-1, :40, ::-2]  # negative strides, read in place like the others
+    assert pupwave.compress_volume(backwards, max_error=1) == pupwave.compress_volume(
+        np.ascontiguousarray(backwards), max_error=1)
 
 
 def test_two_threads_give_serial_results(real_image, wmag):

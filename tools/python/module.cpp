@@ -157,9 +157,12 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
   const api::VoxelType type = voxel_type(a);
   if (a.ndim() != 3)
     throw py::value_error("expected a 3-D (z, y, x) array, got " + std::to_string(a.ndim()) + "-D");
-  // The codec reads voxels x fastest; a non-contiguous array is copied once into that order.
-  if (!(a.flags() & py::array::c_style))
-    a = py::module_::import("numpy").attr("ascontiguousarray")(a).cast<py::array>();
+  // The codec reads the voxels in place through their strides (in elements); only an array
+  // whose strides are not whole elements, or a broadcast one (stride 0), is copied once.
+  bool whole = true;
+  for (int d = 0; d < 3; ++d)
+    whole = whole && a.strides(d) % a.itemsize() == 0 && (a.strides(d) != 0 || a.shape(d) == 1);
+  if (!whole) a = py::module_::import("numpy").attr("ascontiguousarray")(a).cast<py::array>();
   if (count_set({max_error.has_value(), max_error_rel.has_value(), bpv.has_value(), lossless}) > 1)
     throw py::value_error("give at most one of max_error, max_error_rel, bpv and lossless");
   api::VolumeOptions options;
@@ -172,8 +175,9 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
     options.rate = api::VolumeRate::bpv, options.target = *bpv;
   else
     options.rate = api::VolumeRate::max_error_rel, options.target = max_error_rel.value_or(1e-3);
-  const api::VolumeView view{
+  api::VolumeView view{
       a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
+  for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = a.strides(d) / a.itemsize();  // (z, y, x)
   std::vector<std::uint8_t> out;
   {
     py::gil_scoped_release release;

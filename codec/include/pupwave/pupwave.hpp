@@ -96,12 +96,16 @@ Image decompress_image(std::span<const std::uint8_t> stream, int level = 0, unsi
 enum class VoxelType : std::uint8_t { u8 = 0, u16 = 1, f32 = 2, f64 = 3 };
 std::size_t bytes_per_voxel(VoxelType type);
 
-// A dense 3-D array, x fastest: voxel (x, y, z) is element x + dims[0] * (y + dims[1] * z)
-// (a C-order numpy array of shape (z, y, x)).
+// A read-only, typed 3-D array in the caller's memory, read in place (never copied or widened
+// to double to encode): voxel (x, y, z) is the element at
+//   data + x * strides[0] + y * strides[1] + z * strides[2]   (strides in ELEMENTS);
+// strides all 0 means dense, x fastest: element x + dims[0] * (y + dims[1] * z) (a C-order
+// numpy array of shape (z, y, x)). Strides select a sub-box of a larger array, any axis order.
 struct VolumeView {
   const void* data = nullptr;
   std::array<std::size_t, 3> dims{0, 0, 0};
   VoxelType type = VoxelType::f32;
+  std::array<std::ptrdiff_t, 3> strides{0, 0, 0};
 };
 
 // One brick of a sparse grid: a dense box of voxels at integer position `origin`, optionally

@@ -1,0 +1,141 @@
+#include "codec/volume/volume_view.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace pupwave {
+namespace {
+
+// Calls f(T{}) with the C++ type of a storage.
+template <class F>
+decltype(auto) with_storage(VoxelType storage, F&& f) {
+  switch (storage) {
+    case VoxelType::u8: return f(std::uint8_t{});
+    case VoxelType::u16: return f(std::uint16_t{});
+    case VoxelType::f32: return f(float{});
+    case VoxelType::f64: break;
+  }
+  return f(double{});
+}
+
+// Whether every value of `type` is exactly an element of `storage`.
+bool holds(VoxelType storage, VoxelType type) {
+  switch (storage) {
+    case VoxelType::u8: return type == VoxelType::u8;
+    case VoxelType::u16: return type == VoxelType::u8 || type == VoxelType::u16;
+    case VoxelType::f32: return type != VoxelType::f64;
+    case VoxelType::f64: return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+double VolumeView::at(std::size_t x, std::size_t y, std::size_t z) const {
+  return with_storage(storage, [&](auto t) {
+    using T = decltype(t);
+    return double(static_cast<const T*>(data)[offset(x, y, z)]);
+  });
+}
+
+void VolumeView::read_row(std::size_t x0, std::size_t y, std::size_t z, std::size_t n, double* out) const {
+  with_storage(storage, [&](auto t) {
+    using T = decltype(t);
+    const T* row = static_cast<const T*>(data) + offset(x0, y, z);
+    if (strides[0] == 1) {
+      for (std::size_t x = 0; x < n; ++x) out[x] = double(row[x]);
+    } else {
+      for (std::size_t x = 0; x < n; ++x) out[x] = double(row[std::ptrdiff_t(x) * strides[0]]);
+    }
+  });
+}
+
+VolumeView contiguous_view(const void* data, const Extent& dims, VoxelType type) {
+  VolumeView v;
+  v.data = data;
+  v.dims = dims;
+  v.strides = {1, std::ptrdiff_t(dims[0]), std::ptrdiff_t(dims[0] * dims[1])};
+  v.type = type;
+  v.storage = type;
+  return v;
+}
+
+VolumeView view_of(const Volume& volume) {
+  if (volume.samples.size() != volume.count() ||
+      (volume.is_sparse() && volume.active.size() != volume.count()))
+    throw std::invalid_argument("volume sample or mask count does not match its dims");
+  VolumeView v = contiguous_view(volume.samples.data(), volume.dims, VoxelType::f64);
+  v.type = volume.type;
+  v.active = volume.is_sparse() ? volume.active.data() : nullptr;
+  v.background = volume.background;
+  return v;
+}
+
+VolumeView sub_view(const VolumeView& view, const Extent& offset, const Extent& size) {
+  for (int a = 0; a < 3; ++a)
+    if (offset[a] + size[a] > view.dims[a]) throw std::invalid_argument("sub-box exceeds the view");
+  VolumeView v = view;
+  const std::ptrdiff_t at = view.offset(offset[0], offset[1], offset[2]);
+  v.dims = size;
+  with_storage(view.storage, [&](auto t) {
+    using T = decltype(t);
+    v.data = static_cast<const T*>(view.data) + at;
+  });
+  if (view.active != nullptr) v.active = view.active + at;
+  return v;
+}
+
+void check_view(const VolumeView& view) {
+  if (view.data == nullptr) throw std::invalid_argument("volume view has no data");
+  for (std::size_t d : view.dims)
+    if (d == 0) throw std::invalid_argument("volume view has an empty extent");
+  if (!holds(view.storage, view.type))
+    throw std::invalid_argument("volume view: " + to_string(view.storage) + " elements cannot hold " +
+                                to_string(view.type) + " voxels");
+  for (int a = 0; a < 3; ++a)
+    if (view.dims[a] > 1 && view.strides[a] == 0)
+      throw std::invalid_argument("volume view: zero stride along axis " + std::to_string(a));
+}
+
+void gather_box(const VolumeView& view, const Extent& offset, const Extent& size,
+                std::vector<double>& samples, std::vector<std::uint8_t>& active) {
+  samples.resize(size[0] * size[1] * size[2]);
+  active.clear();
+  std::size_t k = 0;
+  for (std::size_t z = 0; z < size[2]; ++z)
+    for (std::size_t y = 0; y < size[1]; ++y, k += size[0])
+      view.read_row(offset[0], offset[1] + y, offset[2] + z, size[0], samples.data() + k);
+  if (view.active == nullptr) return;
+  active.reserve(samples.size());
+  for (std::size_t z = 0; z < size[2]; ++z)
+    for (std::size_t y = 0; y < size[1]; ++y)
+      for (std::size_t x = 0; x < size[0]; ++x)
+        active.push_back(view.active[view.offset(offset[0] + x, offset[1] + y, offset[2] + z)]);
+}
+
+std::size_t active_count(const VolumeView& view) {
+  if (view.active == nullptr) return view.count();
+  std::size_t n = 0;
+  for (std::size_t z = 0; z < view.dims[2]; ++z)
+    for (std::size_t y = 0; y < view.dims[1]; ++y)
+      for (std::size_t x = 0; x < view.dims[0]; ++x) n += view.active[view.offset(x, y, z)] != 0 ? 1 : 0;
+  return n;
+}
+
+void VolumeOutput::set(std::size_t x, std::size_t y, std::size_t z, double value) const {
+  with_storage(storage, [&](auto t) {
+    using T = decltype(t);
+    static_cast<T*>(data)[offset(x, y, z)] = T(value);
+  });
+}
+
+VolumeOutput contiguous_output(void* data, const Extent& dims, VoxelType storage) {
+  VolumeOutput out;
+  out.data = data;
+  out.dims = dims;
+  out.strides = {1, std::ptrdiff_t(dims[0]), std::ptrdiff_t(dims[0] * dims[1])};
+  out.storage = storage;
+  return out;
+}
+
+}  // namespace pupwave

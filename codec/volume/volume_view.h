@@ -1,0 +1,101 @@
+#pragma once
+// The volume encoder's input: a non-owning, typed, strided view of a box of voxels in the
+// caller's memory (a raw file mapped read-only, a sub-box of a larger array, a numpy array), so
+// a volume is never copied or widened to double to be coded: the encoder gathers one brick at a
+// time and converts only that brick. The owning Volume (volume.h) is what decoders return;
+// view_of() views one. VolumeOutput is the decoder's typed, writable counterpart.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "codec/volume/volume.h"
+
+namespace pupwave {
+
+// Strides in elements along x, y, z.
+using VolumeStrides = std::array<std::ptrdiff_t, 3>;
+
+// Voxel (x, y, z) is the `storage` element at data + x * strides[0] + y * strides[1] + z * strides[2].
+// `type` is what the voxels are (and what the stream records); `storage` is how they are held:
+// the same type for a raw file, f64 for an owning Volume (which holds every type as double).
+// `active`, when not null, is a mask laid out like the data (same element strides, one byte per
+// element, nonzero = active); inactive voxels keep their values and `background` is the value of
+// inactive voxels outside the box (as Volume::active and Volume::background).
+struct VolumeView {
+  const void* data = nullptr;
+  Extent dims{0, 0, 0};
+  VolumeStrides strides{0, 0, 0};
+  VoxelType type = VoxelType::f32;
+  VoxelType storage = VoxelType::f32;
+  const std::uint8_t* active = nullptr;
+  double background = 0.0;
+
+  std::size_t count() const { return dims[0] * dims[1] * dims[2]; }
+  bool is_sparse() const { return active != nullptr; }
+  std::ptrdiff_t offset(std::size_t x, std::size_t y, std::size_t z) const {
+    return std::ptrdiff_t(x) * strides[0] + std::ptrdiff_t(y) * strides[1] + std::ptrdiff_t(z) * strides[2];
+  }
+  // Voxel (x, y, z) as double (exact for every type).
+  double at(std::size_t x, std::size_t y, std::size_t z) const;
+  bool is_active(std::size_t x, std::size_t y, std::size_t z) const {
+    return active == nullptr || active[offset(x, y, z)] != 0;
+  }
+  // Row (y, z) from x0, n voxels, as double into out.
+  void read_row(std::size_t x0, std::size_t y, std::size_t z, std::size_t n, double* out) const;
+};
+
+// Contiguous voxels (x fastest, no padding) held as their own type.
+VolumeView contiguous_view(const void* data, const Extent& dims, VoxelType type);
+// A view of an owning Volume (samples as double, its mask and background). Throws
+// std::invalid_argument when the sample or mask count does not match its dims.
+VolumeView view_of(const Volume& volume);
+// The box [offset, offset + size) of a view (same memory, same strides).
+VolumeView sub_view(const VolumeView& view, const Extent& offset, const Extent& size);
+
+// Throws std::invalid_argument naming the problem for a view that cannot be read: null data,
+// an empty extent, a storage that cannot hold the type (integer storage for float voxels, u8
+// for u16), zero strides along an axis longer than one voxel.
+void check_view(const VolumeView& view);
+
+// The voxels of box [offset, offset + size) of a view, x fastest, as double (`samples`), and the
+// mask bytes of the box (`active`, left empty for a dense view). The encoder's only read path.
+void gather_box(const VolumeView& view, const Extent& offset, const Extent& size,
+                std::vector<double>& samples, std::vector<std::uint8_t>& active);
+
+// Calls f(value, active) for every voxel, row by row (values as double).
+template <class F>
+void for_each_voxel(const VolumeView& view, F f) {
+  std::vector<double> row(view.dims[0]);
+  for (std::size_t z = 0; z < view.dims[2]; ++z)
+    for (std::size_t y = 0; y < view.dims[1]; ++y) {
+      view.read_row(0, y, z, view.dims[0], row.data());
+      for (std::size_t x = 0; x < view.dims[0]; ++x) f(row[x], view.is_active(x, y, z));
+    }
+}
+
+// Active voxels of a view (all of them when dense).
+std::size_t active_count(const VolumeView& view);
+
+// A writable typed box the decoder fills brick by brick: voxel (x, y, z) is the `storage`
+// element at data + offset(x, y, z); `active` (optional, contiguous x fastest, one byte per
+// voxel) receives the mask of a sparse grid.
+struct VolumeOutput {
+  void* data = nullptr;
+  Extent dims{0, 0, 0};
+  VolumeStrides strides{0, 0, 0};
+  VoxelType storage = VoxelType::f32;
+  std::uint8_t* active = nullptr;
+
+  std::ptrdiff_t offset(std::size_t x, std::size_t y, std::size_t z) const {
+    return std::ptrdiff_t(x) * strides[0] + std::ptrdiff_t(y) * strides[1] + std::ptrdiff_t(z) * strides[2];
+  }
+  // Stores a value already rounded to the grid's stored type (to_stored).
+  void set(std::size_t x, std::size_t y, std::size_t z, double value) const;
+};
+
+// Contiguous output (x fastest) of `storage` elements.
+VolumeOutput contiguous_output(void* data, const Extent& dims, VoxelType storage);
+
+}  // namespace pupwave
