@@ -34,6 +34,8 @@ constexpr int kFamilies = 8;
 // bytes and tenths of a dB, and the families' sizes for one target differ by more than the
 // 0.5% a higher target may give less (chelsea.png: 3-6 byte drops under 1 KB, 0.64% at 3.6 KB).
 constexpr std::size_t kSmallFile = 4096;
+// Most samples whose transformed components the family search keeps (a float each: 256 MiB).
+constexpr std::size_t kMaxKeptSamples = std::size_t(1) << 26;
 // Decodes measured while searching the truncation for a PSNR target, and search steps in all.
 constexpr int kMaxPsnrTrials = 14;
 constexpr int kMaxPsnrSteps = 48;
@@ -60,8 +62,10 @@ struct CodedImage {
 
 // Codes every block, one component at a time so only one transformed component is held.
 // Stops early once the blocks with every pass hold more than `byte_limit` bytes (a lossless
-// stream that cannot beat a lossy one costs little this way).
-CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_limits<std::size_t>::max()) {
+// stream that cannot beat a lossy one costs little this way). With `keep`, the transformed
+// components stay in the plan for the next call (release_coefficients frees them).
+CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_limits<std::size_t>::max(),
+                       bool keep = false) {
   CodedImage out;
   out.blocks.resize(plan.blocks.size());
   out.hulls.resize(plan.blocks.size());
@@ -84,9 +88,9 @@ CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_li
       const std::size_t full = out.blocks[i].size(out.blocks[i].pass_count());
       if (total.fetch_add(full) + full > byte_limit) over = true;
     });
-    release_component(plan, c);
+    if (!keep) release_component(plan, c);
   }
-  release_coefficients(plan);
+  if (!keep) release_coefficients(plan);
   out.over_limit = over;
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
@@ -347,13 +351,17 @@ double family_base(double peak, int shift, double at_most) {
 // that worked, and where later families start.
 std::optional<Trial> search_family(const ImageView& image, ImagePlan& plan, double psnr, int shift,
                                    const std::optional<Trial>& best, int& round, double& base) {
+  // Later families reuse the transformed components (the transform does not depend on the
+  // step: half the cost of a family) where they fit in memory.
+  const bool keep = best && plan.samples <= kMaxKeptSamples;
   const double target_mse = plan.peak * plan.peak / std::pow(10.0, psnr / 10.0);
   const double finest = kFinestStep * plan.peak;
-  const double first = family_base(plan.peak, shift, std::max(0.3 * std::sqrt(target_mse), finest));
+  // At most 0.42 (0.3 * sqrt 2) times the target RMS error: 0.3 on average over targets.
+  const double first = family_base(plan.peak, shift, std::max(0.42 * std::sqrt(target_mse), finest));
   for (;; ++round) {
     base = std::max(first * std::pow(4.0, -round), finest);
     set_base_step(plan, base);
-    const CodedImage coded = code_blocks(plan);
+    const CodedImage coded = code_blocks(plan, std::numeric_limits<std::size_t>::max(), keep);
     auto found = best ? search_below(image, plan, coded, psnr, base, *best)
                       : search_psnr(image, plan, coded, psnr, base);
     if (found || best || round >= kMaxStepRefinements || base <= finest) return found;
