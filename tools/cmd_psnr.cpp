@@ -19,7 +19,7 @@ struct PsnrOptions {
 };
 
 std::string format_psnr(double psnr) {
-  if (std::isinf(psnr)) return "inf";
+  if (std::isinf(psnr)) return psnr > 0.0 ? "inf" : "-inf";  // identical, or a sample infinitely off
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4f", psnr);
   return buf;
@@ -71,7 +71,9 @@ void add_psnr_command(CLI::App& app) {
       "psnr",
       "Compare image B against reference A: MSE, PSNR and max abs error per channel and overall,\n"
       "and luma (Rec. 601 Y) PSNR for RGB/RGBA. Peak: 2^bits-1 for integer samples, the value\n"
-      "range of A for float samples. B is converted to A's sample type if they differ.");
+      "range of A's finite samples for float samples. A NaN or infinite sample of A counts as exact\n"
+      "where B holds the same value, else as an infinite error (-inf dB). B is converted to A's\n"
+      "sample type if they differ.");
   cmd->add_option("A", opt->reference, "reference image")->required()->check(CLI::ExistingFile);
   cmd->add_option("B", opt->test, "test image")->required()->check(CLI::ExistingFile);
   cmd->callback([opt] { run_psnr(*opt); });

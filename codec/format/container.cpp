@@ -180,7 +180,7 @@ std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, 
 
 ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels,
                              const DecodeLimits& limits) {
-  ChunkReader chunks(bytes, kSignature, kStreamVersion, "pupwave stream");
+  ChunkReader chunks(bytes, kSignature, kStreamVersion, "image stream");
   ParsedStream s;
   s.header = parse_header(chunks.expect("HEAD").payload);
   const StreamHeader& h = s.header;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace pupwave {
@@ -15,17 +16,20 @@ double psnr_peak(const ImageView& reference) {
   if (reference.peak > 0.0) return reference.peak;
   if (is_integer(reference.type)) return nominal_max(reference.type);
   if (reference.plane_size() * reference.channels == 0) return 1.0;
+  // The range of the finite samples: NaN and infinity (kept by --keep-nonfinite) have none.
   std::vector<float> row(reference.width);
-  float lo = reference.at(0, 0, 0), hi = lo;
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
   for (std::size_t c = 0; c < reference.channels; ++c)
     for (std::size_t y = 0; y < reference.height; ++y) {
       reference.read_row(c, y, row.data());
-      const auto [a, b] = std::minmax_element(row.begin(), row.end());
-      lo = std::min(lo, *a);
-      hi = std::max(hi, *b);
+      for (float v : row)
+        if (std::isfinite(v)) {
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
     }
   const double range = double(hi) - double(lo);
-  return range > 0.0 ? range : 1.0;
+  return range > 0.0 && std::isfinite(range) ? range : 1.0;
 }
 
 namespace {
@@ -48,6 +52,15 @@ struct ErrorSum {
     return e;
   }
 };
+
+// The error of one sample. Where either side is NaN or infinite, the same non-finite value
+// back is exact (--keep-nonfinite codes it so) and anything else an infinite error, so the
+// finite samples still get a PSNR.
+double sample_error(double reference, double test) {
+  if (std::isfinite(reference) && std::isfinite(test)) return reference - test;
+  const bool same = (std::isnan(reference) && std::isnan(test)) || reference == test;
+  return same ? 0.0 : std::numeric_limits<double>::infinity();
+}
 
 double luma_at(const Image& img, std::size_t i) {
   return 0.299 * img.plane(0)[i] + 0.587 * img.plane(1)[i] + 0.114 * img.plane(2)[i];
@@ -72,7 +85,7 @@ ImageError compare_images(const Image& reference, const Image& test) {
     const float* a = reference.plane(c);
     const float* b = test.plane(c);
     for (std::size_t i = 0; i < reference.plane_size(); ++i) {
-      const double d = double(a[i]) - double(b[i]);
+      const double d = sample_error(a[i], b[i]);
       channel.add(d);
       all.add(d);
     }
@@ -83,7 +96,7 @@ ImageError compare_images(const Image& reference, const Image& test) {
   if (result.has_luma) {
     ErrorSum luma;
     for (std::size_t i = 0; i < reference.plane_size(); ++i)
-      luma.add(luma_at(reference, i) - luma_at(test, i));
+      luma.add(sample_error(luma_at(reference, i), luma_at(test, i)));
     result.luma = luma.finish(result.peak);
   }
   return result;

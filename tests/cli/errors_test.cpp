@@ -55,6 +55,13 @@ TEST_F(CliErrors, UnsupportedInputFormat) {
   EXPECT_EQ(leftovers(1), 0u);
 }
 
+TEST_F(CliErrors, DecompressingAnImageFileSaysItIsNoStream) {
+  const auto r = test::run_cli({"decompress", camera_, (dir_ / "out.png").string()});
+  expect_failure(r, "not a pupwave image stream (bad signature)");
+  EXPECT_EQ(r.output.find("pupwave pupwave"), std::string::npos) << r.output;
+  EXPECT_EQ(leftovers(0), 0u);
+}
+
 TEST_F(CliErrors, UnsupportedOutputFormat) {
   expect_failure(test::run_cli({"convert", camera_, (dir_ / "out.xyz123").string()}),
                  "unsupported image format");

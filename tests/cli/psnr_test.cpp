@@ -94,6 +94,32 @@ TEST(PsnrCli, IdenticalImagesGiveInfinity) {
   EXPECT_TRUE(std::isinf(psnr_row(r.output, "luma"))) << r.output;
 }
 
+// NaN and infinity (as --keep-nonfinite keeps them): given back, the finite samples get their
+// PSNR; lost, the error is infinite (-inf dB, never the "inf" of identical images).
+TEST(PsnrCli, NonFiniteSamplesAreComparedByIdentity) {
+  const fs::path dir = fs::temp_directory_path() / ("pupwave_psnr_nf_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  Image ref = cli::read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr");
+  ref.samples[100] = NAN;
+  ref.samples[ref.plane_size() + 200] = INFINITY;
+  Image near = ref;
+  for (std::size_t i = 1000; i < 2000; ++i) near.samples[i] *= 1.01f;
+  Image lost = ref;
+  lost.samples[ref.plane_size() + 200] = 1.0f;
+  cli::write_image(ref, dir / "ref.exr");
+  cli::write_image(near, dir / "near.exr");
+  cli::write_image(lost, dir / "lost.exr");
+  const auto kept = test::run_cli({"psnr", (dir / "ref.exr").string(), (dir / "near.exr").string()});
+  ASSERT_EQ(kept.exit_code, 0) << kept.output;
+  const double psnr = psnr_row(kept.output, "all");
+  EXPECT_TRUE(std::isfinite(psnr) && psnr > 40.0) << kept.output;
+  const auto r = test::run_cli({"psnr", (dir / "ref.exr").string(), (dir / "lost.exr").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::regex_search(r.output, std::regex("\\nG +inf +-inf "))) << r.output;
+  EXPECT_TRUE(std::regex_search(r.output, std::regex("\\nR +[0-9.]+ +inf "))) << r.output;  // R identical
+  fs::remove_all(dir);
+}
+
 TEST(PsnrCli, DifferentSizesAreAClearError) {
   const std::string dir = PUPWAVE_TESTIMAGES_DIR;
   const auto r = test::run_cli({"psnr", dir + "/astronaut.png", dir + "/coffee.png"});
