@@ -116,7 +116,10 @@ void validate(const std::vector<VolumeGrid>& grids, const std::vector<std::vecto
   double largest = 0.0;
   for (std::size_t i = 0; i < grids.size(); ++i) {
     const VolumeGrid& g = grids[i];
-    if (g.is_opaque()) continue;  // carried verbatim
+    if (g.is_opaque()) continue;     // carried verbatim
+    for (std::int64_t c : g.origin)  // the decoder refuses origins outside OpenVDB's int32 range
+      if (!in_coord_range(c, 0) || c == (std::int64_t(1) << 31))
+        throw EncodeError("grid '" + g.name + "': origin outside the 32-bit index range");
     if (g.is_blocked()) {
       largest = std::max(largest, validate_blocked(g, parts[i], total));
     } else {

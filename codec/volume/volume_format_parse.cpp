@@ -68,13 +68,24 @@ void require_affine(const std::array<double, 16>& m) {
   require_stream(std::isfinite(det) && det != 0.0, "volume stream: grid transform is singular");
 }
 
+// An index-space coordinate in OpenVDB's int32 range (so level placement and box arithmetic
+// never overflow; a fuzzed grid origin of -2^63 once did).
+std::array<std::int64_t, 3> get_origin(ByteReader& r) {
+  std::array<std::int64_t, 3> o{};
+  for (std::int64_t& v : o) {
+    v = std::int64_t(get_u64(r));
+    require_stream(v >= kMinCoord && v <= kMaxCoord, "volume stream: coordinate out of range");
+  }
+  return o;
+}
+
 VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels, std::uint8_t& blocked) {
   VolumeGrid g;
   g.name = r.str16(65535);
   const std::uint32_t cls = r.u8();
   require_stream(cls <= std::uint32_t(GridClass::fog_volume), "volume stream: grid class");
   g.grid_class = GridClass(cls);
-  for (std::int64_t& o : g.origin) o = std::int64_t(get_u64(r));
+  g.origin = get_origin(r);
   for (double& v : g.index_to_world) v = get_finite(r, "grid transform");
   require_affine(g.index_to_world);
   read_metadata(r, g.metadata);
@@ -178,15 +189,6 @@ std::size_t brick_block_count(const VolumeStreamHeader& h, std::uint32_t grid, s
   const Extent at{brick % n[0], brick / n[0] % n[1], brick / n[0] / n[1]};
   for (std::size_t a = 0; a < 3; ++a) size[a] = std::min(edge, dims[a] - at[a] * edge);
   return block_count_of(h, size);
-}
-
-std::array<std::int64_t, 3> get_origin(ByteReader& r) {
-  std::array<std::int64_t, 3> o{};
-  for (std::int64_t& v : o) {
-    v = std::int64_t(get_u64(r));
-    require_stream(v >= kMinCoord && v <= kMaxCoord, "volume stream: coordinate out of range");
-  }
-  return o;
 }
 
 // Blocks, tiles and block voxel states of a sparse-native grid; block voxels count towards
@@ -305,8 +307,8 @@ ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, cons
       require_stream(seen_layout[grid] == 0 && op.remaining() > 0,
                      "volume stream: repeated or empty opaque grid");
       seen_layout[grid] = 1;
-      const auto bytes = op.bytes(op.remaining());
-      s.opaque[grid].assign(bytes.begin(), bytes.end());
+      const auto serialised = op.bytes(op.remaining());
+      s.opaque[grid].assign(serialised.begin(), serialised.end());
       s.grid_bytes[grid] += c.payload.size() + kFraming;
       ++masks;
     } else if (c.is("BRIK")) {

@@ -8,6 +8,7 @@
 #include <bit>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "bounded_child.h"
 #include "codec/entropy/codeblocks.h"
@@ -235,6 +236,28 @@ TEST(HostileHeader, NonAffineGridTransformIsRefusedBeforeWriting) {
   expect_refused(run_cli_bounded({"decompress", scratch("proj.pw"), scratch("proj.vdb"), "--threads", "2"}),
                  "grid transform is not affine");
   EXPECT_FALSE(fs::exists(scratch("proj.vdb")));
+}
+
+TEST(HostileHeader, GridOriginOutsideTheIndexRangeIsRefused) {
+  // Found by fuzz_volume (10-minute run): a grid origin of -2^63 overflowed the level placement's
+  // negation at --level 1 (undefined behaviour). Origins are OpenVDB int32 coordinates.
+  auto h = volume_header({8, 8, 8}, false, 0);
+  h.grids[0].origin = {std::numeric_limits<std::int64_t>::min(), 0, 0};
+  std::vector<std::uint8_t> bytes;
+  write_volume_signature(bytes);
+  write_header_chunk(bytes, h);
+  save(scratch("origin.pw"), bytes);
+  expect_refused(run_cli_bounded({"decompress", scratch("origin.pw"), scratch("origin.raw"), "--level", "1"}),
+                 "coordinate out of range");
+  EXPECT_FALSE(fs::exists(scratch("origin.raw")));
+  // The encoder refuses what the decoder would: no stream it writes is unreadable.
+  VolumeGrid g;
+  g.name = "far";
+  g.volume = Volume({4, 4, 4}, VoxelType::f32);
+  g.origin = {std::int64_t(1) << 40, 0, 0};
+  VolumeEncodeOptions o;
+  o.target = 1e-2;
+  EXPECT_THROW(encode_volumes({g}, o), EncodeError);
 }
 
 }  // namespace
