@@ -99,7 +99,7 @@ static std::string dims_text(const Extent& d) {
   return std::to_string(d[0]) + "," + std::to_string(d[1]) + "," + std::to_string(d[2]);
 }
 
-Volume read_raw_volume(const fs::path& path, const Extent& dims, VoxelType type, std::size_t max_voxels) {
+std::size_t raw_file_size(const fs::path& path, const Extent& dims, VoxelType type, std::size_t max_voxels) {
   const std::string what = "cannot read " + path.string() + ": ";
   const std::size_t count = checked_count(dims);
   if (count == 0 || count > max_voxels)
@@ -114,6 +114,11 @@ Volume read_raw_volume(const fs::path& path, const Extent& dims, VoxelType type,
     throw std::runtime_error(what + "file has " + std::to_string(actual) + " bytes but --dims " +
                              dims_text(dims) + " --dtype " + to_string(type) + " needs " +
                              std::to_string(expected));
+  return std::size_t(expected);
+}
+
+Volume read_raw_volume(const fs::path& path, const Extent& dims, VoxelType type, std::size_t max_voxels) {
+  const std::size_t expected = raw_file_size(path, dims, type, max_voxels);
   const std::vector<std::uint8_t> bytes = read_file_bytes(path, expected);
   Volume volume(dims, type);
   switch (type) {

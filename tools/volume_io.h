@@ -23,6 +23,11 @@ inline constexpr std::size_t kMaxVdbBoxVoxels = std::size_t(1) << 28;
 // Throws std::invalid_argument with the offending text.
 Extent parse_dims(std::string_view text);
 
+// Bytes a raw file of dims x type must hold, checked against the file on disk; throws
+// std::runtime_error naming the file (too many voxels, no such file, wrong size).
+std::size_t raw_file_size(const std::filesystem::path& path, const Extent& dims, VoxelType type,
+                          std::size_t max_voxels);
+
 // Reads a raw dense volume of `dims` samples of `type`, little endian, x fastest. The file size
 // must equal dims[0]*dims[1]*dims[2]*bytes_per_voxel(type) exactly; otherwise, for absurd dims or
 // above max_voxels, throws std::runtime_error naming the file, the sizes and the options.

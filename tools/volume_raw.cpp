@@ -24,32 +24,11 @@ void swap_elements(std::vector<std::uint8_t>& bytes, std::size_t width) {
     std::reverse(bytes.begin() + std::ptrdiff_t(i), bytes.begin() + std::ptrdiff_t(i + width));
 }
 
-// The size a raw file must have, checked against the file (messages as read_raw_volume's).
-std::size_t checked_size(const fs::path& path, const Extent& dims, VoxelType type, std::size_t max_voxels) {
-  const std::string what = "cannot read " + path.string() + ": ";
-  const std::string dims_text =
-      std::to_string(dims[0]) + "," + std::to_string(dims[1]) + "," + std::to_string(dims[2]);
-  std::size_t count = 1;
-  for (std::size_t d : dims) count = d == 0 || count > max_voxels / d ? max_voxels + 1 : count * d;
-  if (count > max_voxels)
-    throw std::runtime_error(what + "--dims " + dims_text + " is too large (at most " +
-                             std::to_string(max_voxels) + " voxels)");
-  const std::uintmax_t expected = std::uintmax_t(count) * bytes_per_voxel(type);
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw std::runtime_error(what + "no such file");
-  const std::uintmax_t actual = fs::file_size(path, ec);
-  if (ec) throw std::runtime_error(what + ec.message());
-  if (actual != expected)
-    throw std::runtime_error(what + "file has " + std::to_string(actual) + " bytes but --dims " + dims_text +
-                             " --dtype " + to_string(type) + " needs " + std::to_string(expected));
-  return std::size_t(expected);
-}
-
 }  // namespace
 
 MappedRawVolume::MappedRawVolume(const fs::path& path, const Extent& dims, VoxelType type,
                                  std::size_t max_voxels)
-    : size_(checked_size(path, dims, type, max_voxels)) {
+    : size_(raw_file_size(path, dims, type, max_voxels)) {
   const void* data = nullptr;
   if constexpr (std::endian::native == std::endian::little) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
