@@ -8,12 +8,14 @@
 #include <vector>
 
 #include "codec/image/image_codec.h"
+#include "codec/image/image_strips.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/cli_numbers.h"
 #include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/pnm_io.h"
 #include "tools/volume_io.h"
 #include "tools/volume_raw.h"
 #include "transforms/separable.h"
@@ -100,11 +102,36 @@ void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const Decompr
                  to_string(g.volume.type).c_str(), seconds);
 }
 
+// An integer image to binary PGM/PPM, decoded and written strip by strip, so neither the
+// image nor its coefficients are ever whole in memory. False, having written nothing, when
+// the stream or the output needs the whole image (decode_image and write_image then).
+bool decompress_pnm_strips(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
+  if (is_stdio(opt.output)) return false;
+  const auto start = std::chrono::steady_clock::now();
+  const auto ex = make_pool_executor(opt.threads);
+  const auto decoder = ImageStripDecoder::open(bytes, opt.level, *ex, opt.limits);
+  if (!decoder || !binary_pnm_writable(opt.output, decoder->channels(), decoder->type())) return false;
+  {
+    ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
+    write_atomically(opt.output, [&](const std::filesystem::path& tmp) {
+      write_binary_pnm_rows(tmp, decoder->width(), decoder->height(), decoder->channels(), decoder->type(),
+                            [&] { return decoder->next(); });
+    });
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (std::FILE* status = opt.verbosity.stream())
+    std::fprintf(status, "%s: %zux%zu, %zu channel(s), %s, decoded in %.3f s\n", opt.output.c_str(),
+                 decoder->width(), decoder->height(), decoder->channels(), to_string(decoder->type()).c_str(),
+                 seconds);
+  return true;
+}
+
 void run_decompress(const DecompressOptions& opt) {
   if (!is_stdio(opt.output)) check_output_path(opt.output);
   const auto bytes = is_stdio(opt.input) ? read_file_bytes(StdinFile().path()) : read_file_bytes(opt.input);
   if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
+  if (decompress_pnm_strips(bytes, opt)) return;
   const auto start = std::chrono::steady_clock::now();
   const Image image = [&] {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);

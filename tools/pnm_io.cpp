@@ -155,26 +155,61 @@ bool binary_pnm_writable(const fs::path& path, const Image& image) {
   return has_pnm_extension(path) && pnm_holds(image);
 }
 
+bool binary_pnm_writable(const fs::path& path, std::size_t channels, SampleType type) {
+  return has_pnm_extension(path) && (channels == 1 || channels == 3) && is_integer(type);
+}
+
+namespace {
+
+// Opens `file` and writes the P5/P6 header of an image of this shape.
+File open_pnm(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels, bool wide) {
+  File f(std::fopen(file.c_str(), "wb"));
+  if (!f) throw std::runtime_error("cannot write " + file.string());
+  const std::string header = std::string(channels == 1 ? "P5" : "P6") + "\n" + std::to_string(width) + " " +
+                             std::to_string(height) + "\n" + (wide ? "65535" : "255") + "\n";
+  if (std::fwrite(header.data(), 1, header.size(), f.get()) != header.size())
+    throw std::runtime_error("cannot write " + file.string());
+  return f;
+}
+
+// Appends the raster of `image` (all its rows) to f; false on a write error.
+bool write_raster(const Image& image, std::FILE* f) {
+  const std::size_t bytes_per_sample = image.type == SampleType::u16 ? 2 : 1;
+  const std::size_t samples = image.plane_size() * image.channels;
+  std::vector<std::uint8_t> chunk = chunk_for(bytes_per_sample * image.channels);
+  for (std::size_t done = 0; done < samples;) {
+    const std::size_t n = std::min(samples - done, chunk.size() / bytes_per_sample);
+    pack(image, done, n, chunk.data());
+    if (std::fwrite(chunk.data(), bytes_per_sample, n, f) != n) return false;
+    done += n;
+  }
+  return true;
+}
+
+}  // namespace
+
 void write_binary_pnm(const Image& image, const fs::path& file) {
   if (!pnm_holds(image))
     throw std::invalid_argument("write_binary_pnm: needs 1 or 3 channels of 8- or 16-bit samples");
-  File f(std::fopen(file.c_str(), "wb"));
-  if (!f) throw std::runtime_error("cannot write " + file.string());
-  const bool wide = image.type == SampleType::u16;
-  const std::string header = std::string(image.channels == 1 ? "P5" : "P6") + "\n" +
-                             std::to_string(image.width) + " " + std::to_string(image.height) + "\n" +
-                             (wide ? "65535" : "255") + "\n";
-  const std::size_t bytes_per_sample = wide ? 2 : 1;
-  const std::size_t samples = image.plane_size() * image.channels;
-  std::vector<std::uint8_t> chunk = chunk_for(bytes_per_sample * image.channels);
-  bool ok = std::fwrite(header.data(), 1, header.size(), f.get()) == header.size();
-  for (std::size_t done = 0; ok && done < samples;) {
-    const std::size_t n = std::min(samples - done, chunk.size() / bytes_per_sample);
-    pack(image, done, n, chunk.data());
-    ok = std::fwrite(chunk.data(), bytes_per_sample, n, f.get()) == n;
-    done += n;
+  File f = open_pnm(file, image.width, image.height, image.channels, image.type == SampleType::u16);
+  if (!write_raster(image, f.get()) || std::fclose(f.release()) != 0)
+    throw std::runtime_error("cannot write " + file.string());
+}
+
+void write_binary_pnm_rows(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
+                           SampleType type, const std::function<Image()>& next_strip) {
+  if ((channels != 1 && channels != 3) || !is_integer(type))
+    throw std::invalid_argument("write_binary_pnm_rows: needs 1 or 3 channels of 8- or 16-bit samples");
+  File f = open_pnm(file, width, height, channels, type == SampleType::u16);
+  for (std::size_t rows = 0; rows < height;) {
+    const Image strip = next_strip();
+    if (strip.height == 0 || strip.width != width || strip.channels != channels || strip.type != type ||
+        rows + strip.height > height)
+      throw std::runtime_error("write_binary_pnm_rows: a strip does not fit the image");
+    if (!write_raster(strip, f.get())) throw std::runtime_error("cannot write " + file.string());
+    rows += strip.height;
   }
-  if (!ok || std::fclose(f.release()) != 0) throw std::runtime_error("cannot write " + file.string());
+  if (std::fclose(f.release()) != 0) throw std::runtime_error("cannot write " + file.string());
 }
 
 }  // namespace pupwave::cli

@@ -5,6 +5,7 @@
 // every other format still goes through OpenImageIO (tools/image_io.cpp).
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 #include "codec/image/image.h"
@@ -23,5 +24,19 @@ bool binary_pnm_writable(const std::filesystem::path& path, const Image& image);
 
 // Writes the image as binary PGM/PPM to `file` (16-bit samples big-endian, maxval 65535).
 void write_binary_pnm(const Image& image, const std::filesystem::path& file);
+
+}  // namespace pupwave::cli
+
+namespace pupwave::cli {
+
+// Whether write_binary_pnm_rows handles an image of these channels and type at this path.
+bool binary_pnm_writable(const std::filesystem::path& path, std::size_t channels, SampleType type);
+
+// Writes a binary PGM/PPM of width x height pixels to `file` whose rows come from successive
+// calls of next_strip (images of `width` columns and `channels` planes, top to bottom), so the
+// image is never whole in memory. Throws std::runtime_error when a strip does not fit the
+// shape or the rows end early.
+void write_binary_pnm_rows(const std::filesystem::path& file, std::size_t width, std::size_t height,
+                           std::size_t channels, SampleType type, const std::function<Image()>& next_strip);
 
 }  // namespace pupwave::cli

@@ -1,6 +1,7 @@
 // decode_image: parse and validate the container, decode the code-blocks a resolution needs
 // in parallel, dequantize, inverse wavelet transform (stopping early for reduced
 // resolution), inverse colour transform.
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 
@@ -11,6 +12,7 @@
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
 #include "codec/image/image_plan.h"
+#include "codec/image/image_strips.h"
 #include "codec/image/transfer.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
@@ -39,42 +41,58 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   return values;
 }
 
-// Bit-plane block i reconstructed, dequantized and written straight into its place in the
-// plane (the same float operations as block_values then the step, without the copies).
+// Bit-plane block i reconstructed, dequantized and written straight into its place (the
+// same float operations as block_values then the step, without the copies): row y of the
+// block starts at first + y * stride.
 template <class T>
-void dequantize_into(const ParsedStream& s, std::size_t i, const Extent& region, T* plane) {
+void dequantize_into(const ParsedStream& s, std::size_t i, T* first, std::size_t stride) {
   const CodeBlock& b = s.blocks[i];
   const BlockEntry& e = s.index[i];
   const StreamHeader& h = s.header;
   const DecodedBlock d = decode_block(s.codeword(i), e.planes, e.passes, b.size, b.orientation);
   const float step = h.steps[b.component * s.bands.size() + b.band];
   std::size_t k = 0;
-  for (std::size_t z = 0; z < b.size[2]; ++z)
-    for (std::size_t y = 0; y < b.size[1]; ++y) {
-      T* row = plane + b.offset[0] + region[0] * ((b.offset[1] + y) + region[1] * (b.offset[2] + z));
-      for (std::size_t x = 0; x < b.size[0]; ++x, ++k)
-        row[x] = T(reconstruct(d, k, h.delta, h.reversible)) * step;
-    }
+  for (std::size_t y = 0; y < b.size[1]; ++y) {
+    T* row = first + y * stride;
+    for (std::size_t x = 0; x < b.size[0]; ++x, ++k)
+      row[x] = T(reconstruct(d, k, h.delta, h.reversible)) * step;
+  }
 }
+
+}  // namespace
+
+template <class T>
+void decode_block_at(const ParsedStream& s, std::size_t i, T* first, std::size_t stride) {
+  const CodeBlock& b = s.blocks[i];
+  if (s.index[i].passes == 0) {  // all zero
+    for (std::size_t y = 0; y < b.size[1]; ++y) std::fill_n(first + y * stride, b.size[0], T(0));
+    return;
+  }
+  if constexpr (std::is_floating_point_v<T>) {
+    if (s.header.entropy != EntropyCoder::zstd) return dequantize_into(s, i, first, stride);
+  }
+  std::vector<T> values = block_values<T>(s, i);
+  if constexpr (std::is_floating_point_v<T>) {
+    const float step = s.header.steps[b.component * s.bands.size() + b.band];
+    for (T& v : values) v *= step;
+  }
+  for (std::size_t y = 0; y < b.size[1]; ++y)
+    std::copy_n(values.data() + y * b.size[0], b.size[0], first + y * stride);
+}
+template void decode_block_at<float>(const ParsedStream&, std::size_t, float*, std::size_t);
+template void decode_block_at<std::int32_t>(const ParsedStream&, std::size_t, std::int32_t*, std::size_t);
+
+namespace {
 
 // Decodes every block of the read resolutions into the component planes at planes[c] (each
 // `region`-sized and zeroed: the low corner of the Mallat layout that holds those resolutions).
 template <class T>
 void decode_into(const ParsedStream& s, const Extent& region, const Executor& ex,
                  const std::vector<T*>& planes) {
-  const StreamHeader& h = s.header;
   ex.run(s.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
     if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
-    if constexpr (std::is_floating_point_v<T>) {
-      if (h.entropy != EntropyCoder::zstd) return dequantize_into(s, i, region, planes[b.component]);
-    }
-    std::vector<T> values = block_values<T>(s, i);
-    if constexpr (std::is_floating_point_v<T>) {
-      const float step = h.steps[b.component * s.bands.size() + b.band];
-      for (T& v : values) v *= step;
-    }
-    copy_block_in(values.data(), region, b, planes[b.component]);  // blocks never overlap
+    decode_block_at(s, i, planes[b.component] + b.offset[0] + region[0] * b.offset[1], region[0]);
   });
 }
 

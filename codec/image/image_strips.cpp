@@ -1,0 +1,328 @@
+#include "codec/image/image_strips.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "codec/error.h"
+#include "codec/image/image_components.h"
+#include "transforms/separable.h"
+
+namespace pupwave {
+namespace {
+
+// Rows a level adds to its cache at a time: the column synthesis of a window costs its
+// 2 * reach overlap rows once per chunk, so chunks well above the reach keep that small.
+constexpr std::size_t kLevelChunk = 64;
+// Columns per column-synthesis task (a window of them stays in cache while lifted).
+constexpr std::size_t kColumnChunk = 128;
+
+// One subband of one component, decoded one block row at a time as rows are asked for;
+// block rows above the lowest row still needed are freed.
+template <class T>
+class BandRows {
+ public:
+  BandRows(const ParsedStream& s, const std::vector<std::size_t>& blocks, const Subband& band,
+           const Executor& ex)
+      : s_(s), ex_(ex), x0_(band.offset[0]), y0_(band.offset[1]), width_(band.size[0]) {
+    for (std::size_t i : blocks) {  // partition order: block rows top to bottom, x fastest
+      const CodeBlock& b = s.blocks[i];
+      if (block_rows_.empty() || block_rows_.back().y0 != b.offset[1] - y0_)
+        block_rows_.push_back({b.offset[1] - y0_, b.offset[1] - y0_ + b.size[1], {}});
+      block_rows_.back().blocks.push_back(i);
+    }
+  }
+
+  // Makes band rows [a, b) readable; a never decreases from one call to the next.
+  void ensure(std::size_t a, std::size_t b) {
+    while (!cached_.empty() && block_rows_[first_].y1 <= a) {
+      cached_.pop_front();
+      ++first_;
+    }
+    if (b <= a) return;
+    if (cached_.empty()) first_ = std::max(first_, row_index(a));
+    while (b > 0 && first_ + cached_.size() <= row_index(b - 1)) decode_row(first_ + cached_.size());
+  }
+
+  const T* row(std::size_t r) const {
+    std::size_t k = first_;
+    while (block_rows_[k].y1 <= r) ++k;
+    return cached_[k - first_].data() + (r - block_rows_[k].y0) * width_;
+  }
+
+ private:
+  struct BlockRow {
+    std::size_t y0, y1;  // band rows
+    std::vector<std::size_t> blocks;
+  };
+
+  std::size_t row_index(std::size_t r) const {
+    std::size_t k = first_ < block_rows_.size() && block_rows_[first_].y0 <= r ? first_ : 0;
+    while (block_rows_[k].y1 <= r) ++k;
+    return k;
+  }
+
+  void decode_row(std::size_t k) {
+    const BlockRow& br = block_rows_[k];
+    std::vector<T> rows((br.y1 - br.y0) * width_);
+    ex_.run(br.blocks.size(), [&](std::size_t j) {
+      const CodeBlock& b = s_.blocks[br.blocks[j]];
+      decode_block_at(s_, br.blocks[j], rows.data() + (b.offset[0] - x0_), width_);
+    });
+    cached_.push_back(std::move(rows));
+  }
+
+  const ParsedStream& s_;
+  const Executor& ex_;
+  std::size_t x0_, y0_, width_;
+  std::vector<BlockRow> block_rows_;
+  std::size_t first_ = 0;              // block row of cached_.front()
+  std::deque<std::vector<T>> cached_;  // decoded block rows first_, first_ + 1, ...
+};
+
+// The level-l coarse band of one component (the image at 1/2^l size), produced top to bottom
+// in chunks of rows from the level-(l+1) rows and the level-(l+1) detail bands: column
+// synthesis over a window reaching `reach` rows beyond the chunk, then row synthesis.
+template <class T>
+class LevelRows {
+ public:
+  using Bands = std::vector<std::unique_ptr<BandRows<T>>>;  // indexed by orientation 0..3
+
+  LevelRows(const Transform1D& t, std::size_t reach, const Extent& size, std::unique_ptr<LevelRows> child,
+            Bands bands, const Executor& ex)
+      : t_(t),
+        reach_(reach),
+        width_(size[0]),
+        height_(size[1]),
+        child_(std::move(child)),
+        bands_(std::move(bands)),
+        ex_(ex) {}
+
+  std::size_t width() const { return width_; }
+  std::size_t height() const { return height_; }
+
+  // Makes rows [a, b) readable and frees those above a; a never decreases between calls.
+  void ensure(std::size_t a, std::size_t b) {
+    if (!child_) return bands_[0]->ensure(a, b);  // the coarsest level is the coarse band
+    if (a > hi_) {                                // nothing cached is needed again
+      data_.clear();
+      lo_ = hi_ = a;
+    }
+    if (a > lo_) {
+      data_.erase(data_.begin(), data_.begin() + std::ptrdiff_t((a - lo_) * width_));
+      lo_ = a;
+    }
+    while (hi_ < b) {
+      const std::size_t end = std::min(height_, std::max(b, hi_ + kLevelChunk));
+      produce(hi_, end);
+      hi_ = end;
+    }
+  }
+
+  const T* row(std::size_t r) const { return child_ ? data_.data() + (r - lo_) * width_ : bands_[0]->row(r); }
+
+ private:
+  // Row r of the level's Mallat layout restricted to columns [x0, x0 + n): the coarse part
+  // (rows < child height) from the child and the x-detail band, the rest from the y-detail bands.
+  void copy_layout_row(std::size_t r, bool detail, std::size_t x0, std::size_t n, T* out) const {
+    const std::size_t wc = child_->width();
+    const T* left = detail ? bands_[2]->row(r) : child_->row(r);
+    for (std::size_t x = x0; x < x0 + n && x < wc; ++x) out[x - x0] = left[x];
+    if (x0 + n <= wc) return;
+    const T* right = bands_[detail ? 3 : 1]->row(r);
+    for (std::size_t x = std::max(x0, wc); x < x0 + n; ++x) out[x - x0] = right[x - wc];
+  }
+
+  void produce(std::size_t p0, std::size_t p1) {
+    data_.resize((p1 - lo_) * width_);
+    T* out = data_.data() + (p0 - lo_) * width_;
+    if (height_ > 1) {
+      // Window [w0, w1) of the columns: starts even (so its even wire is the coarse band)
+      // and ends at an even row or the column's end.
+      std::size_t w0 = p0 > reach_ ? p0 - reach_ : 0;
+      w0 &= ~std::size_t(1);
+      std::size_t w1 = std::min(height_, p1 + reach_);
+      if (w1 % 2 != 0 && w1 < height_) ++w1;
+      const std::size_t c0 = w0 / 2, c1 = (w1 + 1) / 2, d1 = w1 / 2, n = w1 - w0;
+      child_->ensure(c0, c1);
+      for (int o : {1, 2, 3})
+        if (bands_[o]) bands_[o]->ensure(c0, o == 1 ? c1 : d1);
+      const std::size_t chunks = (width_ + kColumnChunk - 1) / kColumnChunk;
+      ex_.run(chunks, [&](std::size_t k) {
+        const std::size_t x0 = k * kColumnChunk, nb = std::min(kColumnChunk, width_ - x0);
+        std::vector<T> g(n * nb);
+        for (std::size_t i = 0; i < n; ++i) {
+          const bool detail = i >= c1 - c0;
+          copy_layout_row(c0 + (detail ? i - (c1 - c0) : i), detail, x0, nb, g.data() + i * nb);
+        }
+        t_.synthesize_columns(std::span<T>(g.data(), g.size()), nb);
+        for (std::size_t p = p0; p < p1; ++p)
+          std::copy_n(g.data() + (p - w0) * nb, nb, out + (p - p0) * width_ + x0);
+      });
+    } else {
+      child_->ensure(0, 1);
+      if (bands_[1]) bands_[1]->ensure(0, 1);
+      copy_layout_row(0, false, 0, width_, out);
+    }
+    if (width_ <= 1) return;
+    ex_.run(p1 - p0, [&](std::size_t k) { t_.synthesize(std::span<T>(out + k * width_, width_)); });
+  }
+
+  const Transform1D& t_;
+  std::size_t reach_, width_, height_;
+  std::unique_ptr<LevelRows> child_;  // level l + 1; null at the coarsest level
+  Bands bands_;                       // [0]: the coarse band (coarsest level only), [1..3]: details of l + 1
+  const Executor& ex_;
+  std::vector<T> data_;  // rows [lo_, hi_)
+  std::size_t lo_ = 0, hi_ = 0;
+};
+
+// Index of the band of `level` with `orientation` in s.bands, or npos.
+std::size_t find_band(const ParsedStream& s, int level, unsigned orientation) {
+  for (std::size_t i = 0; i < s.bands.size(); ++i)
+    if (s.bands[i].level == level && s.bands[i].orientation == orientation) return i;
+  return std::size_t(-1);
+}
+
+// The pipeline of levels `levels` down to `level` for one component.
+template <class T>
+std::unique_ptr<LevelRows<T>> build_levels(const ParsedStream& s,
+                                           const std::vector<std::vector<std::size_t>>& by_band,
+                                           std::size_t component, int level, const Transform1D& t,
+                                           std::size_t reach, const Executor& ex) {
+  const StreamHeader& h = s.header;
+  const std::size_t nb = s.bands.size();
+  auto band_rows = [&](std::size_t band) {
+    return std::make_unique<BandRows<T>>(s, by_band[component * nb + band], s.bands[band], ex);
+  };
+  typename LevelRows<T>::Bands coarse(4);
+  coarse[0] = band_rows(0);
+  auto rows = std::make_unique<LevelRows<T>>(t, reach, level_extent(h.dims, h.levels), nullptr,
+                                             std::move(coarse), ex);
+  for (int l = h.levels - 1; l >= level; --l) {
+    typename LevelRows<T>::Bands details(4);
+    for (unsigned o : {1u, 2u, 3u}) {
+      const std::size_t band = find_band(s, l + 1, o);
+      if (band != std::size_t(-1)) details[o] = band_rows(band);
+    }
+    rows = std::make_unique<LevelRows<T>>(t, reach, level_extent(h.dims, l), std::move(rows),
+                                          std::move(details), ex);
+  }
+  return rows;
+}
+
+}  // namespace
+
+namespace {
+
+// The farthest output sample a NaN at one coarse or detail coefficient in the middle of a
+// line of n samples reaches.
+std::size_t nan_reach(const Transform1D& t, std::size_t n) {
+  const std::size_t j = n / 4;
+  std::size_t reach = 0;
+  for (std::size_t wire = 0; wire < 2; ++wire) {
+    std::vector<float> line(n, 0.0f);
+    line[wire == 0 ? j : n / 2 + j] = std::numeric_limits<float>::quiet_NaN();
+    const std::size_t position = 2 * j + wire;  // coarse j sits at 2j, detail j at 2j + 1
+    t.synthesize(std::span<float>(line));
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::isnan(line[i])) reach = std::max(reach, i > position ? i - position : position - i);
+  }
+  return reach;
+}
+
+}  // namespace
+
+// Probed on two line lengths: a reach that grows with the line (a solve along the whole line,
+// or a cascade of log n stages) is not local. Reaches above kMaxReach would make each strip's
+// windows mostly overlap, so those transforms decode whole too.
+std::size_t synthesis_reach(const Transform1D& t) {
+  constexpr std::size_t kMaxReach = 32;
+  const std::size_t reach = nan_reach(t, 1024);
+  return reach <= kMaxReach && nan_reach(t, 2048) == reach ? reach : 0;
+}
+
+struct ImageStripDecoder::State {
+  ParsedStream stream;
+  Transform1DPtr transform;
+  const Executor* ex = nullptr;
+  Extent size{};
+  double gain = 1.0;
+  std::size_t next_row = 0;
+  std::vector<std::vector<std::size_t>> by_band;              // block indices per (component, band)
+  std::vector<std::unique_ptr<LevelRows<float>>> float_rows;  // one per component
+  std::vector<std::unique_ptr<LevelRows<std::int32_t>>> int_rows;
+};
+
+ImageStripDecoder::ImageStripDecoder(std::unique_ptr<State> state) : state_(std::move(state)) {}
+ImageStripDecoder::~ImageStripDecoder() = default;
+
+std::unique_ptr<ImageStripDecoder> ImageStripDecoder::open(std::span<const std::uint8_t> bytes, int level,
+                                                           const Executor& ex, const DecodeLimits& limits) {
+  auto st = std::make_unique<State>();
+  st->stream = parse_container(bytes, level, limits);
+  const ParsedStream& s = st->stream;
+  const StreamHeader& h = s.header;
+  require_stream(h.dims[2] == 1, "a volume stream, not an image");
+  if (!is_integer(h.type)) return nullptr;  // float images go through the coded-domain transfer
+  st->transform = make_stream_transform(h);
+  const std::size_t reach = synthesis_reach(*st->transform);
+  if (reach == 0) return nullptr;
+  st->ex = &ex;
+  st->size = level_extent(h.dims, level);
+  if (!h.reversible) st->gain = coarse_gain(*st->transform, h.dims, level);
+  st->by_band.resize(std::size_t(h.channels) * s.bands.size());
+  for (std::size_t i = 0; i < s.blocks.size(); ++i)
+    st->by_band[s.blocks[i].component * s.bands.size() + s.blocks[i].band].push_back(i);
+  for (std::size_t c = 0; c < h.channels; ++c) {
+    if (h.reversible)
+      st->int_rows.push_back(build_levels<std::int32_t>(s, st->by_band, c, level, *st->transform, reach, ex));
+    else
+      st->float_rows.push_back(build_levels<float>(s, st->by_band, c, level, *st->transform, reach, ex));
+  }
+  return std::unique_ptr<ImageStripDecoder>(new ImageStripDecoder(std::move(st)));
+}
+
+std::size_t ImageStripDecoder::width() const { return state_->size[0]; }
+std::size_t ImageStripDecoder::height() const { return state_->size[1]; }
+std::size_t ImageStripDecoder::channels() const { return state_->stream.header.channels; }
+SampleType ImageStripDecoder::type() const { return state_->stream.header.type; }
+
+namespace {
+
+// Rows [y0, y1) of every component's pipeline, as planes of a strip.
+template <class T>
+std::vector<std::vector<T>> strip_planes(std::vector<std::unique_ptr<LevelRows<T>>>& levels, std::size_t y0,
+                                         std::size_t y1) {
+  std::vector<std::vector<T>> planes;
+  for (auto& rows : levels) {
+    rows->ensure(y0, y1);
+    const std::size_t w = rows->width();
+    std::vector<T> plane((y1 - y0) * w);
+    for (std::size_t y = y0; y < y1; ++y) std::copy_n(rows->row(y), w, plane.data() + (y - y0) * w);
+    planes.push_back(std::move(plane));
+  }
+  return planes;
+}
+
+}  // namespace
+
+Image ImageStripDecoder::next(std::size_t rows) {
+  State& st = *state_;
+  const StreamHeader& h = st.stream.header;
+  const std::size_t y0 = st.next_row, y1 = std::min(height(), y0 + std::max<std::size_t>(rows, 1));
+  st.next_row = y1;
+  const Extent strip{width(), y1 - y0, 1};
+  if (y1 == y0) return Image(width(), 0, channels(), type());
+  if (h.reversible) {
+    auto planes = strip_planes(st.int_rows, y0, y1);
+    return image_from_components(planes, strip, strip, h.type, h.colour);
+  }
+  auto planes = strip_planes(st.float_rows, y0, y1);
+  return image_from_components(planes, strip, strip, h.type, h.colour, st.gain);
+}
+
+}  // namespace pupwave

@@ -1,0 +1,59 @@
+#pragma once
+// Strip-wise image decoding: the inverse wavelet transform runs over horizontal strips, level
+// by level, decoding each subband's code-blocks one block row at a time as the strips reach
+// them, so the image is never whole in memory (the whole-image decoder holds every component
+// plane in float). Each level keeps only the rows its next strip still needs: a strip of
+// output rows needs the rows within the synthesis reach of it at the next coarser level
+// (windowed lifting gives the same samples as the whole line, bit for bit, wherever the
+// window holds every coefficient the sample depends on). Pixels are identical to decode_image.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "codec/format/container.h"
+#include "codec/image/image.h"
+#include "transforms/executor.h"
+#include "transforms/transform1d.h"
+
+namespace pupwave {
+
+// Block i of a parsed stream decoded and dequantized into rows of `stride` samples starting at
+// `first` (zeros for a block with no passes). T is float (irreversible) or int32_t.
+template <class T>
+void decode_block_at(const ParsedStream& s, std::size_t i, T* first, std::size_t stride);
+
+// How far (in samples of the line) the synthesis of t reads around a sample: every output
+// sample depends only on coefficients at interleaved positions within this distance. Found by
+// synthesizing a line holding one NaN (NaN reaches every output computed from it). 0 when the
+// synthesis is not local (a transform solving along the whole line).
+std::size_t synthesis_reach(const Transform1D& t);
+
+class ImageStripDecoder {
+ public:
+  // A decoder for an integer-sample image stream at 1/2^level size, or null when the stream is
+  // not strip-decodable (float samples, a transform whose synthesis is not local): use
+  // decode_image then. Throws what decode_image throws for a bad stream or level. `bytes` and
+  // `ex` must outlive the decoder.
+  static std::unique_ptr<ImageStripDecoder> open(std::span<const std::uint8_t> bytes, int level,
+                                                 const Executor& ex, const DecodeLimits& limits);
+  ~ImageStripDecoder();
+  ImageStripDecoder(const ImageStripDecoder&) = delete;
+  ImageStripDecoder& operator=(const ImageStripDecoder&) = delete;
+
+  std::size_t width() const;
+  std::size_t height() const;
+  std::size_t channels() const;
+  SampleType type() const;
+
+  // The next rows of the decoded image (at most `rows`, at least 1 until the end) as an image
+  // of width() columns, samples rounded and clamped as decode_image's; height 0 at the end.
+  Image next(std::size_t rows = 64);
+
+ private:
+  struct State;
+  explicit ImageStripDecoder(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace pupwave
