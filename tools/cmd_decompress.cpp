@@ -102,6 +102,10 @@ void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const Decompr
                  to_string(g.volume.type).c_str(), seconds);
 }
 
+// Rows per strip written: a strip is held three times (component rows, finished samples,
+// packed bytes), so a few rows keep that small next to the pipeline's own buffers.
+constexpr std::size_t kStripRows = 16;
+
 // An integer image to binary PGM/PPM, decoded and written strip by strip, so neither the
 // image nor its coefficients are ever whole in memory. False, having written nothing, when
 // the stream or the output needs the whole image (decode_image and write_image then).
@@ -115,7 +119,7 @@ bool decompress_pnm_strips(const std::vector<std::uint8_t>& bytes, const Decompr
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
     write_atomically(opt.output, [&](const std::filesystem::path& tmp) {
       write_binary_pnm_rows(tmp, decoder->width(), decoder->height(), decoder->channels(), decoder->type(),
-                            [&] { return decoder->next(); });
+                            [&] { return decoder->next(kStripRows); });
     });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -20,8 +19,9 @@ constexpr std::size_t kLevelChunk = 64;
 // Columns per column-synthesis task (a window of them stays in cache while lifted).
 constexpr std::size_t kColumnChunk = 128;
 
-// One subband of one component, decoded one block row at a time as rows are asked for;
-// block rows above the lowest row still needed are freed.
+// One subband of one component, decoded one block row at a time as rows are asked for. Rows
+// above the lowest one still needed are dropped (the few kept move to the front), so a band
+// holds little more than one block row even where a window straddles two.
 template <class T>
 class BandRows {
  public:
@@ -38,20 +38,20 @@ class BandRows {
 
   // Makes band rows [a, b) readable; a never decreases from one call to the next.
   void ensure(std::size_t a, std::size_t b) {
-    while (!cached_.empty() && block_rows_[first_].y1 <= a) {
-      cached_.pop_front();
-      ++first_;
-    }
     if (b <= a) return;
-    if (cached_.empty()) first_ = std::max(first_, row_index(a));
-    while (b > 0 && first_ + cached_.size() <= row_index(b - 1)) decode_row(first_ + cached_.size());
+    if (a >= hi_) {  // nothing cached is needed again: restart at a's block row
+      data_.clear();
+      while (block_rows_[next_].y1 <= a) ++next_;
+      lo_ = hi_ = block_rows_[next_].y0;
+    }
+    if (a > lo_) {
+      data_.erase(data_.begin(), data_.begin() + std::ptrdiff_t((a - lo_) * width_));
+      lo_ = a;
+    }
+    while (hi_ < b) decode_next_row();
   }
 
-  const T* row(std::size_t r) const {
-    std::size_t k = first_;
-    while (block_rows_[k].y1 <= r) ++k;
-    return cached_[k - first_].data() + (r - block_rows_[k].y0) * width_;
-  }
+  const T* row(std::size_t r) const { return data_.data() + (r - lo_) * width_; }
 
  private:
   struct BlockRow {
@@ -59,28 +59,24 @@ class BandRows {
     std::vector<std::size_t> blocks;
   };
 
-  std::size_t row_index(std::size_t r) const {
-    std::size_t k = first_ < block_rows_.size() && block_rows_[first_].y0 <= r ? first_ : 0;
-    while (block_rows_[k].y1 <= r) ++k;
-    return k;
-  }
-
-  void decode_row(std::size_t k) {
-    const BlockRow& br = block_rows_[k];
-    std::vector<T> rows((br.y1 - br.y0) * width_);
+  void decode_next_row() {
+    const BlockRow& br = block_rows_[next_++];
+    data_.resize((br.y1 - lo_) * width_);
+    T* rows = data_.data() + (br.y0 - lo_) * width_;
     ex_.run(br.blocks.size(), [&](std::size_t j) {
       const CodeBlock& b = s_.blocks[br.blocks[j]];
-      decode_block_at(s_, br.blocks[j], rows.data() + (b.offset[0] - x0_), width_);
+      decode_block_at(s_, br.blocks[j], rows + (b.offset[0] - x0_), width_);
     });
-    cached_.push_back(std::move(rows));
+    hi_ = br.y1;
   }
 
   const ParsedStream& s_;
   const Executor& ex_;
   std::size_t x0_, y0_, width_;
   std::vector<BlockRow> block_rows_;
-  std::size_t first_ = 0;              // block row of cached_.front()
-  std::deque<std::vector<T>> cached_;  // decoded block rows first_, first_ + 1, ...
+  std::size_t next_ = 0;  // first block row not decoded yet
+  std::vector<T> data_;   // band rows [lo_, hi_)
+  std::size_t lo_ = 0, hi_ = 0;
 };
 
 // The level-l coarse band of one component (the image at 1/2^l size), produced top to bottom
@@ -293,36 +289,45 @@ SampleType ImageStripDecoder::type() const { return state_->stream.header.type; 
 
 namespace {
 
-// Rows [y0, y1) of every component's pipeline, as planes of a strip.
+// Rows [y0, y1) of every component's pipeline, into the planes of `out` (converted to float:
+// reversible samples are integers below 2^24, exact in float).
 template <class T>
-std::vector<std::vector<T>> strip_planes(std::vector<std::unique_ptr<LevelRows<T>>>& levels, std::size_t y0,
-                                         std::size_t y1) {
-  std::vector<std::vector<T>> planes;
-  for (auto& rows : levels) {
-    rows->ensure(y0, y1);
-    const std::size_t w = rows->width();
-    std::vector<T> plane((y1 - y0) * w);
-    for (std::size_t y = y0; y < y1; ++y) std::copy_n(rows->row(y), w, plane.data() + (y - y0) * w);
-    planes.push_back(std::move(plane));
+void copy_rows(std::vector<std::unique_ptr<LevelRows<T>>>& levels, std::size_t y0, std::size_t y1,
+               Image& out) {
+  for (std::size_t c = 0; c < levels.size(); ++c) {
+    levels[c]->ensure(y0, y1);
+    for (std::size_t y = y0; y < y1; ++y)
+      std::copy_n(levels[c]->row(y), out.width, out.plane(c) + (y - y0) * out.width);
   }
-  return planes;
 }
 
 }  // namespace
 
+// The same steps as decode_image's (image_from_components, finish_image_in_place): gain,
+// inverse colour transform (RCT on the integers), level shift, rounding and clamping.
 Image ImageStripDecoder::next(std::size_t rows) {
   State& st = *state_;
   const StreamHeader& h = st.stream.header;
   const std::size_t y0 = st.next_row, y1 = std::min(height(), y0 + std::max<std::size_t>(rows, 1));
   st.next_row = y1;
-  const Extent strip{width(), y1 - y0, 1};
-  if (y1 == y0) return Image(width(), 0, channels(), type());
+  Image strip(width(), y1 - y0, channels(), type());
+  if (y1 == y0) return strip;
   if (h.reversible) {
-    auto planes = strip_planes(st.int_rows, y0, y1);
-    return image_from_components(planes, strip, strip, h.type, h.colour);
+    copy_rows(st.int_rows, y0, y1, strip);  // RCT needs the integers: undone on them first
+    if (h.colour == ColourTransform::rct) {
+      std::vector<std::vector<std::int32_t>> p(3, std::vector<std::int32_t>(strip.plane_size()));
+      for (std::size_t c = 0; c < 3; ++c) std::copy_n(strip.plane(c), strip.plane_size(), p[c].data());
+      inverse_rct(p[0].data(), p[1].data(), p[2].data(), strip.plane_size());
+      for (std::size_t c = 0; c < 3; ++c) std::copy_n(p[c].data(), strip.plane_size(), strip.plane(c));
+    }
+    finish_image_in_place(strip, ColourTransform::none, serial_executor());
+    return strip;
   }
-  auto planes = strip_planes(st.float_rows, y0, y1);
-  return image_from_components(planes, strip, strip, h.type, h.colour, st.gain);
+  copy_rows(st.float_rows, y0, y1, strip);
+  if (st.gain != 1.0)  // dividing by exactly 1 would change no value
+    for (float& v : strip.samples) v = float(double(v) / st.gain);
+  finish_image_in_place(strip, h.colour, serial_executor());
+  return strip;
 }
 
 }  // namespace pupwave
