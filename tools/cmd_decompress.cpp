@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/mapped_file.h"
 #include "tools/pnm_io.h"
 #include "tools/volume_io.h"
 #include "tools/volume_raw.h"
@@ -109,8 +111,10 @@ constexpr std::size_t kStripRows = 16;
 // An integer image to binary PGM/PPM, decoded and written strip by strip, so neither the
 // image nor its coefficients are ever whole in memory. False, having written nothing, when
 // the stream or the output needs the whole image (decode_image and write_image then).
-bool decompress_pnm_strips(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
-  if (is_stdio(opt.output)) return false;
+bool decompress_pnm_strips(std::span<const std::uint8_t> bytes, const DecompressOptions& opt) {
+  if (is_stdio(opt.output) || !opt.grid.empty() || is_volume_stream(bytes) ||
+      !binary_pnm_writable(opt.output, 1, SampleType::u8))  // not a .pgm/.ppm/.pnm name
+    return false;
   const auto start = std::chrono::steady_clock::now();
   const auto ex = make_pool_executor(opt.threads);
   const auto decoder = ImageStripDecoder::open(bytes, opt.level, *ex, opt.limits);
@@ -132,10 +136,13 @@ bool decompress_pnm_strips(const std::vector<std::uint8_t>& bytes, const Decompr
 
 void run_decompress(const DecompressOptions& opt) {
   if (!is_stdio(opt.output)) check_output_path(opt.output);
+  if (!is_stdio(opt.input) && !is_stdio(opt.output)) {
+    const MappedFile input(opt.input);  // the strip decoder reads only the pages it needs
+    if (decompress_pnm_strips(input.bytes(), opt)) return;
+  }
   const auto bytes = is_stdio(opt.input) ? read_file_bytes(StdinFile().path()) : read_file_bytes(opt.input);
   if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
-  if (decompress_pnm_strips(bytes, opt)) return;
   const auto start = std::chrono::steady_clock::now();
   const Image image = [&] {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
