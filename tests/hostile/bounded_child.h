@@ -30,12 +30,13 @@ struct ChildResult {
 };
 
 // Runs PUPWAVE_CLI with `args` under the address-space limit, killing it after `wall_seconds`.
-inline ChildResult run_cli_bounded(const std::vector<std::string>& args, double wall_seconds = 10.0) {
+inline ChildResult run_cli_bounded(const std::vector<std::string>& args, double wall_seconds = 10.0,
+                                   rlim_t limit = kAddressSpaceLimit) {
   const auto log = std::filesystem::temp_directory_path() / ("pupwave_bounded_" + std::to_string(::getpid()));
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = ::fork();
   if (pid == 0) {
-    const rlimit as{kAddressSpaceLimit, kAddressSpaceLimit};
+    const rlimit as{limit, limit};
     ::setrlimit(RLIMIT_AS, &as);
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     ::dup2(fd, 1);
