@@ -24,6 +24,7 @@
 #include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/pnm_io.h"
 #include "tools/volume_io.h"
 #include "tools/volume_raw.h"
 #include "transforms/separable.h"
@@ -248,7 +249,10 @@ void run_compress(const CompressOptions& opt) {
       !opt.grid.empty())
     throw std::invalid_argument(
         "--bpv, --max-error, --max-error-rel, --dtype and --grid apply to volumes only");
-  const Image image = read_image(opt.input);
+  // An 8-bit binary PGM/PPM is encoded from the file mapped in place, never widened to float.
+  const auto mapped = is_stdio(opt.input) ? nullptr : MappedPnm::open(opt.input);
+  const Image image = mapped ? Image() : read_image(opt.input);
+  const ImageView view = mapped ? mapped->view() : view_of(image);
   if (!image.metadata.not_kept.empty() && !opt.verbosity.quiet) {
     std::string names;
     for (const std::string& n : image.metadata.not_kept) names += (names.empty() ? "" : ", ") + n;
@@ -270,7 +274,8 @@ void run_compress(const CompressOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const EncodeResult r = [&] {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
-    return encode_image(image, enc);
+    if (!image.metadata.empty()) enc.metadata = &image.metadata;
+    return encode_image(view, enc);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_output(opt, r.bytes);
@@ -281,8 +286,8 @@ void run_compress(const CompressOptions& opt) {
   // Only when measured; float images name their metric (log-PSNR) beside ordinary PSNR.
   const std::string psnr = std::isinf(r.psnr) ? std::string(", lossless (PSNR inf)") : quality_text(image, r);
   std::fprintf(status, "%s: %zu bytes, %.4f bpp%s, %.3f s (%zux%zu, %zu channel(s), %s)\n",
-               opt.output.c_str(), r.bytes.size(), r.bpp, psnr.c_str(), seconds, image.width, image.height,
-               image.channels, to_string(image.type).c_str());
+               opt.output.c_str(), r.bytes.size(), r.bpp, psnr.c_str(), seconds, view.width, view.height,
+               view.channels, to_string(view.type).c_str());
   if (opt.verbosity.verbose)
     std::fprintf(status, "  transform %s, %s coder, base step %.6g\n",
                  r.switched_to_lossless ? "cdf53" : enc.transform.c_str(), opt.entropy.c_str(), r.base_step);

@@ -125,7 +125,16 @@ bool has_pnm_extension(const fs::path& path) {
 
 }  // namespace
 
-std::optional<Image> read_binary_pnm(const fs::path& path) {
+namespace {
+
+// An opened binary PNM: its header and the raster's offset, checked against the file size.
+struct OpenedPnm {
+  File file;
+  PnmHeader header;
+  std::size_t offset = 0;
+};
+
+std::optional<OpenedPnm> open_binary_pnm(const fs::path& path) {
   if (!has_pnm_extension(path)) return std::nullopt;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return std::nullopt;  // OpenImageIO's path reports why
@@ -140,15 +149,37 @@ std::optional<Image> read_binary_pnm(const fs::path& path) {
   if (ec || offset < 0 || size < std::uintmax_t(offset) + samples * bytes_per_sample)
     throw read_error(path, "truncated PNM raster (" + std::to_string(samples * bytes_per_sample) +
                                " bytes expected after the header)");
-  Image image(header->width, header->height, header->channels, header->type);
-  std::vector<std::uint8_t> chunk = chunk_for(bytes_per_sample * header->channels);
+  return OpenedPnm{std::move(f), *header, std::size_t(offset)};
+}
+
+}  // namespace
+
+std::optional<Image> read_binary_pnm(const fs::path& path) {
+  auto opened = open_binary_pnm(path);
+  if (!opened) return std::nullopt;
+  const PnmHeader& header = opened->header;
+  const std::size_t bytes_per_sample = header.type == SampleType::u16 ? 2 : 1;
+  const std::size_t samples = header.width * header.height * header.channels;
+  Image image(header.width, header.height, header.channels, header.type);
+  std::vector<std::uint8_t> chunk = chunk_for(bytes_per_sample * header.channels);
   for (std::size_t done = 0; done < samples;) {
     const std::size_t n = std::min(samples - done, chunk.size() / bytes_per_sample);
-    if (std::fread(chunk.data(), bytes_per_sample, n, f.get()) != n) throw read_error(path, "short read");
+    if (std::fread(chunk.data(), bytes_per_sample, n, opened->file.get()) != n)
+      throw read_error(path, "short read");
     unpack(chunk.data(), n, done, image);
     done += n;
   }
   return image;
+}
+
+std::unique_ptr<MappedPnm> MappedPnm::open(const fs::path& path) {
+  const auto opened = open_binary_pnm(path);
+  if (!opened || opened->header.type != SampleType::u8) return nullptr;
+  std::unique_ptr<MappedPnm> pnm(new MappedPnm(path));
+  const PnmHeader& h = opened->header;
+  pnm->view_ = interleaved_view(pnm->file_.bytes().data() + opened->offset, h.width, h.height, h.channels,
+                                SampleType::u8);
+  return pnm;
 }
 
 bool binary_pnm_writable(const fs::path& path, const Image& image) {

@@ -6,9 +6,12 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "codec/image/image.h"
+#include "codec/image/image_view.h"
+#include "tools/mapped_file.h"
 
 namespace pupwave::cli {
 
@@ -38,5 +41,24 @@ bool binary_pnm_writable(const std::filesystem::path& path, std::size_t channels
 // shape or the rows end early.
 void write_binary_pnm_rows(const std::filesystem::path& file, std::size_t width, std::size_t height,
                            std::size_t channels, SampleType type, const std::function<Image()>& next_strip);
+
+}  // namespace pupwave::cli
+
+namespace pupwave::cli {
+
+// A binary PGM/PPM with maxval 255, mapped read-only and viewed in place (one byte a sample),
+// so the encoder reads its rows from the file instead of a float copy of the image (4 bytes a
+// sample). 16-bit files are big-endian and are read with read_binary_pnm instead.
+class MappedPnm {
+ public:
+  // Null when the file is not such a PNM; throws read_binary_pnm's errors for a bad one.
+  static std::unique_ptr<MappedPnm> open(const std::filesystem::path& path);
+  const ImageView& view() const { return view_; }
+
+ private:
+  explicit MappedPnm(const std::filesystem::path& path) : file_(path) {}
+  MappedFile file_;
+  ImageView view_;
+};
 
 }  // namespace pupwave::cli
