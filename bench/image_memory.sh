@@ -17,10 +17,15 @@ mkdir -p "$work"
 "$build/bench/codec_bench" --write-mosaic "$work/rgb.ppm"
 "$build/bench/codec_bench" --write-grey-mosaic "$work/grey.pgm"
 
-# "max RSS in MiB, wall s" of a command (its output discarded).
+# "max RSS in MiB, wall s" of a command (its output discarded), or "failed (exit N)".
 measure() {
-  /usr/bin/time -f "%M %e" -o "$work/time.txt" "$@" >/dev/null 2>&1
-  awk '{printf "%d MiB, %.2f s", $1 / 1024, $2}' "$work/time.txt"
+  local status=0
+  /usr/bin/time -f "%M %e" -o "$work/time.txt" "$@" >/dev/null 2>&1 || status=$?
+  if [[ $status != 0 ]]; then
+    echo "failed (exit $status)"
+    return
+  fi
+  tail -n 1 "$work/time.txt" | awk '{printf "%d MiB, %.2f s", $1 / 1024, $2}'
 }
 
 rows=()
