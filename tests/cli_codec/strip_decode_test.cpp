@@ -6,6 +6,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "codec/image/image_codec.h"
@@ -144,6 +146,23 @@ TEST(StripDecode, CliWritesPnmStripByStripWithTheSamePixels) {
     ASSERT_EQ(std::system(command.c_str()), 0);
     EXPECT_TRUE(cli::read_image(out).samples == decode_image(bytes, level).samples) << level;
   }
+  fs::remove_all(dir);
+}
+
+// An 8-bit PPM is encoded from the mapped file (no float copy): the stream is the one the
+// library makes from the decoded image.
+TEST(StripDecode, CompressFromAMappedPpmGivesTheLibrarysStream) {
+  const fs::path dir = fs::temp_directory_path() / ("pupwave_mapped_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Image image = photo("chelsea.png");
+  cli::write_image(image, dir / "c.ppm");
+  const std::string command = std::string(PUPWAVE_CLI) + " compress -q --bpp 0.8 " +
+                              (dir / "c.ppm").string() + " " + (dir / "c.pw").string();
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream in(dir / "c.pw", std::ios::binary);
+  const std::vector<std::uint8_t> cli_bytes((std::istreambuf_iterator<char>(in)),
+                                            std::istreambuf_iterator<char>());
+  EXPECT_TRUE(cli_bytes == encode_image(image, options("cdf97", RateMode::bpp, 0.8)).bytes);
   fs::remove_all(dir);
 }
 
