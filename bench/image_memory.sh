@@ -96,6 +96,9 @@ fi
     echo "| command | peak, wall |"
     echo "|---|---|"
     printf '%s\n' "${big_rows[@]}"
+  else
+    echo
+    echo "The 32768 x 32768 part was skipped (BIG=0); see the memory section of codec_speed.md."
   fi
 } >"$out"
 cat "$out"
