@@ -15,7 +15,9 @@
 #include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/pcrd.h"
+#include "codec/rate/quantizer.h"
 #include "codec/rate/rate_guess.h"
+#include "codec/rate/rdoq.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -41,6 +43,14 @@ constexpr int kMaxPsnrTrials = 14;
 constexpr int kMaxPsnrSteps = 48;
 // Truncations tried between two adjacent slope thresholds (refine_between).
 constexpr int kMaxRefineTrials = 6;
+// Base-step families tried for a byte budget, 1/kSizeFamilies octave apart: where the
+// bit-planes of the bands fall moves the PSNR at one size by up to 0.2 dB (camera.png at 2
+// bpp), and no family is best everywhere.
+constexpr int kSizeFamilies = 3;
+// RDOQ's estimate of the bytes an isolated coefficient costs in the last coded plane (a
+// significance decision in a near-zero context, its sign, the contexts it wakes around
+// it); fitted on the test photographs (0.5 and 2 give less).
+constexpr double kIsolatedBytes = 1.0;
 // Blocks offered leftover budget after the slope bisection.
 constexpr std::size_t kMaxFillCandidates = 64;
 // How much finer than the rate model's step to code, so PCRD has truncation points to choose
@@ -158,9 +168,152 @@ void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int
   }
 }
 
-// Best quality within a byte budget; the base step is refined while every pass still fits.
-// The first step comes from the rate model of component 0 (coded right after, so it is
-// transformed once); the refinement loop catches a guess that was too coarse.
+// rd_hull with the distortion in output units (index units times `scale`, the base step
+// squared), so blocks coded at different base steps compare.
+std::vector<HullPoint> scaled_hull(const EncodedBlock& block, double scale) {
+  auto hull = rd_hull(block);
+  for (HullPoint& p : hull) {
+    p.removed *= scale;
+    p.slope *= scale;
+  }
+  return hull;
+}
+
+// The blocks coded at one base step (hulls in index units).
+struct Family {
+  double base = 0.0;
+  CodedImage coded;
+};
+
+// Index of the (component, band) a block belongs to: its step's place in the header.
+std::size_t band_group(const ImagePlan& plan, std::size_t i) {
+  return plan.blocks[i].component * plan.bands.size() + plan.blocks[i].band;
+}
+
+// Per (component, band), the family whose blocks cut at slope lambda (output units per byte)
+// cost least in distortion + lambda * bytes: the Lagrangian cost is a sum over bands, so
+// choosing per band minimises it over every mix of families.
+std::vector<std::size_t> choose_families(const ImagePlan& plan, const std::vector<Family>& families,
+                                         double lambda) {
+  const std::size_t groups = plan.header.channels * plan.bands.size();
+  std::vector<double> cost(families.size() * groups, 0.0);
+  for (std::size_t f = 0; f < families.size(); ++f) {
+    const double scale = families[f].base * families[f].base;
+    const CodedImage& coded = families[f].coded;
+    for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+      double removed = 0.0;
+      std::size_t bytes = 0;
+      for (const HullPoint& p : coded.hulls[i]) {
+        if (p.slope * scale < lambda) break;
+        removed = p.removed;
+        bytes = p.bytes;
+      }
+      cost[f * groups + band_group(plan, i)] +=
+          (coded.blocks[i].initial_distortion - removed) * scale + lambda * double(bytes);
+    }
+  }
+  std::vector<std::size_t> choice(groups, 0);
+  for (std::size_t g = 0; g < groups; ++g)
+    for (std::size_t f = 1; f < families.size(); ++f)
+      if (cost[f * groups + g] < cost[choice[g] * groups + g]) choice[g] = f;
+  return choice;
+}
+
+// Bytes of the stream that takes every band from its chosen family, every block cut at lambda.
+std::size_t mixed_size(const ImagePlan& plan, const std::vector<Family>& families,
+                       const std::vector<std::size_t>& choice, double lambda) {
+  std::vector<BlockEntry> entries(plan.blocks.size());
+  std::size_t data = 0;
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+    const Family& fam = families[choice[band_group(plan, i)]];
+    const int passes = passes_at_slope(fam.coded.hulls[i], lambda / (fam.base * fam.base));
+    const EncodedBlock& b = fam.coded.blocks[i];
+    entries[i] = {passes > 0 ? b.planes : 0, passes, std::uint32_t(b.size(passes))};
+    data += entries[i].length;
+  }
+  return container_size(plan.header, encode_index(entries).size(), data);
+}
+
+// Smallest slope (output units per byte) whose per-band family choice and cuts fit the budget,
+// by bisection on log lambda.
+double mixed_threshold(const ImagePlan& plan, const std::vector<Family>& families, double budget) {
+  const auto fits = [&](double lambda) {
+    return double(mixed_size(plan, families, choose_families(plan, families, lambda), lambda)) <= budget;
+  };
+  double lo = 1e-30, hi = 1e30;
+  if (fits(lo)) return lo;
+  for (int iter = 0; iter < 200 && hi / lo > 1.0 + 1e-7; ++iter) {
+    const double mid = std::sqrt(lo * hi);
+    (fits(mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// The blocks of the chosen family of every band, hulls in output units, with the plan's steps
+// set to match; `scale` receives each block's base step squared.
+CodedImage mix_families(ImagePlan& plan, std::vector<Family>& families,
+                        const std::vector<std::size_t>& choice, std::vector<double>& scale) {
+  std::vector<float> steps(choice.size());
+  for (std::size_t f = 0; f < families.size(); ++f) {
+    const auto family_steps = subband_steps(families[f].base, plan.norms, plan.weights);
+    for (std::size_t g = 0; g < choice.size(); ++g)
+      if (choice[g] == f) steps[g] = family_steps[g];
+  }
+  plan.header.steps = std::move(steps);
+  CodedImage mixed;
+  mixed.blocks.resize(plan.blocks.size());
+  mixed.hulls.resize(plan.blocks.size());
+  scale.resize(plan.blocks.size());
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+    Family& fam = families[choice[band_group(plan, i)]];
+    scale[i] = fam.base * fam.base;
+    mixed.blocks[i] = std::move(fam.coded.blocks[i]);
+    mixed.hulls[i] = scaled_hull(mixed.blocks[i], scale[i]);
+  }
+  return mixed;
+}
+
+// RDOQ (rdoq.h): recodes every block cut at `passes` with the coefficients that would become
+// significant alone in its last coded plane, for less than lambda (output units per byte)
+// times their rate, pulled under that plane. The transformed components must be kept in the
+// plan and its steps those the blocks were coded at (`scale`: each block's base step
+// squared). Returns whether any block changed (its hull is then recomputed).
+bool pull_isolated_coefficients(const ImagePlan& plan, CodedImage& coded, const std::vector<double>& scale,
+                                const std::vector<int>& passes, double lambda) {
+  std::atomic<std::size_t> changed{0};
+  plan.executor->run(passes.size(), [&](std::size_t i) {
+    const int plane = last_cleanup_plane(coded.blocks[i].planes, passes[i]);
+    if (plane < 0) return;
+    std::vector<float> magnitude;
+    std::vector<std::uint8_t> negative;
+    quantize_block(plan, i, magnitude, negative);
+    const CodeBlock& b = plan.blocks[i];
+    if (pull_isolated(magnitude, b.size, plane, plan.header.delta, lambda * kIsolatedBytes / scale[i]) == 0)
+      return;
+    coded.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+    coded.hulls[i] = scaled_hull(coded.blocks[i], scale[i]);
+    ++changed;
+  });
+  return changed > 0;
+}
+
+// Codes every block at base step `base`, refined by quarters while every pass still fits 95%
+// of the budget (a guess too coarse leaves PCRD nothing to choose).
+Family code_family(ImagePlan& plan, double base, double budget, bool keep) {
+  for (int round = 0;; ++round, base /= 4.0) {
+    set_base_step(plan, base);
+    CodedImage coded = code_blocks(plan, std::numeric_limits<std::size_t>::max(), keep);
+    const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
+    if (fits_all && round < kMaxStepRefinements) continue;
+    return Family{base, std::move(coded)};
+  }
+}
+
+// Best quality within a byte budget. The first step comes from the rate model of component
+// 0 (coded right after, so it is transformed once). Where the transformed components fit in
+// memory, the blocks are coded at kSizeFamilies base steps spread over an octave, every band
+// takes the family that serves it best at the final slope (choose_families; the header holds a
+// step per band), and isolated last-plane coefficients are requantized (RDOQ).
 EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp) {
   const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
   double base = plan.peak / 512.0;
@@ -168,19 +321,28 @@ EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp
     transform_component(plan, 0);
     base = std::max(guess_base_step(plan, 0, budget, guess_margin(plan)), kFinestBaseStep * plan.peak);
   }
-  for (int round = 0;; ++round, base /= 4.0) {
-    set_base_step(plan, base);
-    CodedImage coded = code_blocks(plan);
-    const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
-    if (fits_all && round < kMaxStepRefinements) continue;
-    auto passes = allocate_by_slope(coded.hulls, true, [&](const std::vector<int>& p) {
-      return double(stream_size(plan, coded, p)) <= budget;
-    });
-    fill_budget(plan, coded, passes, budget);
-    auto bytes = build(plan, coded, passes);
-    coded = CodedImage{};  // free the coded blocks before the PSNR check decodes the stream
-    return make_encode_result(image, plan, std::move(bytes), base);
+  const bool keep = !plan.header.reversible && plan.samples <= kMaxKeptSamples;
+  std::vector<Family> families;
+  families.push_back(code_family(plan, base, budget, keep));
+  for (int f = 1; keep && f < kSizeFamilies; ++f) {
+    set_base_step(plan, families[0].base * std::exp2(-double(f) / kSizeFamilies));
+    families.push_back(Family{families[0].base * std::exp2(-double(f) / kSizeFamilies),
+                              code_blocks(plan, std::numeric_limits<std::size_t>::max(), true)});
   }
+  const double lambda = mixed_threshold(plan, families, budget);
+  base = families[0].base;  // the base step reported: family 0's (bands may use finer ones)
+  std::vector<double> scale;
+  CodedImage mixed = mix_families(plan, families, choose_families(plan, families, lambda), scale);
+  families.clear();
+  const auto fits = [&](const std::vector<int>& p) { return double(stream_size(plan, mixed, p)) <= budget; };
+  auto passes = allocate_by_slope(mixed.hulls, true, fits);
+  if (keep && pull_isolated_coefficients(plan, mixed, scale, passes, lambda))
+    passes = allocate_by_slope(mixed.hulls, true, fits);
+  release_coefficients(plan);
+  fill_budget(plan, mixed, passes, budget);
+  auto bytes = build(plan, mixed, passes);
+  mixed = CodedImage{};  // free the coded blocks before the PSNR check decodes the stream
+  return make_encode_result(image, plan, std::move(bytes), base);
 }
 
 // One truncation of the coded blocks: every block cut at slope threshold lambda, decoded.
