@@ -36,6 +36,7 @@ struct BenchOptions {
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   std::string out;
   std::string cli;  // pupwave binary driving our codec; default: this very program
+  int effort = 1;   // pupwave compress --effort for every pupwave encode
 };
 
 // Splits at commas outside parentheses, so custom specs such as
@@ -102,7 +103,9 @@ std::vector<BenchImage> load_images(const std::vector<std::string>& args) {
 std::string command_line(const std::string& sub, const BenchOptions& o, bool rd, bool coarse) {
   std::string c =
       "pupwave bench " + sub + " --images " + join(o.images, " ") + " --transforms " + o.transforms;
-  if (rd) c += " --bpp " + o.bpps + " --anchors " + o.anchors;
+  if (rd)
+    c += " --bpp " + o.bpps + " --anchors " + o.anchors +
+         (o.effort != 1 ? " --effort " + std::to_string(o.effort) : "");
   if (coarse) c += " --levels " + o.levels;
   return c + " --jobs " + std::to_string(o.jobs) + " --out " + o.out;
 }
@@ -122,7 +125,7 @@ std::vector<RdCodecPtr> build_codecs(const BenchOptions& o, const std::vector<st
                                      std::vector<std::string>& notes) {
   const fs::path cli = o.cli.empty() ? fs::read_symlink("/proc/self/exe") : fs::path(o.cli);
   std::vector<RdCodecPtr> codecs;
-  for (const std::string& spec : specs) codecs.push_back(make_pupwave_codec(cli, spec));
+  for (const std::string& spec : specs) codecs.push_back(make_pupwave_codec(cli, spec, o.effort));
   const auto anchors = o.anchors == "none" ? std::vector<std::string>{} : split_list(o.anchors);
   for (const std::string& name : anchors) {
     std::string missing;
@@ -208,6 +211,9 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
            "comma list of openjpeg, jxl, avif, hevc, webp, or 'none' (missing tools are skipped with a note)")
         ->capture_default_str();
     cmd->add_option("--cli", o.cli, "pupwave binary to drive (default: this program)");
+    cmd->add_option("--effort", o.effort, "pupwave compress --effort for every pupwave encode (1 or 2)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 2));
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();
   cmd->add_option("--jobs", o.jobs, "parallel jobs")->capture_default_str()->check(CLI::Range(1u, 256u));

@@ -40,6 +40,7 @@ struct CompressOptions {
   double bpp = 0.0, psnr = 0.0, step = 0.0;
   bool lossless = false;
   std::string entropy = "ebcot";
+  int effort = 0;  // 0: not given (1)
   unsigned threads = 0;
   bool report_psnr = false;
   bool keep_nonfinite = false;
@@ -159,6 +160,7 @@ void set_volume_rate(const CompressOptions& opt, const VolumeInput& in, VolumeEn
 
 void run_compress_volume(const CompressOptions& opt) {
   if (opt.entropy != "ebcot") throw std::invalid_argument("--entropy applies to images only");
+  if (opt.effort != 0) throw std::invalid_argument("--effort applies to image --bpp targets only");
   const VolumeInput in = read_volume_input(opt);
   const std::vector<VolumeGrid>& grids = in.grids;
   VolumeEncodeOptions enc;
@@ -265,6 +267,10 @@ void run_compress(const CompressOptions& opt) {
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
   enc.entropy = entropy_coder(opt.entropy);
+  // Only the byte-budget search has more than one effort; elsewhere the option would be ignored.
+  if (opt.effort != 0 && !(opt.bpp > 0.0))
+    throw std::invalid_argument("--effort applies to --bpp targets only");
+  enc.effort = opt.effort == 0 ? 1 : opt.effort;
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
   enc.measure_psnr = opt.report_psnr;
@@ -350,6 +356,10 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--brick", opt->brick, "volumes: brick edge (power of two, 8..256, default 64)");
   cmd->add_option("--entropy", opt->entropy, "entropy coder: ebcot (bit-plane, default) or zstd")
       ->transform(CLI::IsMember({"ebcot", "zstd"}, CLI::ignore_case));
+  cmd->add_option("--effort", opt->effort,
+                  "images, --bpp: 1 (default, fastest) or 2 (three base steps per band and RDOQ: about 1% "
+                  "smaller at equal PSNR, up to 1.9x the encode time)")
+      ->check(CLI::Range(1, 2));
   cmd->add_flag("--keep-nonfinite", opt->keep_nonfinite,
                 "float images: code NaN and infinite samples exactly in a side list (default: refuse them)");
   cmd->add_option(

@@ -19,6 +19,7 @@ struct pupwave_options {
   unsigned threads = 0;
   std::size_t brick = 64;
   bool zstd = false;
+  int effort = 1;
 };
 
 struct pupwave_stream {
@@ -108,6 +109,7 @@ pupwave::api::ImageOptions image_options(const pupwave_options* o) {
   out.levels = o->levels;
   out.threads = o->threads;
   out.zstd = o->zstd;
+  out.effort = o->effort;
   return out;
 }
 
@@ -197,6 +199,14 @@ pupwave_status pupwave_options_set_zstd(pupwave_options* options, int zstd) {
   return guarded([&] {
     require(options != nullptr, "options is null");
     options->zstd = zstd != 0;
+  });
+}
+
+pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort) {
+  return guarded([&] {
+    require(options != nullptr, "options is null");
+    require(effort == 1 || effort == 2, "effort must be 1 or 2");
+    options->effort = effort;
   });
 }
 

@@ -74,6 +74,7 @@ EncodeOptions encode_options(const ImageOptions& options) {
   EncodeOptions enc;
   enc.levels = options.levels;
   enc.entropy = options.zstd ? EntropyCoder::zstd : EntropyCoder::ebcot;
+  enc.effort = options.effort;
   enc.measure_psnr = false;
   enc.target = options.target;
   switch (options.rate) {

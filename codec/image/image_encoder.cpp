@@ -310,18 +310,18 @@ Family code_family(ImagePlan& plan, double base, double budget, bool keep) {
 }
 
 // Best quality within a byte budget. The first step comes from the rate model of component
-// 0 (coded right after, so it is transformed once). Where the transformed components fit in
-// memory, the blocks are coded at kSizeFamilies base steps spread over an octave, every band
-// takes the family that serves it best at the final slope (choose_families; the header holds a
-// step per band), and isolated last-plane coefficients are requantized (RDOQ).
-EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp) {
+// 0 (coded right after, so it is transformed once). At effort 2, where the transformed
+// components fit in memory, the blocks are coded at kSizeFamilies base steps spread over an octave, every
+// band takes the family that serves it best at the final slope (choose_families; the header holds a step per
+// band), and isolated last-plane coefficients are requantized (RDOQ).
+EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp, int effort) {
   const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
   double base = plan.peak / 512.0;
   if (!plan.header.reversible) {
     transform_component(plan, 0);
     base = std::max(guess_base_step(plan, 0, budget, guess_margin(plan)), kFinestBaseStep * plan.peak);
   }
-  const bool keep = !plan.header.reversible && plan.samples <= kMaxKeptSamples;
+  const bool keep = effort >= 2 && !plan.header.reversible && plan.samples <= kMaxKeptSamples;
   std::vector<Family> families;
   families.push_back(code_family(plan, base, budget, keep));
   for (int f = 1; keep && f < kSizeFamilies; ++f) {
@@ -579,7 +579,7 @@ EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& opt
       const CodedImage coded = code_blocks(plan);
       return make_encode_result(image, plan, build(plan, coded, all_passes(coded)), options.target);
     }
-    case RateMode::bpp: return encode_for_size(image, plan, options.target);
+    case RateMode::bpp: return encode_for_size(image, plan, options.target, options.effort);
     case RateMode::psnr: return encode_for_psnr(image, plan, options.target);
   }
   throw std::invalid_argument("unknown rate mode");
@@ -660,6 +660,7 @@ EncodeResult encode_capped(const ImageView& image, const EncodeOptions& options)
 EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) {
   if (options.mode != RateMode::lossless && !(options.target > 0.0 && std::isfinite(options.target)))
     throw std::invalid_argument("rate target must be positive and finite");
+  if (options.effort < 1 || options.effort > 2) throw std::invalid_argument("effort must be 1 or 2");
   if (is_integer(image.type)) {
     if (options.mode != RateMode::lossless) return encode_capped(image, options);
     return encode_in_domain(image, options, CodedDomain{});

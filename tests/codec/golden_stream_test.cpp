@@ -4,7 +4,7 @@
 // The --bpp stream also pins rate control (which base step and truncation points the encoder
 // picks): an encoder-only change there updates its value without a version bump.
 // Version 2 (transfer and flags bytes in HEAD, optional META/NFIN chunks) changed all five.
-// Issue 20's size-target encoder (base-step family per band, RDOQ) changed the --bpp value only.
+// Issue 20's size-target encoder (base-step family per band, RDOQ) is effort 2 and has its own value.
 #include <gtest/gtest.h>
 
 #include "codec/format/crc32.h"
@@ -15,8 +15,9 @@ namespace pupwave {
 namespace {
 
 std::uint32_t stream_crc(const Image& img, RateMode mode, double target, const char* spec,
-                         EntropyCoder coder = EntropyCoder::ebcot) {
+                         EntropyCoder coder = EntropyCoder::ebcot, int effort = 1) {
   EncodeOptions o;
+  o.effort = effort;
   o.mode = mode;
   o.target = target;
   o.transform = spec;
@@ -38,6 +39,9 @@ TEST(GoldenStream, LosslessStreamsAreUnchanged) {
 
 TEST(GoldenStream, LossyStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97"),
+            3411201148u);
+  EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97",
+                       EntropyCoder::ebcot, 2),
             3292163254u);
   EXPECT_EQ(stream_crc(testing::synthetic_image(50, 30, 1, SampleType::u8, 25), RateMode::step, 4.0, "cdf53"),
             2131280122u);

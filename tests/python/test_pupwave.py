@@ -57,14 +57,21 @@ def test_rate_modes_and_levels(real_image):
     assert half.dtype == np.uint8
     assert pupwave.compress(a, bpp=1, transform="cdf53", levels=3) != pupwave.compress(a, bpp=1)
     assert pupwave.info(pupwave.compress(a, bpp=1, levels=3))["levels"] == 3
+    slow = pupwave.compress(a, bpp=1, effort=2)
+    assert len(slow) * 8 <= a.shape[0] * a.shape[1] + 64 and slow != pupwave.compress(a, bpp=1)
+    with pytest.raises(ValueError, match="effort"):
+        pupwave.compress(a, bpp=1, effort=3)
 
 
 def test_image_bytes_identical_to_cli(cli, real_image, tmp_path):
     a = real_image("chelsea", "ppm")
     src = tmp_path / "in.ppm"
     write_pnm(src, a)
-    for flags, kwargs in [(["--bpp", "1"], {"bpp": 1}), (["--lossless"], {"lossless": True}),
-                          (["--psnr", "36", "--levels", "4"], {"psnr": 36, "levels": 4})]:
+    for flags, kwargs in [(["--bpp", "1"], {
+  "bpp" : 1}), (["--lossless"], {
+  "lossless" : True}),
+                          (["--psnr", "36", "--levels", "4"], {
+  "psnr" : 36, "levels" : 4})]:
         out = tmp_path / "cli.pw"
         subprocess.run([cli, "compress", str(src), str(out), *flags], check=True, capture_output=True)
         assert out.read_bytes() == pupwave.compress(a, **kwargs), flags
@@ -103,8 +110,11 @@ def test_volume_bytes_identical_to_cli(cli, wmag, tmp_path):
     wmag = np.ascontiguousarray(wmag[:48, :64, :80])  # (z, y, x): --dims 80,64,48
     raw = tmp_path / "volume.raw"  # the CLI names a raw grid after the file; the API calls it "volume"
     wmag.astype("<f4").tofile(raw)
-    for flags, kwargs in [(["--max-error", "0.5"], {"max_error": 0.5}),
-                          (["--max-error-rel", "0.001"], {"max_error_rel": 1e-3}), (["--bpv", "1"], {"bpv": 1})]:
+    for flags, kwargs in [(["--max-error", "0.5"], {
+  "max_error" : 0.5}),
+                          (["--max-error-rel", "0.001"], {
+  "max_error_rel" : 1e-3}), (["--bpv", "1"], {
+  "bpv" : 1})]:
         out = tmp_path / "cli.pw"
         subprocess.run([cli, "compress", str(raw), str(out), "--dims", "80,64,48", "--dtype", "f32", *flags],
                        check=True, capture_output=True)

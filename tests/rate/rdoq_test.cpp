@@ -51,18 +51,19 @@ TEST(Rdoq, PullsOnlyWeakIsolatedCoefficientsOfThePlane) {
   EXPECT_EQ(pull_isolated(m, size, -1, 0.4375, 1e9), 0u);
 }
 
-// The size-target encoder (families per band + RDOQ) on a photograph: exactly within the
-// budget (less than 0.1% left unused), the decoded PSNR as reported, and 0.05 dB above what
-// the single-family encoder without RDOQ reached before issue 20 (astronaut.png 0.5 bpp:
-// 32.529 dB, 2 bpp: 40.893 dB; this one: 32.627 and 41.005).
+// The size-target encoder at effort 2 (families per band + RDOQ) on a photograph: exactly
+// within the budget (less than 0.1% left unused), the decoded PSNR as reported, and 0.05 dB
+// above the single-family encoder without RDOQ (effort 1) at the same budget (astronaut.png
+// 0.5 bpp: 32.529 -> 32.627 dB, 2 bpp: 40.893 -> 41.005 dB when written).
 TEST(Rdoq, SizeTargetsOnAPhotographBeatTheSingleFamilyEncoder) {
   const Image image = cli::read_image(std::string(PUPWAVE_TESTIMAGES_DIR) + "/astronaut.png");
-  const double before[2] = {32.529, 40.893};
   const double rates[2] = {0.5, 2.0};
   for (int k = 0; k < 2; ++k) {
     EncodeOptions o;
     o.mode = RateMode::bpp;
     o.target = rates[k];
+    const double before = encode_image(image, o).psnr;
+    o.effort = 2;
     const EncodeResult r = encode_image(image, o);
     const double budget = std::floor(rates[k] * double(image.plane_size()) / 8.0);
     EXPECT_LE(double(r.bytes.size()), budget);
@@ -70,7 +71,7 @@ TEST(Rdoq, SizeTargetsOnAPhotographBeatTheSingleFamilyEncoder) {
     const Image decoded = decode_image(r.bytes);
     const double psnr = compare_images(image, decoded).overall.psnr;
     EXPECT_NEAR(psnr, r.psnr, 1e-9);
-    EXPECT_GT(psnr, before[k] + 0.05) << rates[k] << " bpp";
+    EXPECT_GT(psnr, before + 0.05) << rates[k] << " bpp";
   }
 }
 

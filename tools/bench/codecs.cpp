@@ -26,7 +26,8 @@ std::string format_number(double v, const char* fmt = "%.6g") {
 
 class PupwaveCodec final : public RdCodec {
  public:
-  PupwaveCodec(fs::path cli, std::string spec) : cli_(std::move(cli)), spec_(std::move(spec)) {}
+  PupwaveCodec(fs::path cli, std::string spec, int effort)
+      : cli_(std::move(cli)), spec_(std::move(spec)), effort_(effort) {}
   std::string name() const override { return spec_; }
   std::string kind() const override { return "pupwave"; }
   std::string extension() const override { return ".pw"; }
@@ -34,11 +35,12 @@ class PupwaveCodec final : public RdCodec {
   EncodeOutcome encode(const EncodeRequest& q) const override {
     const std::string bpp = format_number(q.target_bpp);
     EncodeOutcome out;
-    out.seconds = run_checked(
-        {cli_.string(), "compress", q.input.string(), q.output.string(), "--transform", spec_, "--bpp", bpp},
-        q.log, q.output);
+    std::vector<std::string> args{cli_.string(), "compress", q.input.string(), q.output.string(),
+                                  "--transform", spec_,      "--bpp",          bpp};
+    if (effort_ != 1) args.insert(args.end(), {"--effort", std::to_string(effort_)});
+    out.seconds = run_checked(args, q.log, q.output);
     out.bytes = fs::file_size(q.output);
-    out.setting = "--bpp " + bpp;
+    out.setting = "--bpp " + bpp + (effort_ != 1 ? " --effort " + std::to_string(effort_) : "");
     return out;
   }
 
@@ -49,6 +51,7 @@ class PupwaveCodec final : public RdCodec {
  private:
   fs::path cli_;
   std::string spec_;
+  int effort_ = 1;
 };
 
 // JPEG 2000 through OpenJPEG: irreversible 9/7 (-I), 6 resolutions (-n 6, fewer for images too
@@ -111,8 +114,8 @@ class JxlAnchor final : public RdCodec {
 
 }  // namespace
 
-RdCodecPtr make_pupwave_codec(const fs::path& cli, const std::string& spec) {
-  return std::make_shared<PupwaveCodec>(cli, spec);
+RdCodecPtr make_pupwave_codec(const fs::path& cli, const std::string& spec, int effort) {
+  return std::make_shared<PupwaveCodec>(cli, spec, effort);
 }
 
 const std::vector<std::string>& anchor_names() {

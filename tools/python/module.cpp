@@ -106,7 +106,7 @@ int count_set(std::initializer_list<bool> flags) {
 
 py::bytes compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
                    std::optional<double> step, bool lossless, const std::string& transform,
-                   std::optional<int> levels) {
+                   std::optional<int> levels, int effort) {
   const py::array a = as_array(obj);
   const api::SampleType type = image_type(a);
   if (a.ndim() != 2 && a.ndim() != 3)
@@ -131,6 +131,7 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   // The default transform becomes the reversible cdf53 for lossless, as in the CLI.
   options.transform = lossless && transform == "cdf97" ? "cdf53" : transform;
   options.levels = levels.value_or(-1);
+  options.effort = effort;
   std::vector<std::uint8_t> out;
   {
     py::gil_scoped_release release;
@@ -249,9 +250,10 @@ PYBIND11_MODULE(_pupwave, m) {
   m.attr("__version__") = PUPWAVE_VERSION_STRING;
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = "cdf97",
-        py::arg("levels") = py::none(),
+        py::arg("levels") = py::none(), py::arg("effort") = 1,
         "Compress a 2-D (grey) or HxWxC (C 1..4) array of uint8/uint16/float16/float32 to .pw bytes. At most "
-        "one of bpp, psnr, step, lossless (default psnr=40).");
+        "one of bpp, psnr, step, lossless (default psnr=40). effort=2: bpp targets search three base steps "
+        "per band (about 1% smaller, up to 1.9x slower).");
   m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0,
         "Decode .pw image bytes to an array of the original dtype and shape (halved per level).");
   m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),
