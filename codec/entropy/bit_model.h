@@ -2,6 +2,7 @@
 // Adaptive probability of one binary context, shared by the range encoder and decoder.
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -25,16 +26,25 @@ struct BitModel {
   constexpr explicit BitModel(std::uint16_t initial_p0) : p0(initial_p0) {}
 
   void update(int bit) {
-    // shift = 1 + floor(log2(count + 1)), capped: 1, 2, 2, 3, 3, 3, 3, 4, ...
-    const int shift = std::min(int(std::bit_width(unsigned(count) + 1u)), kMaxShift);
-    std::uint32_t p = p0;
-    if (bit)
-      p -= p >> shift;
-    else
-      p += (kProbabilityOne - p) >> shift;
-    p0 = std::uint16_t(std::clamp<std::uint32_t>(p, kMinP, kProbabilityOne - kMinP));
-    if (count < 255) ++count;
+    // shift = 1 + floor(log2(count + 1)), capped: 1, 2, 2, 3, 3, 3, 3, 4, ... The count
+    // stops at kSettled, where the shift reaches its cap. Both arms are computed and one
+    // selected: the bit is rarely predictable enough for a branch.
+    const int shift = kShift[count];
+    const std::uint32_t p = p0;
+    const std::uint32_t down = p - (p >> shift);
+    const std::uint32_t up = p + ((kProbabilityOne - p) >> shift);
+    p0 = std::uint16_t(std::clamp<std::uint32_t>(bit ? down : up, kMinP, kProbabilityOne - kMinP));
+    count = std::uint8_t(count + (count < kSettled ? 1 : 0));
   }
+
+ private:
+  static constexpr int kSettled = (1 << (kMaxShift - 1)) - 1;  // first count with the capped shift
+  static constexpr std::array<std::uint8_t, kSettled + 1> kShift = [] {
+    std::array<std::uint8_t, kSettled + 1> t{};
+    for (int c = 0; c <= kSettled; ++c)
+      t[std::size_t(c)] = std::uint8_t(std::min(int(std::bit_width(unsigned(c) + 1u)), kMaxShift));
+    return t;
+  }();
 };
 
 }  // namespace pupwave
