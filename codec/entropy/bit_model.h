@@ -17,7 +17,7 @@ inline constexpr std::uint32_t kProbabilityOne = 1u << kProbabilityBits;
 // a context learns quickly in a small code-block yet stays stable in a large one.
 struct BitModel {
   std::uint16_t p0 = std::uint16_t(kProbabilityOne / 2);
-  std::uint8_t count = 0;
+  std::uint16_t count = 0;  // not a char type: its stores would alias every other value
 
   static constexpr int kMaxShift = 6;
   static constexpr std::uint32_t kMinP = 31;  // keeps both sub-ranges non-empty
@@ -34,7 +34,7 @@ struct BitModel {
     const std::uint32_t down = p - (p >> shift);
     const std::uint32_t up = p + ((kProbabilityOne - p) >> shift);
     p0 = std::uint16_t(std::clamp<std::uint32_t>(bit ? down : up, kMinP, kProbabilityOne - kMinP));
-    count = std::uint8_t(count + (count < kSettled ? 1 : 0));
+    count = std::uint16_t(count + (count < kSettled ? 1 : 0));
   }
 
  private:

@@ -25,7 +25,7 @@ constexpr int context_diagonal(int h, int v, int d) {
   return hv >= 2 ? 2 : hv;
 }
 
-// Context for every packed neighbour word (see BlockState::neighbours_), per orientation
+// Context for every neighbour count byte (see BlockState::neighbours_), per orientation
 // table; diagonal counts above 4 (3-D blocks) saturate at 4.
 using SigTable = std::array<std::array<std::uint8_t, 256>, 3>;
 
@@ -53,59 +53,95 @@ constexpr std::pair<int, int> sign_context_of(int h, int v) {
   return {hh == 0 ? (vv == 0 ? 0 : 1) : 3 + vv, flip};  // (0,0) (0,1) (1,-1) (1,0) (1,1)
 }
 
-// +1 / -1 / 0 of a 2-bit sign state (bit 0: significant, bit 1: negative).
-constexpr int sign_of_state(std::size_t s) { return (s & 1) ? ((s & 2) ? -1 : 1) : 0; }
-
-// Context * 2 + XOR bit for every combination of the four direct neighbours' sign states
-// (left, right, up, down; 2 bits each, as BlockState::sign_state gives them).
-constexpr std::array<std::uint8_t, 256> make_sign_table() {
-  std::array<std::uint8_t, 256> t{};
-  for (std::size_t key = 0; key < 256; ++key) {
-    const int h = std::clamp(sign_of_state(key & 3) + sign_of_state((key >> 2) & 3), -1, 1);
-    const int v = std::clamp(sign_of_state((key >> 4) & 3) + sign_of_state((key >> 6) & 3), -1, 1);
-    const auto [ctx, flip] = sign_context_of(h, v);
-    t[key] = std::uint8_t(ctx * 2 + flip);
-  }
-  return t;
-}
-
-constexpr std::array<std::uint8_t, 256> kSignTable = make_sign_table();
-
 }  // namespace
+
+// Context * 2 + XOR bit for every sign word (h + 2) + 5 (v + 4).
+const std::array<std::uint8_t, 45> BlockState::kSignTable = [] {
+  std::array<std::uint8_t, 45> t{};
+  for (int h = -2; h <= 2; ++h)
+    for (int v = -4; v <= 4; ++v) {
+      const auto [ctx, flip] = sign_context_of(std::clamp(h, -1, 1), std::clamp(v, -1, 1));
+      t[std::size_t((h + 2) * kSignCodeH + (v + 4) * kSignCodeV)] = std::uint8_t(ctx * 2 + flip);
+    }
+  return t;
+}();
 
 BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
   const bool high_x = orientation & 1u;
   const bool high_y = orientation & 2u;
-  table_ = high_x && high_y ? 2 : (high_x ? 1 : 0);
+  const int table = high_x && high_y ? 2 : (high_x ? 1 : 0);
   volume_ = size[2] > 1;
   stride_y_ = size[0] + 2;
   stride_z_ = stride_y_ * (size[1] + 2);
-  flags_.assign(stride_z_ * (size[2] + 2), 0);
-  neighbours_.assign(flags_.size(), 0);
-  sig_table_ = kSigTable[std::size_t(table_)].data();
+  neighbours_.assign(stride_z_ * (size[2] + 2), std::uint16_t(kSignCodeZero * kSignUnit));
+  sig_table_ = kSigTable[std::size_t(table)].data();
   stripes_ = (size[1] + kStripe - 1) / kStripe;
+  column_row_ = size[0] + 2;
+  column_slice_ = column_row_ * (stripes_ + 2);
+  columns_.assign(column_slice_ * (size[2] + 2), 0);
   active_.assign(stripes_ * size[2], 0);
   // Most coefficients of a block stay insignificant with no significant neighbour.
   models[0] = BitModel(std::uint16_t(kProbabilityOne * 15 / 16));
   models[kRunContext] = BitModel(std::uint16_t(kProbabilityOne * 7 / 8));
 }
 
-std::pair<int, int> BlockState::sign_context(std::size_t p) const {
-  if (!volume_) {  // 2-D: one look-up on the four direct neighbours' sign states
-    const std::size_t key = sign_state(p - 1) | sign_state(p + 1) << 2 | sign_state(p - stride_y_) << 4 |
-                            sign_state(p + stride_y_) << 6;
-    const std::uint8_t e = kSignTable[key];
-    return {kSignContext0 + (e >> 1), e & 1};
+void BlockState::make_significant(std::size_t p, std::size_t x, std::size_t y, std::size_t z, bool negative) {
+  // Counts and signs in the neighbours' words: h and v are the horizontal and vertical
+  // (or across-slice) sign contributions, as two's-complement steps of the sign word.
+  const std::uint16_t h =
+      negative ? std::uint16_t(0u - kSignCodeH * kSignUnit) : std::uint16_t(kSignCodeH * kSignUnit);
+  const std::uint16_t v =
+      negative ? std::uint16_t(0u - kSignCodeV * kSignUnit) : std::uint16_t(kSignCodeV * kSignUnit);
+  const std::size_t sy = stride_y_;
+  add(p - 1, std::uint16_t(kHorizontalUnit + h));
+  add(p + 1, std::uint16_t(kHorizontalUnit + h));
+  add(p - sy, std::uint16_t(kVerticalUnit + v));
+  add(p + sy, std::uint16_t(kVerticalUnit + v));
+  add(p - sy - 1, kDiagonalUnit);
+  add(p - sy + 1, kDiagonalUnit);
+  add(p + sy - 1, kDiagonalUnit);
+  add(p + sy + 1, kDiagonalUnit);
+  if (volume_) {  // neighbours across slices count with the diagonal ones, signs with vertical
+    add(p - stride_z_, std::uint16_t(kDiagonalUnit + v));
+    add(p + stride_z_, std::uint16_t(kDiagonalUnit + v));
   }
-  const int h = std::clamp(sign_of(p - 1) + sign_of(p + 1), -1, 1);
-  const int v =
-      sign_of(p - stride_y_) + sign_of(p + stride_y_) + sign_of(p - stride_z_) + sign_of(p + stride_z_);
-  const auto [ctx, flip] = sign_context_of(h, std::clamp(v, -1, 1));
-  return {kSignContext0 + ctx, flip};
-}
-
-void BlockState::clear_visited() {
-  for (auto& f : flags_) f = std::uint8_t(f & ~kVisited);
+  // Column words: rows y - 1 .. y + 1 of columns x - 1 .. x + 1 (not p itself) have a
+  // significant neighbour now, rows spilling into the stripes above and below included.
+  const std::size_t s = y / kStripe;
+  const unsigned r = unsigned(y % kStripe);
+  const std::size_t c = column_at(x, s, z);
+  const std::uint32_t rows = ((7u << r) >> 1) & kRows;
+  const std::uint32_t near = rows << kColumnNeighbour;
+  columns_[c - 1] |= near;
+  columns_[c + 1] |= near;
+  columns_[c] |= (near & ~(1u << (kColumnNeighbour + r))) | (1u << (kColumnSignificant + r));
+  const std::size_t a = z * stripes_;
+  active_[a + s] = 1;
+  if (r == 0 && s > 0) {
+    const std::uint32_t bottom = 1u << (kColumnNeighbour + kStripe - 1);
+    columns_[c - column_row_ - 1] |= bottom;
+    columns_[c - column_row_] |= bottom;
+    columns_[c - column_row_ + 1] |= bottom;
+    active_[a + s - 1] = 1;
+  }
+  if (r == kStripe - 1 && y + 1 < size_[1]) {
+    const std::uint32_t top = 1u << kColumnNeighbour;
+    columns_[c + column_row_ - 1] |= top;
+    columns_[c + column_row_] |= top;
+    columns_[c + column_row_ + 1] |= top;
+    active_[a + s + 1] = 1;
+  }
+  if (volume_) {
+    const std::uint32_t across = 1u << (kColumnNeighbour + r);
+    if (z > 0) {
+      columns_[c - column_slice_] |= across;
+      active_[a - stripes_ + s] = 1;
+    }
+    if (z + 1 < size_[2]) {
+      columns_[c + column_slice_] |= across;
+      active_[a + stripes_ + s] = 1;
+    }
+  }
 }
 
 }  // namespace pupwave
