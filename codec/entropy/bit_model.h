@@ -26,15 +26,20 @@ struct BitModel {
   constexpr explicit BitModel(std::uint16_t initial_p0) : p0(initial_p0) {}
 
   void update(int bit) {
-    // shift = 1 + floor(log2(count + 1)), capped: 1, 2, 2, 3, 3, 3, 3, 4, ... The count
-    // stops at kSettled, where the shift reaches its cap. Both arms are computed and one
-    // selected: the bit is rarely predictable enough for a branch.
-    const int shift = kShift[count];
     const std::uint32_t p = p0;
+    if (count >= kSettled) {
+      // Settled (the common case): at the capped shift a probability inside [kMinP,
+      // kProbabilityOne - kMinP] stays inside, so no clamp is needed.
+      p0 = std::uint16_t(bit ? p - (p >> kMaxShift) : p + ((kProbabilityOne - p) >> kMaxShift));
+      return;
+    }
+    // shift = 1 + floor(log2(count + 1)): 1, 2, 2, 3, 3, 3, 3, 4, ... up to kMaxShift at
+    // count kSettled, where the count stops.
+    const int shift = kShift[count];
     const std::uint32_t down = p - (p >> shift);
     const std::uint32_t up = p + ((kProbabilityOne - p) >> shift);
     p0 = std::uint16_t(std::clamp<std::uint32_t>(bit ? down : up, kMinP, kProbabilityOne - kMinP));
-    count = std::uint16_t(count + (count < kSettled ? 1 : 0));
+    ++count;
   }
 
  private:

@@ -70,6 +70,10 @@ class BlockState {
     const std::uint8_t e = kSignTable[neighbours_[p] >> 8];
     return {kSignContext0 + (e >> 1), e & 1};
   }
+  // True when no neighbour of coefficient p is significant.
+  bool isolated(std::size_t p) const { return (neighbours_[p] & 0xFFu) == 0; }
+  // Size of the padded per-coefficient array.
+  std::size_t padded_count() const { return neighbours_.size(); }
   // Refinement context of row r of column word w.
   static int refinement_context(std::uint32_t w, unsigned r) {
     if ((w >> (kColumnRefined + r)) & 1u) return kRefineContext0 + 2;
@@ -117,6 +121,66 @@ class BlockState {
   std::vector<std::uint32_t> columns_;
   std::vector<std::uint8_t> active_;  // per stripe: see stripe_active
 };
+
+inline void BlockState::make_significant(std::size_t p, std::size_t x, std::size_t y, std::size_t z,
+                                         bool negative) {
+  // Counts and signs in the neighbours' words: h and v are the horizontal and vertical
+  // (or across-slice) sign contributions, as two's-complement steps of the sign word.
+  const std::uint16_t h =
+      negative ? std::uint16_t(0u - kSignCodeH * kSignUnit) : std::uint16_t(kSignCodeH * kSignUnit);
+  const std::uint16_t v =
+      negative ? std::uint16_t(0u - kSignCodeV * kSignUnit) : std::uint16_t(kSignCodeV * kSignUnit);
+  const std::size_t sy = stride_y_;
+  add(p - 1, std::uint16_t(kHorizontalUnit + h));
+  add(p + 1, std::uint16_t(kHorizontalUnit + h));
+  add(p - sy, std::uint16_t(kVerticalUnit + v));
+  add(p + sy, std::uint16_t(kVerticalUnit + v));
+  add(p - sy - 1, kDiagonalUnit);
+  add(p - sy + 1, kDiagonalUnit);
+  add(p + sy - 1, kDiagonalUnit);
+  add(p + sy + 1, kDiagonalUnit);
+  if (volume_) {  // neighbours across slices count with the diagonal ones, signs with vertical
+    add(p - stride_z_, std::uint16_t(kDiagonalUnit + v));
+    add(p + stride_z_, std::uint16_t(kDiagonalUnit + v));
+  }
+  // Column words: rows y - 1 .. y + 1 of columns x - 1 .. x + 1 (not p itself) have a
+  // significant neighbour now, rows spilling into the stripes above and below included.
+  const std::size_t s = y / kStripe;
+  const unsigned r = unsigned(y % kStripe);
+  const std::size_t c = column_at(x, s, z);
+  const std::uint32_t rows = ((7u << r) >> 1) & kRows;
+  const std::uint32_t near = rows << kColumnNeighbour;
+  columns_[c - 1] |= near;
+  columns_[c + 1] |= near;
+  columns_[c] |= (near & ~(1u << (kColumnNeighbour + r))) | (1u << (kColumnSignificant + r));
+  const std::size_t a = z * stripes_;
+  active_[a + s] = 1;
+  if (r == 0 && s > 0) {
+    const std::uint32_t bottom = 1u << (kColumnNeighbour + kStripe - 1);
+    columns_[c - column_row_ - 1] |= bottom;
+    columns_[c - column_row_] |= bottom;
+    columns_[c - column_row_ + 1] |= bottom;
+    active_[a + s - 1] = 1;
+  }
+  if (r == kStripe - 1 && y + 1 < size_[1]) {
+    const std::uint32_t top = 1u << kColumnNeighbour;
+    columns_[c + column_row_ - 1] |= top;
+    columns_[c + column_row_] |= top;
+    columns_[c + column_row_ + 1] |= top;
+    active_[a + s + 1] = 1;
+  }
+  if (volume_) {
+    const std::uint32_t across = 1u << (kColumnNeighbour + r);
+    if (z > 0) {
+      columns_[c - column_slice_] |= across;
+      active_[a - stripes_ + s] = 1;
+    }
+    if (z + 1 < size_[2]) {
+      columns_[c + column_slice_] |= across;
+      active_[a + stripes_ + s] = 1;
+    }
+  }
+}
 
 // One stripe of the scan: up to kStripe rows from y0 in slice z; its first coefficient is at
 // padded position f0 (see BlockState::at), block index i0 and column word c0 (see
