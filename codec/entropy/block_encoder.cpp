@@ -66,17 +66,17 @@ class BitPlaneEncoder {
   }
 
   // Codes bit-plane p of row r of column x of stripe s, not yet significant; true if 1.
-  bool code_significance(const Stripe& s, std::size_t x, unsigned r, int p) {
+  bool code_significance(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
     const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
     const int bit = int((q_[i] >> p) & 1u);
-    rc_.encode(bit, state_.models[std::size_t(state_.significance_context(f))]);
-    if (bit) become_significant(s, x, r, p);
+    rc.encode(bit, state_.models[std::size_t(state_.significance_context(f))]);
+    if (bit) become_significant(rc, s, x, r, p);
     return bit != 0;
   }
-  void become_significant(const Stripe& s, std::size_t x, unsigned r, int p) {
+  void become_significant(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
     const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
     const auto [ctx, flip] = state_.sign_context(f);
-    rc_.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
+    rc.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
     state_.make_significant(f, x, s.y0 + r, s.z, negative_[i] != 0);
     add_gain(m_[i], 0.0, reconstruction(q_[i], p));
   }
@@ -87,21 +87,24 @@ class BitPlaneEncoder {
   }
 
   void significance_pass(int p) {
+    RangeEncoder rc = std::move(rc_);  // a local the compiler can keep in registers
     for_each_stripe(state_, [&](const Stripe& s) {
       if (!state_.stripe_active(s.index)) return;  // every context 0: nothing to code
       for (std::size_t x = 0; x < size_[0]; ++x) {
         std::uint32_t& w = state_.column(s.c0 + x);
         for (std::uint32_t todo = propagation_rows(w, s.rows); todo != 0;) {
           const unsigned r = unsigned(std::countr_zero(todo));
-          code_significance(s, x, r, p);
+          code_significance(rc, s, x, r, p);
           w |= 1u << (kColumnVisited + r);
           todo = propagation_rows(w, s.rows) & ~((2u << r) - 1u);
         }
       }
     });
+    rc_ = std::move(rc);
   }
 
   void refinement_pass(int p) {
+    RangeEncoder rc = std::move(rc_);
     for_each_stripe(state_, [&](const Stripe& s) {
       if (!state_.stripe_active(s.index)) return;  // nothing significant
       for (std::size_t x = 0; x < size_[0]; ++x) {
@@ -110,17 +113,18 @@ class BitPlaneEncoder {
         for (std::uint32_t t = todo; t != 0; t &= t - 1) {
           const unsigned r = unsigned(std::countr_zero(t));
           const std::size_t i = s.i0 + x + r * size_[0];
-          rc_.encode(int((q_[i] >> p) & 1u),
-                     state_.models[std::size_t(BlockState::refinement_context(w, r))]);
+          rc.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(BlockState::refinement_context(w, r))]);
           add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
         }
         w |= todo << kColumnRefined;
       }
     });
+    rc_ = std::move(rc);
   }
 
   void cleanup_pass(int p) {
     const std::size_t is = size_[0];
+    RangeEncoder rc = std::move(rc_);
     for_each_stripe(state_, [&](const Stripe& s) {
       const bool full = s.rows == kRows;
       for (std::size_t x = 0; x < size_[0]; ++x) {
@@ -131,19 +135,20 @@ class BitPlaneEncoder {
           const std::size_t i0 = s.i0 + x;
           const std::uint32_t column = q_[i0] | q_[i0 + is] | q_[i0 + 2 * is] | q_[i0 + 3 * is];
           const bool any = (column >> p) & 1u;
-          rc_.encode(any, state_.models[kRunContext]);
+          rc.encode(any, state_.models[kRunContext]);
           if (!any) continue;
           unsigned first = 0;  // first coefficient of the column with bit p set
           while (!((q_[i0 + first * is] >> p) & 1u)) ++first;
-          rc_.encode_equiprobable(int(first >> 1));
-          rc_.encode_equiprobable(int(first & 1));
-          become_significant(s, x, first, p);
+          rc.encode_equiprobable(int(first >> 1));
+          rc.encode_equiprobable(int(first & 1));
+          become_significant(rc, s, x, first, p);
           todo &= ~((2u << first) - 1u);
         }
-        for (; todo != 0; todo &= todo - 1) code_significance(s, x, unsigned(std::countr_zero(todo)), p);
+        for (; todo != 0; todo &= todo - 1) code_significance(rc, s, x, unsigned(std::countr_zero(todo)), p);
         w &= ~(kRows << kColumnVisited);  // this plane's visits end with its cleanup
       }
     });
+    rc_ = std::move(rc);
   }
 
   std::span<const float> m_;
