@@ -163,21 +163,24 @@ std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::s
   const auto blocks = brick_blocks(c, size);
   require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(), "brick block count");
   std::vector<T> coef(size[0] * size[1] * size[2], T(0));
-  std::vector<T> values;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const CodeBlock& b = blocks[i];
     if (b.resolution > c.levels - level || entries[i].passes == 0) continue;
     const DecodedBlock d =
         decode_block(codewords[i], entries[i].planes, entries[i].passes, b.size, b.orientation);
-    values.assign(b.count(), T(0));
-    for (std::size_t k = 0; k < values.size(); ++k) {
-      const float v = reconstruct(d, k, c.delta, c.reversible);
-      if constexpr (std::is_floating_point_v<T>)
-        values[k] = v * steps[b.band];
-      else
-        values[k] = T(v);
-    }
-    copy_block_in(values.data(), size, b, coef.data());
+    // Straight into the block's place in the brick (no block-sized copy in between).
+    std::size_t k = 0;
+    for (std::size_t z = 0; z < b.size[2]; ++z)
+      for (std::size_t y = 0; y < b.size[1]; ++y) {
+        T* row = coef.data() + b.offset[0] + size[0] * ((b.offset[1] + y) + size[1] * (b.offset[2] + z));
+        for (std::size_t x = 0; x < b.size[0]; ++x, ++k) {
+          const float v = reconstruct(d, k, c.delta, c.reversible);
+          if constexpr (std::is_floating_point_v<T>)
+            row[x] = v * steps[b.band];
+          else
+            row[x] = T(v);
+        }
+      }
   }
   return coef;
 }
