@@ -2,6 +2,7 @@
 // Adaptive probability of one binary context, shared by the range encoder and decoder.
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -16,7 +17,7 @@ inline constexpr std::uint32_t kProbabilityOne = 1u << kProbabilityBits;
 // a context learns quickly in a small code-block yet stays stable in a large one.
 struct BitModel {
   std::uint16_t p0 = std::uint16_t(kProbabilityOne / 2);
-  std::uint8_t count = 0;
+  std::uint16_t count = 0;  // not a char type: its stores would alias every other value
 
   static constexpr int kMaxShift = 6;
   static constexpr std::uint32_t kMinP = 31;  // keeps both sub-ranges non-empty
@@ -25,16 +26,30 @@ struct BitModel {
   constexpr explicit BitModel(std::uint16_t initial_p0) : p0(initial_p0) {}
 
   void update(int bit) {
-    // shift = 1 + floor(log2(count + 1)), capped: 1, 2, 2, 3, 3, 3, 3, 4, ...
-    const int shift = std::min(int(std::bit_width(unsigned(count) + 1u)), kMaxShift);
-    std::uint32_t p = p0;
-    if (bit)
-      p -= p >> shift;
-    else
-      p += (kProbabilityOne - p) >> shift;
-    p0 = std::uint16_t(std::clamp<std::uint32_t>(p, kMinP, kProbabilityOne - kMinP));
-    if (count < 255) ++count;
+    const std::uint32_t p = p0;
+    if (count >= kSettled) {
+      // Settled (the common case): at the capped shift a probability inside [kMinP,
+      // kProbabilityOne - kMinP] stays inside, so no clamp is needed.
+      p0 = std::uint16_t(bit ? p - (p >> kMaxShift) : p + ((kProbabilityOne - p) >> kMaxShift));
+      return;
+    }
+    // shift = 1 + floor(log2(count + 1)): 1, 2, 2, 3, 3, 3, 3, 4, ... up to kMaxShift at
+    // count kSettled, where the count stops.
+    const int shift = kShift[count];
+    const std::uint32_t down = p - (p >> shift);
+    const std::uint32_t up = p + ((kProbabilityOne - p) >> shift);
+    p0 = std::uint16_t(std::clamp<std::uint32_t>(bit ? down : up, kMinP, kProbabilityOne - kMinP));
+    ++count;
   }
+
+ private:
+  static constexpr int kSettled = (1 << (kMaxShift - 1)) - 1;  // first count with the capped shift
+  static constexpr std::array<std::uint8_t, kSettled + 1> kShift = [] {
+    std::array<std::uint8_t, kSettled + 1> t{};
+    for (int c = 0; c <= kSettled; ++c)
+      t[std::size_t(c)] = std::uint8_t(std::min(int(std::bit_width(unsigned(c) + 1u)), kMaxShift));
+    return t;
+  }();
 };
 
 }  // namespace pupwave

@@ -27,12 +27,14 @@ DecodedBlock decode_block(std::span<const std::uint8_t> codeword, int planes, in
 // plus delta of the unknown interval (or exactly the known bits when `exact` and every
 // plane was decoded, for lossless coding).
 inline float reconstruct(const DecodedBlock& block, std::size_t i, double delta, bool exact) {
+  // Selects rather than branches: whether a coefficient is significant is a coin toss.
   const int plane = block.low_plane[i];
-  if (plane == 255) return 0.0f;
+  const bool significant = plane != 255;
   const std::int32_t v = block.known[i];
   const double mag = double(v < 0 ? -std::int64_t(v) : v);
-  const double offset = (exact && plane == 0) ? 0.0 : delta * double(1u << plane);
-  return float(v < 0 ? -(mag + offset) : mag + offset);
+  const double offset = (exact && plane == 0) ? 0.0 : delta * double(1u << (significant ? plane : 0));
+  const float r = float(v < 0 ? -(mag + offset) : mag + offset);
+  return significant ? r : 0.0f;
 }
 
 }  // namespace pupwave

@@ -1,5 +1,6 @@
 #include "codec/entropy/block_encoder.h"
 
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
@@ -64,89 +65,97 @@ class BitPlaneEncoder {
     gain_ = 0.0;
   }
 
-  // Codes bit-plane p of a coefficient not yet significant (at row y of slice z).
-  void code_significance(std::size_t p_flag, std::size_t i, int p, int ctx, std::size_t y, std::size_t z) {
+  // Codes bit-plane p of row r of column x of stripe s, not yet significant; true if 1.
+  bool code_significance(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
+    const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
     const int bit = int((q_[i] >> p) & 1u);
-    rc_.encode(bit, state_.models[std::size_t(ctx)]);
-    if (bit) become_significant(p_flag, i, p, y, z);
+    rc.encode(bit, state_.models[std::size_t(state_.significance_context(f))]);
+    if (bit) become_significant(rc, s, x, r, p);
+    return bit != 0;
   }
-  void become_significant(std::size_t p_flag, std::size_t i, int p, std::size_t y, std::size_t z) {
-    const auto [ctx, flip] = state_.sign_context(p_flag);
-    rc_.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
-    state_.make_significant(p_flag, negative_[i] != 0);
-    state_.mark_active(y, z);
+  void become_significant(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
+    const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
+    const auto [ctx, flip] = state_.sign_context(f);
+    rc.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
+    state_.make_significant(f, x, s.y0 + r, s.z, negative_[i] != 0);
     add_gain(m_[i], 0.0, reconstruction(q_[i], p));
   }
 
+  // As in the decoder: insignificant rows with a significant neighbour, not yet visited.
+  static std::uint32_t propagation_rows(std::uint32_t w, std::uint32_t rows) {
+    return (w >> kColumnNeighbour) & ~(w >> kColumnSignificant) & ~(w >> kColumnVisited) & rows;
+  }
+
   void significance_pass(int p) {
-    const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe(size_, [&](const Stripe& s) {
+    RangeEncoder rc = std::move(rc_);  // a local the compiler can keep in registers
+    for_each_stripe(state_, [&](const Stripe& s) {
       if (!state_.stripe_active(s.index)) return;  // every context 0: nothing to code
-      for (std::size_t x = 0; x < is; ++x)
-        for (std::size_t r = 0; r < s.rows; ++r) {
-          const std::size_t f = s.f0 + x + r * fs;
-          if (state_.flags(f) & kSignificant) continue;
-          const int ctx = state_.significance_context(f);
-          if (ctx == 0) continue;
-          code_significance(f, s.i0 + x + r * is, p, ctx, s.y0 + r, s.z);
-          state_.flags(f) |= kVisited;
-        }
-    });
-  }
-
-  void refinement_pass(int p) {
-    const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe(size_, [&](const Stripe& s) {
-      if (!state_.stripe_active(s.index)) return;  // nothing significant
-      for (std::size_t x = 0; x < is; ++x)
-        for (std::size_t r = 0; r < s.rows; ++r) {
-          const std::size_t f = s.f0 + x + r * fs;
-          if ((state_.flags(f) & (kSignificant | kVisited)) != kSignificant) continue;
-          const std::size_t i = s.i0 + x + r * is;
-          rc_.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(state_.refinement_context(f))]);
-          state_.flags(f) |= kRefined;
-          add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
-        }
-    });
-  }
-
-  void cleanup_pass(int p) {
-    const std::size_t fs = flag_row_, is = size_[0];
-    for_each_stripe(size_, [&](const Stripe& s) {
-      // An inactive full stripe has every column run-eligible until something in it becomes
-      // significant, so run_eligible need not be asked until then.
-      bool quiet = s.rows == kStripe && !state_.stripe_active(s.index);
-      for (std::size_t x = 0; x < is; ++x) {
-        const std::size_t f0 = s.f0 + x, i0 = s.i0 + x;
-        std::size_t r = 0;
-        if (s.rows == kStripe && (quiet || state_.run_eligible(f0))) {
-          const std::uint32_t column = q_[i0] | q_[i0 + is] | q_[i0 + 2 * is] | q_[i0 + 3 * is];
-          const bool any = (column >> p) & 1u;
-          rc_.encode(any, state_.models[kRunContext]);
-          if (!any) continue;
-          std::size_t first = 0;  // first coefficient of the column with bit p set
-          while (!((q_[i0 + first * is] >> p) & 1u)) ++first;
-          rc_.encode_equiprobable(int(first >> 1));
-          rc_.encode_equiprobable(int(first & 1));
-          become_significant(f0 + first * fs, i0 + first * is, p, s.y0 + first, s.z);
-          quiet = false;
-          r = first + 1;
-        }
-        for (; r < s.rows; ++r) {
-          const std::size_t f = f0 + r * fs;
-          if (state_.flags(f) & (kSignificant | kVisited)) continue;
-          code_significance(f, i0 + r * is, p, state_.significance_context(f), s.y0 + r, s.z);
+      for (std::size_t x = 0; x < size_[0]; ++x) {
+        std::uint32_t& w = state_.column(s.c0 + x);
+        for (std::uint32_t todo = propagation_rows(w, s.rows); todo != 0;) {
+          const unsigned r = unsigned(std::countr_zero(todo));
+          code_significance(rc, s, x, r, p);
+          w |= 1u << (kColumnVisited + r);
+          todo = propagation_rows(w, s.rows) & ~((2u << r) - 1u);
         }
       }
     });
-    state_.clear_visited();
+    rc_ = std::move(rc);
+  }
+
+  void refinement_pass(int p) {
+    RangeEncoder rc = std::move(rc_);
+    for_each_stripe(state_, [&](const Stripe& s) {
+      if (!state_.stripe_active(s.index)) return;  // nothing significant
+      for (std::size_t x = 0; x < size_[0]; ++x) {
+        std::uint32_t& w = state_.column(s.c0 + x);
+        const std::uint32_t todo = (w >> kColumnSignificant) & ~(w >> kColumnVisited) & s.rows;
+        for (std::uint32_t t = todo; t != 0; t &= t - 1) {
+          const unsigned r = unsigned(std::countr_zero(t));
+          const std::size_t i = s.i0 + x + r * size_[0];
+          rc.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(BlockState::refinement_context(w, r))]);
+          add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
+        }
+        w |= todo << kColumnRefined;
+      }
+    });
+    rc_ = std::move(rc);
+  }
+
+  void cleanup_pass(int p) {
+    const std::size_t is = size_[0];
+    RangeEncoder rc = std::move(rc_);
+    for_each_stripe(state_, [&](const Stripe& s) {
+      const bool full = s.rows == kRows;
+      for (std::size_t x = 0; x < size_[0]; ++x) {
+        std::uint32_t& w = state_.column(s.c0 + x);
+        std::uint32_t todo = ~((w >> kColumnSignificant) | (w >> kColumnVisited)) & s.rows;
+        if (full &&
+            (w & (kRows << kColumnSignificant | kRows << kColumnVisited | kRows << kColumnNeighbour)) == 0) {
+          const std::size_t i0 = s.i0 + x;
+          const std::uint32_t column = q_[i0] | q_[i0 + is] | q_[i0 + 2 * is] | q_[i0 + 3 * is];
+          const bool any = (column >> p) & 1u;
+          rc.encode(any, state_.models[kRunContext]);
+          if (!any) continue;
+          unsigned first = 0;  // first coefficient of the column with bit p set
+          while (!((q_[i0 + first * is] >> p) & 1u)) ++first;
+          rc.encode_equiprobable(int(first >> 1));
+          rc.encode_equiprobable(int(first & 1));
+          become_significant(rc, s, x, first, p);
+          todo &= ~((2u << first) - 1u);
+        }
+        for (; todo != 0; todo &= todo - 1) code_significance(rc, s, x, unsigned(std::countr_zero(todo)), p);
+        w &= ~(kRows << kColumnVisited);  // this plane's visits end with its cleanup
+      }
+    });
+    rc_ = std::move(rc);
   }
 
   std::span<const float> m_;
   std::span<const std::uint8_t> negative_;
   BlockState state_;
-  Extent size_;           // block extent (a copy: flag writes would force reloads of state_'s)
-  std::size_t flag_row_;  // flag positions between vertically adjacent coefficients
+  Extent size_;           // block extent (a copy: state writes would force reloads of state_'s)
+  std::size_t flag_row_;  // padded positions between vertically adjacent coefficients
   double delta_;
   std::vector<std::uint32_t> q_;
   RangeEncoder rc_;

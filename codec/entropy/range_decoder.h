@@ -3,7 +3,10 @@
 // its codeword as zero bytes, which is how truncated codewords are completed; any byte
 // sequence decodes to some bits without reading outside the given span.
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <span>
 
 #include "codec/entropy/bit_model.h"
@@ -12,8 +15,9 @@ namespace pupwave {
 
 class RangeDecoder {
  public:
-  explicit RangeDecoder(std::span<const std::uint8_t> codeword) : in_(codeword) {
-    for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next_byte();
+  explicit RangeDecoder(std::span<const std::uint8_t> codeword)
+      : next_(codeword.data()), end_(codeword.data() + codeword.size()) {
+    code_ = next_bytes(4);
   }
 
   // Decodes one bit with the adaptive probability `model`, then adapts it.
@@ -25,27 +29,43 @@ class RangeDecoder {
   int decode_equiprobable() { return decode_with(kProbabilityOne / 2); }
 
  private:
+  // The bit is selected without a branch: the bit of a well-adapted context is
+  // unpredictable, and a mispredicted jump costs more than computing both outcomes.
   int decode_with(std::uint32_t p0) {
     const std::uint32_t bound = (range_ >> kProbabilityBits) * p0;
-    int bit;
-    if (code_ < bound) {
-      range_ = bound;
-      bit = 0;
-    } else {
-      code_ -= bound;
-      range_ -= bound;
-      bit = 1;
-    }
-    while (range_ < (1u << 24)) {
-      range_ <<= 8;
-      code_ = (code_ << 8) | next_byte();
+    const int bit = code_ >= bound ? 1 : 0;
+    const std::uint32_t taken = bound & (0u - std::uint32_t(bit));
+    code_ -= taken;
+    range_ = bit ? range_ - bound : bound;
+    // Renormalisation is rare (about once per 8 bits of output), so a branch keeps the
+    // leading-zero count off the common path. range_ >= 2^13 after any decision
+    // (p0 >= 31), so at most 2 bytes are shifted in.
+    if (range_ < (1u << 24)) {
+      const int bytes = std::countl_zero(range_) >> 3;
+      range_ <<= 8 * bytes;
+      code_ = (code_ << (8 * bytes)) | next_bytes(bytes);
     }
     return bit;
   }
-  std::uint32_t next_byte() { return pos_ < in_.size() ? in_[pos_++] : 0u; }
+  // The next `bytes` (0..4) bytes of the codeword, big-endian, zeros past its end.
+  std::uint32_t next_bytes(int bytes) {
+    std::uint32_t word = 0;
+    if (end_ - next_ >= 4) {
+      std::memcpy(&word, next_, 4);
+      if constexpr (std::endian::native == std::endian::little) word = byteswap32(word);
+    } else {
+      const std::ptrdiff_t left = end_ - next_;
+      for (std::ptrdiff_t k = 0; k < 4; ++k) word = (word << 8) | (k < left ? next_[k] : 0u);
+    }
+    next_ += std::min<std::ptrdiff_t>(bytes, end_ - next_);
+    return std::uint32_t(std::uint64_t(word) >> (32 - 8 * bytes));
+  }
+  static std::uint32_t byteswap32(std::uint32_t v) {
+    return (v >> 24) | ((v >> 8) & 0xFF00u) | ((v << 8) & 0xFF0000u) | (v << 24);
+  }
 
-  std::span<const std::uint8_t> in_;
-  std::size_t pos_ = 0;
+  const std::uint8_t* next_;  // next unread byte of the codeword
+  const std::uint8_t* end_;
   std::uint32_t code_ = 0;
   std::uint32_t range_ = 0xFFFFFFFFu;
 };

@@ -46,14 +46,11 @@ class RangeEncoder {
                                             const TruncationPoint& point);
 
  private:
+  // Without a branch on the bit: refinement bits are coin tosses to a branch predictor.
   void encode_with(int bit, std::uint32_t p0) {
     const std::uint32_t bound = (range_ >> kProbabilityBits) * p0;
-    if (bit) {
-      low_ += bound;
-      range_ -= bound;
-    } else {
-      range_ = bound;
-    }
+    low_ += bound & (0u - std::uint32_t(bit != 0));
+    range_ = bit ? range_ - bound : bound;
     while (range_ < (1u << 24)) {
       range_ <<= 8;
       shift_low();

@@ -123,26 +123,28 @@ void requantize_brick(const BrickCoding& c, std::span<const float> coef, const E
     const float inv = 1.0f / step;  // as quantize() computes the index
     std::size_t significant = 0;
     float log2_sum = 0.0f;
+    bool too_large = false;
+    // Branch-free (whether an index is 0 is a coin toss at fine steps); the same float and
+    // double operations as quantize() and reconstruct(), so the values are identical.
     for (std::size_t z = 0; z < b.size[2]; ++z)
       for (std::size_t y = 0; y < b.size[1]; ++y) {
         const std::size_t row = b.offset[0] + size[0] * ((b.offset[1] + y) + size[1] * (b.offset[2] + z));
         for (std::size_t x = row; x < row + b.size[0]; ++x) {
           const float v = coef[x];
           const float m = (v < 0.0f ? -v : v) * inv;
-          if (m < 1.0f) {
-            out[x] = 0.0f;  // insignificant: the decoder's reconstruct() gives +0
-            continue;
-          }
-          if (!(m < float(1u << kMaxBitPlanes)))
-            throw IndexRangeError("quantization index too large for the block coder");
-          const std::uint32_t q = std::uint32_t(m);
-          ++significant;
-          log2_sum += approximate_log2(float(q));
-          // reconstruct() of a fully decoded coefficient: index + delta in double, then float.
+          const bool in_range = m < float(1u << kMaxBitPlanes);  // false for NaN too
+          too_large |= !in_range;
+          const std::uint32_t q = std::uint32_t(std::int32_t(in_range ? m : 0.0f));
+          const bool sig = q != 0;  // m >= 1
+          significant += sig ? 1 : 0;
+          log2_sum += approximate_log2(float(sig ? q : 1u));  // log2(1) is exactly 0
+          // reconstruct() of a fully decoded coefficient: index + delta in double, then float;
+          // insignificant: the decoder's reconstruct() gives +0.
           const float r = float(double(q) + c.delta);
-          out[x] = (v < 0.0f ? -r : r) * step;
+          out[x] = sig ? (v < 0.0f ? -r : r) * step : 0.0f;
         }
       }
+    if (too_large) throw IndexRangeError("quantization index too large for the block coder");
     if (stats == nullptr) continue;
     stats->significant += double(significant);
     stats->log2_sum += double(log2_sum);
@@ -161,21 +163,24 @@ std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::s
   const auto blocks = brick_blocks(c, size);
   require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(), "brick block count");
   std::vector<T> coef(size[0] * size[1] * size[2], T(0));
-  std::vector<T> values;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const CodeBlock& b = blocks[i];
     if (b.resolution > c.levels - level || entries[i].passes == 0) continue;
     const DecodedBlock d =
         decode_block(codewords[i], entries[i].planes, entries[i].passes, b.size, b.orientation);
-    values.assign(b.count(), T(0));
-    for (std::size_t k = 0; k < values.size(); ++k) {
-      const float v = reconstruct(d, k, c.delta, c.reversible);
-      if constexpr (std::is_floating_point_v<T>)
-        values[k] = v * steps[b.band];
-      else
-        values[k] = T(v);
-    }
-    copy_block_in(values.data(), size, b, coef.data());
+    // Straight into the block's place in the brick (no block-sized copy in between).
+    std::size_t k = 0;
+    for (std::size_t z = 0; z < b.size[2]; ++z)
+      for (std::size_t y = 0; y < b.size[1]; ++y) {
+        T* row = coef.data() + b.offset[0] + size[0] * ((b.offset[1] + y) + size[1] * (b.offset[2] + z));
+        for (std::size_t x = 0; x < b.size[0]; ++x, ++k) {
+          const float v = reconstruct(d, k, c.delta, c.reversible);
+          if constexpr (std::is_floating_point_v<T>)
+            row[x] = v * steps[b.band];
+          else
+            row[x] = T(v);
+        }
+      }
   }
   return coef;
 }

@@ -1,6 +1,8 @@
 // Round trips of the adaptive binary range coder, including every truncation point.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <random>
 #include <vector>
 
@@ -92,6 +94,32 @@ TEST(RangeCoder, EmptyStreamIsEmpty) {
   BitModel m;
   enc.encode(0, m);
   EXPECT_LE(enc.finish().size(), 1u);
+}
+
+// The settled model adapts without clamping (bit_model.h): every probability the model can
+// hold must stay inside [kMinP, one - kMinP] after either bit, and the first updates must
+// follow the count-based schedule 1, 2, 2, 3, 3, 3, 3, 4, ... up to kMaxShift.
+TEST(BitModel, SettledUpdatesStayInBoundsAndScheduleHolds) {
+  for (std::uint32_t p = BitModel::kMinP; p <= kProbabilityOne - BitModel::kMinP; ++p)
+    for (int bit : {0, 1}) {
+      BitModel m{std::uint16_t(p)};
+      for (int i = 0; i < 40; ++i) m.update(1 - bit);  // settle the count (p moves, stays legal)
+      m.p0 = std::uint16_t(p);
+      m.update(bit);
+      const std::uint32_t expect =
+          bit ? p - (p >> BitModel::kMaxShift) : p + ((kProbabilityOne - p) >> BitModel::kMaxShift);
+      ASSERT_EQ(m.p0, expect) << "p0 " << p << " bit " << bit;
+      ASSERT_GE(m.p0, BitModel::kMinP);
+      ASSERT_LE(m.p0, kProbabilityOne - BitModel::kMinP);
+    }
+  BitModel m;
+  std::uint32_t p = m.p0;
+  for (int n = 0; n < 40; ++n) {
+    const int shift = std::min(int(std::bit_width(unsigned(n) + 1u)), BitModel::kMaxShift);
+    m.update(0);
+    p = std::min<std::uint32_t>(p + ((kProbabilityOne - p) >> shift), kProbabilityOne - BitModel::kMinP);
+    ASSERT_EQ(m.p0, p) << "update " << n;
+  }
 }
 
 }  // namespace
