@@ -211,6 +211,10 @@ TEST(HostileHeader, EmptySparseRegionsCostNothing) {
         run_cli_bounded({"decompress", scratch(name + ".pw"), scratch(name + ".vdb"), "--threads", "2"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_LT(r.seconds, 5.0) << n;
+    // Was 2.8 GiB at 512^3: now the stream, one mask batch and the program.
+    EXPECT_LT(r.max_rss_kb, 200 * 1024) << n;
+    ::testing::Test::RecordProperty(
+        name + "_vdb", std::to_string(r.seconds) + " s, " + std::to_string(r.max_rss_kb) + " KiB resident");
     const auto grids = cli::read_vdb(scratch(name + ".vdb"));
     ASSERT_EQ(grids.size(), 1u);
     EXPECT_EQ(grids[0].active_voxels(), 0u);
@@ -266,6 +270,9 @@ TEST(HostileHeader, OneActiveVoxelInTheCornerOfAHugeSparseBox) {
       run_cli_bounded({"decompress", scratch("corner.pw"), scratch("corner.vdb"), "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_LT(r.seconds, 5.0);
+  EXPECT_LT(r.max_rss_kb, 200 * 1024);
+  ::testing::Test::RecordProperty(
+      "corner_vdb", std::to_string(r.seconds) + " s, " + std::to_string(r.max_rss_kb) + " KiB resident");
   const auto grids = cli::read_vdb(scratch("corner.vdb"));
   ASSERT_EQ(grids.size(), 1u);
   EXPECT_EQ(grids[0].active_voxels(), 1u);
