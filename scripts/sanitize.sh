@@ -12,7 +12,7 @@ jobs=$(nproc)
 # The test programs that exercise the decoders and parsers, plus the fuzz targets' corpus
 # runners; tests/hostile is not built (ASan cannot run under an address-space limit).
 asan_tests="codec_tests volcodec_tests cli_tests fuzz_image fuzz_image_level fuzz_volume fuzz_info fuzz_pnm
-  fuzz_spec fuzz_mesh"
+  fuzz_spec fuzz_mesh fuzz_c_api fuzz_hdf5_chunk"
 # -O1: sanitizer builds compile about twice as fast as at -O3 and still run the tests quickly.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
   -DPUPWAVE_SANITIZE=ON -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
@@ -30,7 +30,7 @@ ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 \
 # out of the repository) with the dictionaries.
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPUPWAVE_BUILD_FUZZERS=ON -DPUPWAVE_BUILD_TESTS=OFF -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
-targets="image image_level volume info pnm spec mesh"
+targets="image image_level volume info pnm spec mesh c_api hdf5_chunk"
 cmake --build build-fuzz -j"$jobs" --target $(printf 'fuzz_%s ' $targets)
 dict_for() {
   case $1 in

@@ -92,7 +92,9 @@ void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const Decompr
   const auto start = std::chrono::steady_clock::now();
   auto grids = [&] {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
-    return decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits);
+    // .vdb is sparse: a sparse box grid comes as blocks of its non-empty bricks (docs/bitstream.md).
+    const SparseBoxForm form = is_vdb_path(opt.output) ? SparseBoxForm::blocks : SparseBoxForm::box;
+    return decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits, form);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_volume_output(grids, opt);

@@ -12,7 +12,7 @@ StreamInfo info(std::span<const std::uint8_t> stream) {
   return detail::translate_errors([&] {
     StreamInfo out;
     if (is_volume_stream(stream)) {
-      const ParsedVolumeStream s = parse_volume_stream(stream);
+      const ParsedVolumeStream s = parse_volume_stream(stream, {}, SparseBoxCount::content);
       const VolumeStreamHeader& h = s.header;
       if (h.grids.empty()) throw DecodeError("volume stream holds no grid");
       const pupwave::Volume& v = h.grids[0].volume;

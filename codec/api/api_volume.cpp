@@ -257,6 +257,15 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
     std::vector<VolumeGrid> grids = decode_volumes(stream, level, *executor);
     std::vector<Volume> out;
     for (VolumeGrid& g : grids) {
+      // A sparse-native grid (a .vdb's) decodes to blocks and tiles, no box samples: the API's
+      // arrays are its dense active bounding box (without this they came back all zeros).
+      if (g.is_opaque())
+        detail::fail("grid '" + g.name + "' is carried as OpenVDB bytes only (use the CLI's .vdb output)");
+      try {
+        make_dense_box(g, kDefaultMaxDecodePixels);
+      } catch (const std::runtime_error& e) {  // a box over the decode limit
+        throw Error(Status::unsupported, e.what());
+      }
       Volume v;
       v.name = g.name;
       v.origin = g.origin;

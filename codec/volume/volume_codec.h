@@ -91,6 +91,20 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
 std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level,
                                        const Executor& executor, const DecodeLimits& limits);
 
+// How decode_volumes returns a sparse box grid (one stored with a MASK chunk).
+enum class SparseBoxForm : std::uint8_t {
+  box,     // a Volume over its whole box with its active mask (what raw output and arrays need);
+           // the decode limit counts every voxel of the box
+  blocks,  // sparse-native (VolumeGrid::blocks): one block per brick holding anything but inactive
+           // background, nothing else allocated (what .vdb output needs; volume.dims stays the
+           // box, or 0 when every voxel is inactive background); the decode limit counts the
+           // voxels of those bricks at full resolution
+};
+// The same, choosing the form of sparse box grids (the above: SparseBoxForm::box).
+std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level,
+                                       const Executor& executor, const DecodeLimits& limits,
+                                       SparseBoxForm form);
+
 // Decodes one box grid straight into the caller's typed buffer, brick by brick, so the grid is
 // never held as double: `allocate` is called once with the grid's description at `level` (name,
 // placement, volume.dims, type, background; no samples; volume.is_sparse() tells a sparse box,

@@ -8,6 +8,7 @@
 
 #include "codec/error.h"
 #include "codec/format/chunks.h"
+#include "codec/volume/volume_box_mask.h"
 #include "codec/volume/volume_brick.h"
 #include "codec/volume/volume_codec.h"
 #include "codec/volume/volume_format.h"
@@ -30,10 +31,15 @@ Transform1DPtr stream_transform(const VolumeStreamHeader& h) {
   }
 }
 
-// The bricks of one grid: of its box, or of each of its blocks in turn (block: which one).
+// The bricks of one grid: of its box (computed, never listed: a sparse box may have millions),
+// or of each of its blocks in turn (listed; block: which one).
 struct GridBricks {
-  std::vector<BrickBox> boxes;
+  BoxBricks box;
+  std::vector<BrickBox> listed;
   std::vector<std::uint32_t> block;
+  bool is_listed = true;
+  std::size_t count() const { return is_listed ? listed.size() : box.count(); }
+  BrickBox at(std::size_t i) const { return is_listed ? listed[i] : box.box(i); }
 };
 
 // Whether each brick of `boxes` holds an active voxel by `states` (voxels of a `dims` box).
@@ -66,9 +72,9 @@ std::vector<std::uint8_t> expected_bricks(const ParsedVolumeStream& s, std::size
       at += b.volume.count();
     }
   } else if (v.is_sparse()) {
-    mark_active_bricks(v.dims, s.masks[g].states.data(), brick_boxes(v.dims, edge), expected);
+    for (std::uint8_t bits : s.masks[g].bricks) expected.push_back((bits & kBrickHasActive) != 0 ? 1 : 0);
   } else {
-    expected.assign(brick_boxes(v.dims, edge).size(), 1);
+    expected.assign(BoxBricks(v.dims, s.header.brick_log2).count(), 1);
   }
   return expected;
 }
@@ -76,9 +82,9 @@ std::vector<std::uint8_t> expected_bricks(const ParsedVolumeStream& s, std::size
 // Checks that the BRIK chunks code exactly the bricks every grid needs, once each.
 void check_brick_set(const ParsedVolumeStream& s, const std::vector<GridBricks>& bricks) {
   std::vector<std::vector<std::uint8_t>> seen(bricks.size());
-  for (std::size_t g = 0; g < bricks.size(); ++g) seen[g].assign(bricks[g].boxes.size(), 0);
+  for (std::size_t g = 0; g < bricks.size(); ++g) seen[g].assign(bricks[g].count(), 0);
   for (const BrickChunk& b : s.bricks) {
-    require_stream(b.brick < bricks[b.grid].boxes.size(), "volume stream: brick index out of range");
+    require_stream(b.brick < bricks[b.grid].count(), "volume stream: brick index out of range");
     require_stream(seen[b.grid][b.brick] == 0, "volume stream: repeated brick");
     seen[b.grid][b.brick] = 1;
   }
@@ -97,28 +103,79 @@ void place(Volume& out, const Extent& offset, const Extent& part, const std::vec
         out.samples[out.index(offset[0] + x, offset[1] + y, offset[2] + z)] = values[k++];
 }
 
-// Full-resolution sparse restore: active mask from the states, inactive values exact
-// (`other` indexes mask.other_values and advances past those used).
-void restore_states(Volume& out, const std::uint8_t* states, const MaskChunk& mask, std::size_t& other) {
-  out.active.assign(out.count(), 0);
-  for (std::size_t i = 0; i < out.count(); ++i) {
-    switch (VoxelState(states[i])) {
+// Exact states of `n` voxels of `out` from voxel index `at`: active mask and inactive values
+// (`other` indexes `others` and advances past those used).
+void restore_run(Volume& out, std::size_t at, const std::uint8_t* states, std::size_t n,
+                 const std::vector<double>& others, std::size_t& other) {
+  for (std::size_t i = at; i < at + n; ++i) {
+    switch (VoxelState(states[i - at])) {
       case VoxelState::active: out.active[i] = 1; break;
       case VoxelState::inactive_background: out.samples[i] = out.background; break;
       case VoxelState::inactive_negative: out.samples[i] = -out.background; break;
       case VoxelState::inactive_other:
-        require_stream(other < mask.other_values.size(), "volume stream: missing inactive values");
-        out.samples[i] = mask.other_values[other++];
+        require_stream(other < others.size(), "volume stream: missing inactive values");
+        out.samples[i] = others[other++];
         break;
       default: throw DecodeError("volume stream: bad voxel state");
     }
   }
 }
 
-void restore_mask(Volume& out, const MaskChunk& mask) {
-  std::size_t other = 0;
-  restore_states(out, mask.states.data(), mask, other);
+// Full-resolution sparse restore of a block's states (BLKS).
+void restore_states(Volume& out, const std::uint8_t* states, const MaskChunk& mask, std::size_t& other) {
+  out.active.assign(out.count(), 0);
+  restore_run(out, 0, states, out.count(), mask.other_values, other);
+}
+
+// Full-resolution sparse restore of a box, its states streamed from the MASK frame.
+void restore_mask(Volume& out, const BoxMask& mask) {
+  out.active.assign(out.count(), 0);
+  std::size_t other = 0, first = 0;
+  const std::uint8_t* states = nullptr;
+  MaskRows rows(mask.frame, out.dims);
+  while (const std::size_t n = rows.next(first, states))
+    restore_run(out, first * out.dims[0], states, n * out.dims[0], mask.other_values, other);
   require_stream(other == mask.other_values.size(), "volume stream: extra inactive values");
+}
+
+// Value of an inactive voxel of state `s` (advancing `other` past an inactive_other one); 0 for
+// an active voxel.
+double inactive_value(std::uint8_t s, double background, const std::vector<double>& others,
+                      std::size_t& other) {
+  switch (VoxelState(s)) {
+    case VoxelState::active: return 0.0;
+    case VoxelState::inactive_background: return background;
+    case VoxelState::inactive_negative: return -background;
+    case VoxelState::inactive_other:
+      require_stream(other < others.size(), "volume stream: missing inactive values");
+      return others[other++];
+    default: throw DecodeError("volume stream: bad voxel state");
+  }
+}
+
+// Reduced-resolution restore of a box (`fine` its full-resolution dims), streamed: a coarse voxel
+// is active when any of its children is; an inactive one takes the mean of its children's exact
+// values (summed in voxel order, as the full-resolution restore would).
+void restore_coarse_box(Volume& out, const Extent& fine, const BoxMask& mask, int level) {
+  out.active.assign(out.count(), 0);
+  std::vector<double> sum(out.count(), 0.0);
+  std::vector<std::uint32_t> n(out.count(), 0);
+  std::size_t other = 0, first = 0;
+  const std::uint8_t* states = nullptr;
+  MaskRows rows(mask.frame, fine);
+  while (const std::size_t count = rows.next(first, states))
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::size_t y = (first + r) % fine[1], z = (first + r) / fine[1];
+      const std::uint8_t* row = states + r * fine[0];
+      for (std::size_t x = 0; x < fine[0]; ++x) {
+        const std::size_t c = out.index(x >> level, y >> level, z >> level);
+        if (row[x] == std::uint8_t(VoxelState::active)) out.active[c] = 1;
+        sum[c] += inactive_value(row[x], out.background, mask.other_values, other);
+        ++n[c];
+      }
+    }
+  for (std::size_t c = 0; c < out.count(); ++c)
+    if (!out.active[c]) out.samples[c] = sum[c] / double(n[c]);
 }
 
 // Reduced-resolution sparse restore: a coarse voxel is active when any of its children is;
@@ -168,16 +225,15 @@ std::vector<GridBricks> grid_bricks(const ParsedVolumeStream& s) {
     if (s.header.blocked[g] == 1) {
       for (std::uint32_t k = 0; k < s.layouts[g].blocks.size(); ++k)
         for (const BrickBox& box : brick_boxes(s.layouts[g].blocks[k].volume.dims, edge)) {
-          bricks[g].boxes.push_back(box);
+          bricks[g].listed.push_back(box);
           bricks[g].block.push_back(k);
         }
       continue;
     }
-    std::size_t count = 1;
-    for (std::size_t d : v.dims) count *= (d + edge - 1) / edge;
-    require_stream(v.is_sparse() || count <= s.bricks.size(), "volume stream truncated (missing bricks)");
-    bricks[g].boxes = brick_boxes(v.dims, edge);
-    bricks[g].block.assign(bricks[g].boxes.size(), 0);
+    bricks[g].box = BoxBricks(v.dims, s.header.brick_log2);
+    bricks[g].is_listed = false;
+    require_stream(v.is_sparse() || bricks[g].count() <= s.bricks.size(),
+                   "volume stream truncated (missing bricks)");
   }
   return bricks;
 }
@@ -231,20 +287,94 @@ void restore_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
   require_stream(other == layout.mask.other_values.size(), "volume stream: extra inactive values");
 }
 
-// Active masks and exact inactive values of the sparse grids (coarsened at level > 0).
-void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s, int level) {
+// Active masks and exact inactive values of the sparse grids (coarsened at level > 0); sparse
+// boxes turned into blocks (box_to_blocks) were restored then.
+void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s, int level, bool to_blocks) {
   for (std::size_t g = 0; g < grids.size(); ++g) {
     if (s.header.blocked[g] == 1) restore_blocks(grids[g], s.layouts[g], level);
-    if (!s.header.grids[g].volume.is_sparse()) continue;
-    if (level == 0) {
+    if (!s.header.grids[g].volume.is_sparse() || to_blocks) continue;
+    if (level == 0)
       restore_mask(grids[g].volume, s.masks[g]);
-      continue;
-    }
-    Volume fine = s.header.grids[g].volume;  // full-resolution topology and inactive values
-    fine.samples.assign(fine.count(), 0.0);
-    restore_mask(fine, s.masks[g]);
-    restore_coarse_mask(grids[g].volume, fine, level);
+    else
+      restore_coarse_box(grids[g].volume, s.header.grids[g].volume.dims, s.masks[g], level);
   }
+}
+
+// Children of coarse voxel c (level-`level` index within a brick of fine extent `size`).
+double children(const Extent& size, const Extent& c, int level) {
+  double n = 1.0;
+  for (std::size_t a = 0; a < 3; ++a)
+    n *= double(std::min(std::size_t(1) << level, size[a] - (c[a] << level)));
+  return n;
+}
+
+// One row of a sparse box's states into the blocks of its bricks (box_to_blocks): active mask,
+// exact inactive values at level 0, sums of the children's inactive values above.
+void scatter_row(std::vector<VolumeBlock>& blocks, std::size_t k, const BoxMask& mask,
+                 const BoxBricks& geometry, const std::uint8_t* row, std::size_t y, std::size_t z, int level,
+                 std::size_t& other) {
+  const std::size_t base = geometry.at(0, y, z), edge = std::size_t(1) << geometry.log2;
+  for (std::size_t bx = 0; bx < geometry.n[0]; ++bx) {
+    if (mask.bricks[base + bx] == 0) continue;
+    Volume& v = blocks[k++].volume;
+    const std::size_t x0 = bx * edge, x1 = std::min(x0 + edge, geometry.dims[0]);
+    const std::size_t at = v.index(0, (y & (edge - 1)) >> level, (z & (edge - 1)) >> level);
+    for (std::size_t x = x0; x < x1; ++x) {
+      const std::size_t c = at + ((x - x0) >> level);
+      if (row[x] == std::uint8_t(VoxelState::active)) v.active[c] = 1;
+      const double value = inactive_value(row[x], v.background, mask.other_values, other);
+      if (level == 0)
+        v.samples[c] = value;
+      else
+        v.samples[c] += value;
+    }
+  }
+}
+
+// A sparse box grid in the sparse-native form (SparseBoxForm::blocks): one block per brick whose
+// states are not all inactive background, at 1/2^level, placed from the grid's (scaled) origin,
+// with its active mask and inactive values (coarse ones: the mean of their children). Nothing is
+// allocated for empty bricks, and the states are streamed only up to the last non-empty brick.
+// `content` receives the indices of those bricks (block k holds brick content[k]).
+void box_to_blocks(VolumeGrid& g, const BoxMask& mask, const BoxBricks& geometry, int level,
+                   std::vector<std::uint32_t>& content) {
+  for (std::size_t i = 0; i < mask.bricks.size(); ++i) {
+    if (mask.bricks[i] == 0) continue;
+    const BrickBox box = geometry.box(i);
+    VolumeBlock b;
+    for (std::size_t a = 0; a < 3; ++a) b.origin[a] = g.origin[a] + std::int64_t(box.offset[a] >> level);
+    b.volume = Volume(level_extent(box.size, level), g.volume.type);  // zero: sums at level > 0
+    b.volume.background = g.volume.background;
+    b.volume.active.assign(b.volume.count(), 0);
+    g.blocks.push_back(std::move(b));
+    content.push_back(std::uint32_t(i));
+  }
+  std::size_t other = 0, first = 0;
+  const std::uint8_t* states = nullptr;
+  MaskRows rows(mask.frame, geometry.dims);
+  for (std::size_t n = 0; first + n < mask.last_row && (n = rows.next(first, states)) > 0;)
+    for (std::size_t r = 0; r < n && first + r < mask.last_row; ++r) {
+      const std::size_t y = (first + r) % geometry.dims[1], z = (first + r) / geometry.dims[1];
+      const auto k = std::lower_bound(content.begin(), content.end(), geometry.at(0, y, z)) - content.begin();
+      scatter_row(g.blocks, std::size_t(k), mask, geometry, states + r * geometry.dims[0], y, z, level,
+                  other);
+    }
+  for (std::size_t k = 0; level > 0 && k < content.size(); ++k) {
+    Volume& v = g.blocks[k].volume;
+    const Extent size = geometry.box(content[k]).size;
+    for (std::size_t z = 0; z < v.dims[2]; ++z)
+      for (std::size_t y = 0; y < v.dims[1]; ++y)
+        for (std::size_t x = 0; x < v.dims[0]; ++x)
+          if (!v.active[v.index(x, y, z)]) v.samples[v.index(x, y, z)] /= children(size, {x, y, z}, level);
+  }
+  g.volume.samples.clear();
+  if (g.blocks.empty()) g.volume.dims = {0, 0, 0};  // nothing but background: an empty grid
+}
+
+// Writes the active voxels of a decoded brick (extent `part`) into a block of its own extent.
+void place_active(Volume& out, const Extent& part, const std::vector<double>& values) {
+  for (std::size_t i = 0; i < part[0] * part[1] * part[2]; ++i)
+    if (out.active[i]) out.samples[i] = values[i];
 }
 
 // A brick's decoded values at `level` (outliers applied at full resolution), rounded to the
@@ -259,34 +389,22 @@ std::vector<double> brick_values(const ParsedVolumeStream& s, const BrickCoding&
   return values;
 }
 
-void fill_output(const VolumeOutput& out, double value, VoxelType type) {
-  value = to_stored(value, type);
-  for (std::size_t z = 0; z < out.dims[2]; ++z)
-    for (std::size_t y = 0; y < out.dims[1]; ++y)
-      for (std::size_t x = 0; x < out.dims[0]; ++x) out.set(x, y, z, value);
-}
-
-// restore_states for a typed output: inactive voxels get their exact values, `out.active` (if
-// set) the mask.
-void restore_output_states(const VolumeOutput& out, double background, VoxelType type,
-                           const MaskChunk& mask) {
-  std::size_t i = 0, other = 0;
-  for (std::size_t z = 0; z < out.dims[2]; ++z)
-    for (std::size_t y = 0; y < out.dims[1]; ++y)
-      for (std::size_t x = 0; x < out.dims[0]; ++x, ++i) {
-        const auto state = VoxelState(mask.states[i]);
-        if (out.active != nullptr) out.active[i] = state == VoxelState::active ? 1 : 0;
-        switch (state) {
-          case VoxelState::active: break;
-          case VoxelState::inactive_background: out.set(x, y, z, to_stored(background, type)); break;
-          case VoxelState::inactive_negative: out.set(x, y, z, to_stored(-background, type)); break;
-          case VoxelState::inactive_other:
-            require_stream(other < mask.other_values.size(), "volume stream: missing inactive values");
-            out.set(x, y, z, to_stored(mask.other_values[other++], type));
-            break;
-          default: throw DecodeError("volume stream: bad voxel state");
-        }
+// restore_mask for a typed output: inactive voxels get their exact values, `out.active` (if set)
+// the mask. Every voxel is active (in a coded brick) or set here, so nothing is filled before.
+void restore_output_states(const VolumeOutput& out, double background, VoxelType type, const BoxMask& mask) {
+  std::size_t other = 0, first = 0;
+  const std::uint8_t* states = nullptr;
+  MaskRows rows(mask.frame, out.dims);
+  while (const std::size_t n = rows.next(first, states))
+    for (std::size_t r = 0; r < n; ++r) {
+      const std::size_t y = (first + r) % out.dims[1], z = (first + r) / out.dims[1];
+      for (std::size_t x = 0; x < out.dims[0]; ++x) {
+        const std::uint8_t s = states[r * out.dims[0] + x];
+        if (out.active != nullptr) out.active[(first + r) * out.dims[0] + x] = s == 1 ? 1 : 0;
+        if (s != std::uint8_t(VoxelState::active))
+          out.set(x, y, z, to_stored(inactive_value(s, background, mask.other_values, other), type));
       }
+    }
   require_stream(other == mask.other_values.size(), "volume stream: extra inactive values");
 }
 
@@ -300,7 +418,14 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
 
 std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level, const Executor& ex,
                                        const DecodeLimits& limits) {
-  const ParsedVolumeStream s = parse_volume_stream(bytes, limits);
+  return decode_volumes(bytes, level, ex, limits, SparseBoxForm::box);
+}
+
+std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int level, const Executor& ex,
+                                       const DecodeLimits& limits, SparseBoxForm form) {
+  const bool to_blocks = form == SparseBoxForm::blocks;
+  const ParsedVolumeStream s =
+      parse_volume_stream(bytes, limits, to_blocks ? SparseBoxCount::content : SparseBoxCount::box);
   const VolumeStreamHeader& h = s.header;
   if (level < 0 || level > h.levels)
     throw std::invalid_argument("level " + std::to_string(level) + " exceeds the stream's " +
@@ -310,6 +435,7 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
   const auto bricks = grid_bricks(s);
   check_brick_set(s, bricks);
   std::vector<VolumeGrid> grids = h.grids;
+  std::vector<std::vector<std::uint32_t>> content(grids.size());  // box_to_blocks: brick of each block
   for (std::size_t i = 0; i < grids.size(); ++i) {
     VolumeGrid& g = grids[i];
     if (level > 0) scale_placement(g, level);
@@ -319,20 +445,29 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
       g.opaque = s.opaque[i];  // carried verbatim, at every level
     else if (h.blocked[i] == 1)
       allocate_blocks(g, s.layouts[i], level);
+    else if (to_blocks && h.grids[i].volume.is_sparse())
+      box_to_blocks(g, s.masks[i], bricks[i].box, level, content[i]);
     else
       g.volume.samples.assign(g.volume.count(), g.volume.background);
   }
   // Bricks are the parallel tasks; each brick's inverse transform runs serially inside its task.
   ex.run(s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
-    const BrickBox& box = bricks[b.grid].boxes[b.brick];
+    const BrickBox box = bricks[b.grid].at(b.brick);
     const auto values = brick_values(s, coding, b, box, level);
     const Extent at{box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level};
     VolumeGrid& g = grids[b.grid];
+    const Extent part = level_extent(box.size, level);
+    if (!content[b.grid].empty()) {  // a sparse box as blocks: its active voxels (restored already)
+      const auto& c = content[b.grid];
+      place_active(g.blocks[std::size_t(std::lower_bound(c.begin(), c.end(), b.brick) - c.begin())].volume,
+                   part, values);
+      return;
+    }
     Volume& target = h.blocked[b.grid] == 1 ? g.blocks[bricks[b.grid].block[b.brick]].volume : g.volume;
-    place(target, at, level_extent(box.size, level), values);  // bricks never overlap
+    place(target, at, part, values);  // bricks never overlap
   });
-  restore_sparse(grids, s, level);
+  restore_sparse(grids, s, level, to_blocks);
   return grids;
 }
 
@@ -359,11 +494,10 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
   const VolumeOutput out = allocate(grid);
   if (out.data == nullptr || out.dims != grid.volume.dims)
     throw std::invalid_argument("decode_volume_into: the output does not match the grid's dims");
-  if (sparse) fill_output(out, grid.volume.background, grid.volume.type);  // voxels of bricks not coded
   ex.run(s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
     if (b.grid != g) return;
-    const BrickBox& box = bricks[g].boxes[b.brick];
+    const BrickBox box = bricks[g].at(b.brick);
     const auto values = brick_values(s, coding, b, box, level);
     const Extent part = level_extent(box.size, level);
     std::size_t k = 0;

@@ -27,7 +27,7 @@ GridCounts count_grid(const ParsedVolumeStream& s, std::size_t g) {
     for (const VolumeTile& t : l.tiles)
       if (t.active) n.active += std::size_t(t.edge) * t.edge * t.edge, ++n.tiles;
   } else {
-    n.active = v.is_sparse() ? active_states(s.masks[g]) : v.count();
+    n.active = v.is_sparse() ? s.masks[g].active : v.count();
   }
   return n;
 }
@@ -35,7 +35,7 @@ GridCounts count_grid(const ParsedVolumeStream& s, std::size_t g) {
 }  // namespace
 
 std::string describe_volume_stream(std::span<const std::uint8_t> bytes) {
-  const ParsedVolumeStream s = parse_volume_stream(bytes);
+  const ParsedVolumeStream s = parse_volume_stream(bytes, {}, SparseBoxCount::content);
   const VolumeStreamHeader& h = s.header;
   std::ostringstream out;
   out << "pupwave volume stream, " << bytes.size() << " bytes\n"

@@ -12,6 +12,7 @@
 #include "codec/entropy/block_index.h"
 #include "codec/format/decode_limits.h"
 #include "codec/volume/volume.h"
+#include "codec/volume/volume_box_mask.h"
 
 namespace pupwave {
 
@@ -81,15 +82,23 @@ void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& brick);
 
 struct ParsedVolumeStream {
   VolumeStreamHeader header;
-  std::vector<MaskChunk> masks;                   // one per grid (empty for dense grids)
+  std::vector<BoxMask> masks;                     // one per grid (empty unless a sparse box)
   std::vector<BlocksChunk> layouts;               // one per grid (empty unless sparse-native)
   std::vector<std::vector<std::uint8_t>> opaque;  // one per grid (empty unless opaque)
   std::vector<std::size_t> grid_bytes;            // per grid: bytes of its MASK / BLKS / BRIK chunks
   std::vector<BrickChunk> bricks;                 // codewords point into the parsed bytes
 };
 
+// What the decode limit counts of a sparse box grid (docs/bitstream.md, Decoder bounds).
+enum class SparseBoxCount : std::uint8_t {
+  box,      // every voxel of its box (a dense output: raw, the API's arrays); checked on the header
+  content,  // the voxels of its bricks holding anything but inactive background (sparse output)
+};
+
 // Parses and validates a whole stream. Throws DecodeError for any inconsistency, or when the
-// voxels of all grids exceed `limits` (checked before any mask is decompressed).
-ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits = {});
+// voxels to decode (dense grids, sparse-native blocks, sparse boxes as `count` says) exceed
+// `limits`: box voxels before any mask is read, content voxels as soon as the mask pass finds them.
+ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits = {},
+                                       SparseBoxCount count = SparseBoxCount::box);
 
 }  // namespace pupwave

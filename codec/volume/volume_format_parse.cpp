@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
@@ -111,7 +112,18 @@ VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels, std::uint8_t& blo
   return g;
 }
 
-VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const DecodeLimits& limits) {
+// Voxels a decode allocates for the grids' headers alone: dense grids, and sparse boxes whole when
+// `count` says so (sparse-native blocks are counted with their BLKS chunk, box content with its mask).
+std::size_t header_decoded_voxels(const VolumeStreamHeader& h, SparseBoxCount count) {
+  std::size_t n = 0;
+  for (std::size_t g = 0; g < h.grids.size(); ++g)
+    if (!h.blocked[g] && (!h.grids[g].volume.is_sparse() || count == SparseBoxCount::box))
+      n += h.grids[g].volume.count();
+  return n;
+}
+
+VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const DecodeLimits& limits,
+                               SparseBoxCount count) {
   ByteReader r(payload, "volume header");
   VolumeStreamHeader h;
   const std::uint32_t reversible = r.u8();
@@ -135,8 +147,8 @@ VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const Deco
   h.blocked.assign(grids, 0);
   for (std::size_t i = 0; i < grids; ++i) h.grids.push_back(read_grid(r, total, h.blocked[i]));
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in header");
-  // Before any mask (one byte per voxel) or output is allocated.
-  check_decode_limit(total, limits, "volume stream: voxels of all grids");
+  // Before any mask is read or output allocated.
+  check_decode_limit(header_decoded_voxels(h, count), limits, "volume stream: voxels of all grids");
   return h;
 }
 
@@ -155,14 +167,21 @@ MaskChunk read_states(ByteReader& r, std::size_t count) {
   return m;
 }
 
-MaskChunk read_mask(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h, std::uint32_t& grid) {
+// A sparse box grid's MASK: states kept compressed and summarised per brick (volume_box_mask.h).
+// `already`: voxels counted against the limit before it (box mode: the limit was applied to boxes).
+BoxMask read_mask(std::span<const std::uint8_t> payload, const VolumeStreamHeader& h, std::uint32_t& grid,
+                  const DecodeLimits& limits, std::size_t already) {
   ByteReader r(payload, "volume mask");
   grid = r.u32();
   require_stream(grid < h.grids.size() && h.grids[grid].volume.is_sparse(), "volume stream: mask grid");
-  const Volume& v = h.grids[grid].volume;
-  MaskChunk m = read_states(r, v.dims[0] * v.dims[1] * v.dims[2]);
+  const auto frame = r.bytes(r.u32());
+  const std::size_t others = r.u32();
+  require_stream(others <= r.remaining() / 8, "volume stream: inactive value count");
+  std::vector<double> values;
+  values.reserve(others);
+  for (std::size_t i = 0; i < others; ++i) values.push_back(get_finite(r, "inactive value"));
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in mask");
-  return m;
+  return scan_box_mask(frame, std::move(values), h.grids[grid].volume.dims, h.brick_log2, limits, already);
 }
 
 // Code-blocks of a brick of extent `size`, computed from the geometry so that a count is
@@ -259,11 +278,16 @@ BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamH
 
 }  // namespace
 
-ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits) {
+ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits,
+                                       SparseBoxCount count) {
   ChunkReader r(bytes, kVolumeSignature, kVolumeStreamVersion, "volume stream");
   const Chunk head = r.expect("VHDR");
   ParsedVolumeStream s;
-  s.header = read_header(head.payload, limits);
+  s.header = read_header(head.payload, limits, count);
+  // Voxels the decode allocates, against the limit; box mode counted whole boxes already.
+  std::size_t decoded = header_decoded_voxels(s.header, count);
+  const DecodeLimits mask_limits =
+      count == SparseBoxCount::box ? DecodeLimits{std::numeric_limits<std::size_t>::max()} : limits;
   s.masks.resize(s.header.grids.size());
   s.layouts.resize(s.header.grids.size());
   s.opaque.resize(s.header.grids.size());
@@ -281,16 +305,19 @@ ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, cons
     const Chunk c = r.next();
     if (c.is("MASK")) {
       std::uint32_t grid = 0;
-      MaskChunk m = read_mask(c.payload, s.header, grid);
-      require_stream(s.masks[grid].states.empty(), "volume stream: repeated mask");
+      BoxMask m = read_mask(c.payload, s.header, grid, mask_limits, decoded);
+      require_stream(s.masks[grid].empty(), "volume stream: repeated mask");
+      if (count == SparseBoxCount::content) decoded += m.content_voxels;
       s.masks[grid] = std::move(m);
       s.grid_bytes[grid] += c.payload.size() + kFraming;
       ++masks;
     } else if (c.is("BLKS")) {
       std::uint32_t grid = 0;
+      const std::size_t before = total_voxels;
       BlocksChunk b = read_blocks(c.payload, s.header, grid, total_voxels);
       // Block voxels are allocated on decode: the decode limit covers them as it covers boxes.
-      check_decode_limit(total_voxels, limits, "volume stream: voxels of all grids");
+      decoded += total_voxels - before;
+      check_decode_limit(decoded, limits, "volume stream: voxels of all grids");
       require_stream(seen_layout[grid] == 0, "volume stream: repeated blocks");
       seen_layout[grid] = 1;
       for (const VolumeBlock& block : b.blocks)

@@ -2,15 +2,17 @@
 # Regenerates the seed corpora tests/fuzz/corpus/<target>/ from small real encodes of the
 # test images (testimages/): crops of a few dozen pixels, a small generated volume, a tiny
 # sqrt(3) mesh, PNM files, transform specs. Usage: tests/fuzz/make_corpus.sh [path/to/pupwave]
-# (default build/tools/pupwave). Keeps the corpora a few hundred KB in total; the hostile
-# reproducers (corpus/*/regress-*) are kept, not regenerated.
+# (default build/tools/pupwave; the seeds the CLI cannot write come from fuzz_make_seeds of the
+# same build, tests/fuzz/make_seeds.cpp). Keeps the corpora a few hundred KB in total; the
+# hostile reproducers (corpus/*/regress-*) are kept, not regenerated.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 cli=$(realpath "${1:-build/tools/pupwave}")
 out=tests/fuzz/corpus
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for t in image image_level volume info pnm spec mesh; do
+seeds=$(dirname "$(dirname "$cli")")/tests/fuzz/fuzz_make_seeds
+for t in image image_level volume info pnm spec mesh c_api hdf5_chunk; do
   mkdir -p "$out/$t"
   find "$out/$t" -type f ! -name 'regress-*' -delete
 done
@@ -78,7 +80,17 @@ done
 "$cli" mesh subdivide testimages/u.off "$tmp/u3.off" --levels 1 > /dev/null
 "$cli" mesh decompose "$tmp/u3.off" "$out/mesh/seed-u.pwm" --levels 1 > /dev/null
 
+# A sparse box volume (MASK chunk) and HDF5 chunks: library writers only.
+"$seeds" "$out"
+
 cp "$out"/image/seed-1.pw "$out"/image/seed-6.pw "$out"/volume/seed-dense.pw "$out"/mesh/seed-u.pwm "$out/info/"
+
+# C API: first byte level (bits 0-1) and decode-into (bit 2), then an image or volume stream.
+for f in "$out"/image/seed-1.pw "$out"/image/seed-6.pw "$out"/volume/seed-*.pw; do
+  name=$(basename "$(dirname "$f")")-$(basename "$f" .pw)
+  { printf '\x04'; cat "$f"; } > "$out/c_api/$name-level0"
+  { printf '\x05'; cat "$f"; } > "$out/c_api/$name-level1"
+done
 
 # Transform specs: every family, presets and explicit designs.
 spec=0

@@ -26,7 +26,8 @@ struct ChildResult {
   int exit_code = -1;  // -1: killed (signal or wall-clock limit)
   bool timed_out = false;
   double seconds = 0.0;
-  std::string output;  // stdout and stderr together
+  long max_rss_kb = 0;  // the child's peak resident memory (wait4's rusage)
+  std::string output;   // stdout and stderr together
 };
 
 // Runs PUPWAVE_CLI with `args` under the address-space limit, killing it after `wall_seconds`.
@@ -50,10 +51,11 @@ inline ChildResult run_cli_bounded(const std::vector<std::string>& args, double 
   }
   ChildResult r;
   int status = 0;
-  while (::waitpid(pid, &status, WNOHANG) == 0) {
+  rusage usage{};
+  while (::wait4(pid, &status, WNOHANG, &usage) == 0) {
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > wall_seconds) {
       ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
+      ::wait4(pid, &status, 0, &usage);
       r.timed_out = true;
       break;
     }
@@ -61,6 +63,7 @@ inline ChildResult run_cli_bounded(const std::vector<std::string>& args, double 
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!r.timed_out && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.max_rss_kb = usage.ru_maxrss;
   std::ifstream in(log);
   std::ostringstream text;
   text << in.rdbuf();

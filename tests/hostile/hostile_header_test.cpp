@@ -81,16 +81,18 @@ VolumeStreamHeader volume_header(const Extent& dims, bool sparse, std::uint32_t 
   return h;
 }
 
-// zstd frame of `count` zero bytes, compressed in pieces (the test never holds them all).
-std::vector<std::uint8_t> zero_frame(std::size_t count) {
+// zstd frame of `count` bytes `fill` but the last (`last`), compressed in pieces (the test
+// never holds them all).
+std::vector<std::uint8_t> zero_frame(std::size_t count, std::uint8_t last = 0, std::uint8_t fill = 0) {
   ZSTD_CCtx* cctx = ZSTD_createCCtx();
   ZSTD_CCtx_setPledgedSrcSize(cctx, count);
-  const std::vector<std::uint8_t> zeros(std::size_t(1) << 20, 0);
+  const std::vector<std::uint8_t> zeros(std::size_t(1) << 20, fill);
   std::vector<std::uint8_t> out, buf(ZSTD_CStreamOutSize());
   for (std::size_t done = 0; done < count;) {
-    const std::size_t n = std::min(zeros.size(), count - done);
+    std::size_t n = std::min(zeros.size(), count - done);
+    if (done + n == count && n > 1) --n;  // the last byte goes alone
     done += n;
-    ZSTD_inBuffer in{zeros.data(), n, 0};
+    ZSTD_inBuffer in{done == count ? &last : zeros.data(), n, 0};
     const auto mode = done == count ? ZSTD_e_end : ZSTD_e_continue;
     for (bool finished = false; !finished;) {
       ZSTD_outBuffer o{buf.data(), buf.size(), 0};
@@ -172,28 +174,126 @@ TEST(HostileHeader, BrickBlockCountsAreCheckedBeforeTheIndexIsStored) {
       "block count does not match the brick geometry");
 }
 
-TEST(HostileHeader, HugeSparseGridIsRefusedBeforeItsMaskIsInflated) {
-  // Sparse 1024^3, every voxel inactive (33 KB): was std::bad_alloc after 35 s and 10 GiB.
-  const std::size_t n = std::size_t(1) << 30;
+// A sparse box grid of n^3 voxels (`type`) whose MASK holds every voxel inactive background but
+// the last (state `last`), with the BRIK chunks `bricks` (each a framed-ready payload).
+std::vector<std::uint8_t> sparse_box_stream(std::size_t n, VoxelType type, std::uint8_t last = 0,
+                                            const VolumeStreamHeader* like = nullptr,
+                                            const std::vector<std::vector<std::uint8_t>>& bricks = {},
+                                            std::uint8_t fill = 0) {
+  VolumeStreamHeader h = like != nullptr ? *like : volume_header({n, n, n}, true, 0);
+  h.grids[0].volume.dims = {n, n, n};
+  h.grids[0].volume.type = type;
+  h.brick_chunks = std::uint32_t(bricks.size());
   std::vector<std::uint8_t> bytes;
   write_volume_signature(bytes);
-  write_header_chunk(bytes, volume_header({1024, 1024, 1024}, true, 0));
+  write_header_chunk(bytes, h);
   std::vector<std::uint8_t> p;
   ByteWriter w(p);
-  const auto frame = zero_frame(n);
+  const auto frame = zero_frame(n * n * n, last, fill);
   w.u32(0);
   w.u32(std::uint32_t(frame.size()));
   w.bytes(frame);
   w.u32(0);
   write_chunk(bytes, "MASK", p);
-  EXPECT_LT(bytes.size(), 100'000u);
-  save(scratch("sparse.pw"), bytes);
-  for (const char* cmd : {"decompress", "info"}) {
-    std::vector<std::string> args{cmd, scratch("sparse.pw")};
-    if (std::string(cmd) == "decompress") args.insert(args.end(), {scratch("sparse.vdb"), "--threads", "2"});
-    expect_refused(run_cli_bounded(args), "voxels of all grids of 1073741824 exceeds the decode limit");
+  for (const auto& b : bricks) write_chunk(bytes, "BRIK", b);
+  return bytes;
+}
+
+TEST(HostileHeader, EmptySparseRegionsCostNothing) {
+  // Sparse 512^3 and 1024^3, every voxel inactive (4.4 KB, 33 KB): were 27 s and 2.8 GiB, and
+  // std::bad_alloc after 35 s and 10 GiB. To .vdb they decode to empty grids; info reads them.
+  for (const std::size_t n : {512, 1024}) {
+    const std::string name = "empty" + std::to_string(n);
+    const auto bytes = sparse_box_stream(n, VoxelType::f32);
+    EXPECT_LT(bytes.size(), 100'000u);
+    save(scratch(name + ".pw"), bytes);
+    const auto r =
+        run_cli_bounded({"decompress", scratch(name + ".pw"), scratch(name + ".vdb"), "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_LT(r.seconds, 5.0) << n;
+    // Was 2.8 GiB at 512^3: now the stream, one mask batch and the program.
+    EXPECT_LT(r.max_rss_kb, 200 * 1024) << n;
+    ::testing::Test::RecordProperty(
+        name + "_vdb", std::to_string(r.seconds) + " s, " + std::to_string(r.max_rss_kb) + " KiB resident");
+    const auto grids = cli::read_vdb(scratch(name + ".vdb"));
+    ASSERT_EQ(grids.size(), 1u);
+    EXPECT_EQ(grids[0].active_voxels(), 0u);
+    const auto info = run_cli_bounded({"info", scratch(name + ".pw")});
+    EXPECT_EQ(info.exit_code, 0) << info.output;
+    EXPECT_NE(info.output.find("0 active voxels"), std::string::npos) << info.output;
+    EXPECT_LT(info.seconds, 5.0) << n;
   }
-  EXPECT_FALSE(fs::exists(scratch("sparse.vdb")));
+  // Raw output is the dense box: the limit counts its voxels, so 1024^3 is refused before anything
+  // is allocated or written, and 512^3 u8 (a 128 MiB file) is decoded.
+  expect_refused(run_cli_bounded({"decompress", scratch("empty1024.pw"), scratch("empty1024.raw")}),
+                 "voxels of all grids of 1073741824 exceeds the decode limit");
+  EXPECT_FALSE(fs::exists(scratch("empty1024.raw")));
+  save(scratch("u8.pw"), sparse_box_stream(512, VoxelType::u8, 2));  // last voxel: -background
+  const auto raw = run_cli_bounded({"decompress", scratch("u8.pw"), scratch("u8.raw"), "--threads", "2"});
+  ASSERT_EQ(raw.exit_code, 0) << raw.output;
+  EXPECT_LT(raw.seconds, 5.0);
+  EXPECT_EQ(fs::file_size(scratch("u8.raw")), std::size_t(512) * 512 * 512);
+  fs::remove(scratch("u8.raw"));
+  // A mask whose every voxel is inactive with value -background (a level set's inside) is not
+  // empty: its .vdb output holds 2^30 voxels, over the limit, refused while the mask is read.
+  save(scratch("inside.pw"), sparse_box_stream(1024, VoxelType::f32, 2, nullptr, {}, 2));
+  for (const char* cmd : {"decompress", "info"}) {
+    std::vector<std::string> args{cmd, scratch("inside.pw")};
+    if (std::string(cmd) == "decompress") args.push_back(scratch("inside.vdb"));
+    expect_refused(run_cli_bounded(args), "voxels to decode of 268697600 exceeds the decode limit");
+  }
+  EXPECT_FALSE(fs::exists(scratch("inside.vdb")));
+}
+
+TEST(HostileHeader, OneActiveVoxelInTheCornerOfAHugeSparseBox) {
+  // A 1024^3 box whose only active voxel is its last one: the .vdb decode allocates that brick.
+  VolumeGrid g;
+  g.name = "corner";
+  g.volume = Volume({64, 64, 64}, VoxelType::f32);
+  g.volume.active.assign(g.volume.count(), 0);
+  g.volume.active.back() = 1;
+  g.volume.samples.back() = 1.5;
+  VolumeEncodeOptions o;
+  o.target = 1e-3;
+  o.brick = 64;
+  const auto small = encode_volumes({g}, o).bytes;
+  const ParsedVolumeStream parsed = parse_volume_stream(small);
+  ASSERT_EQ(parsed.bricks.size(), 1u);
+  std::vector<std::uint8_t> brick;
+  ChunkReader chunks(small, kVolumeSignature, kVolumeStreamVersion, "volume stream");
+  while (!chunks.at_end())
+    if (const Chunk c = chunks.next(); c.is("BRIK")) brick.assign(c.payload.begin(), c.payload.end());
+  const std::uint32_t last = 16 * 16 * 16 - 1;  // the brick index is the payload's second u32
+  for (int i = 0; i < 4; ++i) brick[std::size_t(4 + i)] = std::uint8_t(last >> (8 * i));
+  save(scratch("corner.pw"), sparse_box_stream(1024, VoxelType::f32, 1, &parsed.header, {brick}));
+  const auto r =
+      run_cli_bounded({"decompress", scratch("corner.pw"), scratch("corner.vdb"), "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_LT(r.seconds, 5.0);
+  EXPECT_LT(r.max_rss_kb, 200 * 1024);
+  ::testing::Test::RecordProperty(
+      "corner_vdb", std::to_string(r.seconds) + " s, " + std::to_string(r.max_rss_kb) + " KiB resident");
+  const auto grids = cli::read_vdb(scratch("corner.vdb"));
+  ASSERT_EQ(grids.size(), 1u);
+  EXPECT_EQ(grids[0].active_voxels(), 1u);
+  ASSERT_EQ(grids[0].blocks.size(), 1u);
+  const VolumeBlock& b = grids[0].blocks[0];
+  bool found = false;
+  for (std::size_t i = 0; i < b.volume.count(); ++i)
+    if (b.volume.is_active(i)) {
+      const std::size_t x = i % b.volume.dims[0], y = i / b.volume.dims[0] % b.volume.dims[1],
+                        z = i / b.volume.dims[0] / b.volume.dims[1];
+      EXPECT_EQ(b.origin[0] + std::int64_t(x), 1023);
+      EXPECT_EQ(b.origin[1] + std::int64_t(y), 1023);
+      EXPECT_EQ(b.origin[2] + std::int64_t(z), 1023);
+      EXPECT_NEAR(b.volume.samples[i], 1.5, 1e-3);
+      found = true;
+    }
+  EXPECT_TRUE(found);
+  // Raw output would be the 1 GiB box: refused by the limit, nothing written.
+  expect_refused(run_cli_bounded({"decompress", scratch("corner.pw"), scratch("corner.raw")}),
+                 "exceeds the decode limit");
+  EXPECT_FALSE(fs::exists(scratch("corner.raw")));
 }
 
 TEST(HostileHeader, TransformSpecsInAStreamAreBoundedBeforeDesign) {
