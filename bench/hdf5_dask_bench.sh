@@ -9,6 +9,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build=${1:-$root/build} work=${2:-$(mktemp -d)} shape=${3:-1024,1024,256} repeats=${4:-3}
 export HDF5_PLUGIN_PATH=$build/lib/hdf5/plugins PYTHONPATH=$build/python
+mkdir -p "$work"
 log="$work/dask_bench.jsonl"
 : >"$log"
 for ((r = 0; r < repeats; r++)); do

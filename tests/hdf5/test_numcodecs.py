@@ -77,6 +77,24 @@ def test_unaligned_chunk_codes_as_the_aligned_one(wmag91, dtype):
     assert codec.encode(unaligned) == codec.encode(data)
 
 
+def test_thread_count_never_changes_the_bytes(wmag91):
+    """threads (None: all cores on the main thread, 1 elsewhere, as numcodecs' Blosc) is a
+    runtime choice: the same bytes for any count, from any thread, and not in the config."""
+    import concurrent.futures
+    data = wmag91[:64, :64, :64].copy()
+    reference = Pupwave(max_error=0.01, threads=0).encode(data)
+    assert Pupwave(max_error=0.01, threads=1).encode(data) == reference
+    assert "threads" not in Pupwave(max_error=0.01, threads=1).get_config()
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:  # worker threads take the 1-thread path
+        coded = list(pool.map(lambda _: Pupwave(max_error=0.01).encode(data), range(2)))
+        decoded = list(pool.map(lambda c: Pupwave(max_error=0.01).decode(c), coded))
+    assert coded == [reference, reference]
+    assert all(np.array_equal(d.reshape(data.shape), Pupwave(max_error=0.01).decode(reference).reshape(data.shape))
+               for d in decoded)
+    with pytest.raises(ValueError, match="threads"):
+        Pupwave(max_error=0.01, threads=-1)
+
+
 def f_read(path):
     import h5py
     with h5py.File(path, "r") as f:

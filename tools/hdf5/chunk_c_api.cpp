@@ -33,10 +33,11 @@ void* copy_out(const std::vector<std::uint8_t>& bytes, std::size_t* out_size) {
 extern "C" {
 
 // Compresses `ndims` C-order dimensions `dims` of elements of `type` (1 u8, 2 i8, 3 u16, 4 i16,
-// 5 f32, 6 f64) with `mode` (1 max_error, 2 bpv, 3 lossless) and `bound`.
+// 5 f32, 6 f64) with `mode` (1 max_error, 2 bpv, 3 lossless) and `bound`, on `threads` threads
+// (0: all cores, 1: the calling thread; a Dask worker passes 1, so workers do not oversubscribe).
 int pupwave_chunk_encode(unsigned mode, double bound, unsigned type, unsigned ndims,
-                         const unsigned long long* dims, const void* data, std::size_t nbytes, void** out,
-                         std::size_t* out_size, char* err, std::size_t err_size) {
+                         const unsigned long long* dims, const void* data, std::size_t nbytes, unsigned threads,
+                         void** out, std::size_t* out_size, char* err, std::size_t err_size) {
   using namespace pupwave::h5;
   try {
     if (!is_valid_type(type)) return fail("unknown element type code", err, err_size);
@@ -45,6 +46,7 @@ int pupwave_chunk_encode(unsigned mode, double bound, unsigned type, unsigned nd
     p.bound = bound;
     p.type = ChunkType(type);
     p.dims = extent_from_shape(std::span<const unsigned long long>(dims, ndims));
+    p.threads = threads;
     *out = copy_out(
         encode_chunk(p, std::span<const std::uint8_t>(static_cast<const std::uint8_t*>(data), nbytes)),
         out_size);
@@ -54,12 +56,12 @@ int pupwave_chunk_encode(unsigned mode, double bound, unsigned type, unsigned nd
   }
 }
 
-// Decompresses a stored chunk; *type receives its element type code.
-int pupwave_chunk_decode(const void* data, std::size_t nbytes, void** out, std::size_t* out_size,
-                         unsigned* type, char* err, std::size_t err_size) {
+// Decompresses a stored chunk on `threads` threads (as above); *type receives its element type code.
+int pupwave_chunk_decode(const void* data, std::size_t nbytes, unsigned threads, void** out,
+                         std::size_t* out_size, unsigned* type, char* err, std::size_t err_size) {
   try {
     const pupwave::h5::DecodedChunk d = pupwave::h5::decode_chunk(
-        std::span<const std::uint8_t>(static_cast<const std::uint8_t*>(data), nbytes));
+        std::span<const std::uint8_t>(static_cast<const std::uint8_t*>(data), nbytes), threads);
     *out = copy_out(d.bytes, out_size);
     *type = unsigned(d.type);
     return 0;

@@ -137,8 +137,11 @@ std::vector<std::uint8_t> encode_chunk(const ChunkParams& params, std::span<cons
       !why.empty())
     throw std::invalid_argument(why);
   VolumeEncodeResult coded;
+  const auto executor = make_pool_executor(params.threads);
+  VolumeEncodeOptions options = volume_options(params);
+  options.executor = executor.get();
   try {
-    coded = encode_grid(params, raw, volume_options(params));
+    coded = encode_grid(params, raw, options);
   } catch (const EncodeError&) {
     // Data the codec cannot hold (NaN, Inf, a bound below the type's precision): keep it raw.
     return stored_raw(params.type, raw);

@@ -28,6 +28,8 @@ struct ChunkParams {
   double bound = 0.0;  // absolute error (max_error) or bits per value (bpv); unused when lossless
   ChunkType type = ChunkType::f32;
   Extent dims{1, 1, 1};  // x fastest: dims[0] is the last (fastest) C-order dimension
+  // Threads coding this chunk's bricks (0: all cores, 1: the calling thread); never in the stream.
+  unsigned threads = 0;
   std::size_t count() const { return dims[0] * dims[1] * dims[2]; }
 };
 
@@ -49,7 +51,8 @@ struct DecodedChunk {
 };
 
 // Inverse of encode_chunk. Throws pupwave::DecodeError for a corrupt or truncated chunk.
-DecodedChunk decode_chunk(std::span<const std::uint8_t> stored);
+// threads as in ChunkParams.
+DecodedChunk decode_chunk(std::span<const std::uint8_t> stored, unsigned threads = 0);
 
 constexpr std::size_t kChunkHeaderBytes = 4;
 

@@ -32,7 +32,7 @@ std::vector<std::uint8_t> from_volume(const Volume& v, ChunkType type) {
 
 }  // namespace
 
-DecodedChunk decode_chunk(std::span<const std::uint8_t> stored) {
+DecodedChunk decode_chunk(std::span<const std::uint8_t> stored, unsigned threads) {
   require_stream(stored.size() >= kChunkHeaderBytes, "chunk shorter than its header");
   require_stream(stored[0] == 'P' && stored[1] == 'W', "not a pupwave chunk (bad signature)");
   require_stream(is_valid_type(stored[3]), "unknown chunk element type");
@@ -46,7 +46,7 @@ DecodedChunk decode_chunk(std::span<const std::uint8_t> stored) {
     return out;
   }
   require_stream(stored[2] == std::uint8_t(ChunkKind::volume), "unknown chunk kind");
-  const std::vector<VolumeGrid> grids = decode_volumes(payload);
+  const std::vector<VolumeGrid> grids = decode_volumes(payload, 0, *make_pool_executor(threads));
   require_stream(grids.size() == 1, "chunk stream must hold one grid");
   require_stream(grids[0].volume.type == stored_voxel_type(out.type),
                  "chunk stream type differs from header");

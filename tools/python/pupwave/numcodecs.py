@@ -9,6 +9,7 @@ The library is looked up in ``PUPWAVE_HDF5_PLUGIN`` (a file), then in each direc
 
 import ctypes
 import os
+import threading
 
 import numpy as np
 from numcodecs.abc import Codec
@@ -44,9 +45,11 @@ def _library():
         size_p = ctypes.POINTER(ctypes.c_size_t)
         lib.pupwave_chunk_encode.argtypes = [ctypes.c_uint, ctypes.c_double, ctypes.c_uint, ctypes.c_uint,
                                              ctypes.POINTER(ctypes.c_ulonglong), ctypes.c_void_p, ctypes.c_size_t,
-                                             ctypes.POINTER(ctypes.c_void_p), size_p, ctypes.c_char_p, ctypes.c_size_t]
-        lib.pupwave_chunk_decode.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_void_p), size_p,
-                                             ctypes.POINTER(ctypes.c_uint), ctypes.c_char_p, ctypes.c_size_t]
+                                             ctypes.c_uint, ctypes.POINTER(ctypes.c_void_p), size_p, ctypes.c_char_p,
+                                             ctypes.c_size_t]
+        lib.pupwave_chunk_decode.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_uint,
+                                             ctypes.POINTER(ctypes.c_void_p), size_p, ctypes.POINTER(ctypes.c_uint),
+                                             ctypes.c_char_p, ctypes.c_size_t]
         lib.pupwave_chunk_free.argtypes = [ctypes.c_void_p]
         _lib = lib
     return _lib
@@ -69,7 +72,14 @@ class Pupwave(Codec):
 
     codec_id = "pupwave"
 
-    def __init__(self, max_error=None, bpv=None, lossless=False):
+    def __init__(self, max_error=None, bpv=None, lossless=False, threads=None):
+        """``threads``: threads coding one chunk (0 all cores, 1 the calling thread). None, the
+        default, follows numcodecs' Blosc: all cores when called from the main thread, else 1, so
+        that Dask workers and threaded Zarr writes do not oversubscribe the cores. It is a runtime
+        choice, not part of the codec's config (the stored bytes never depend on it)."""
+        if threads is not None and (not isinstance(threads, int) or threads < 0):
+            raise ValueError(f"pupwave: threads must be None or an integer >= 0, got {threads!r}")
+        self._threads = threads
         self._mode, self._bound = filter_mode(max_error, bpv, lossless)
         self.max_error = None if max_error is None else float(max_error)
         self.bpv = None if bpv is None else float(bpv)
@@ -86,7 +96,7 @@ class Pupwave(Codec):
         dims = (ctypes.c_ulonglong * len(shape))(*shape)
         lib, out, size, err = _library(), ctypes.c_void_p(), ctypes.c_size_t(), ctypes.create_string_buffer(512)
         rc = lib.pupwave_chunk_encode(self._mode, self._bound, code, len(shape), dims, arr.ctypes.data, arr.nbytes,
-                                      ctypes.byref(out), ctypes.byref(size), err, len(err))
+                                      self._thread_count(), ctypes.byref(out), ctypes.byref(size), err, len(err))
         if rc != 0:
             raise ValueError("pupwave: " + err.value.decode(errors="replace"))
         return _take(lib, out, size).tobytes()
@@ -95,12 +105,17 @@ class Pupwave(Codec):
         data = ensure_contiguous_ndarray(buf).view(np.uint8)
         lib, res, size, code = _library(), ctypes.c_void_p(), ctypes.c_size_t(), ctypes.c_uint()
         err = ctypes.create_string_buffer(512)
-        rc = lib.pupwave_chunk_decode(data.ctypes.data, data.nbytes, ctypes.byref(res), ctypes.byref(size),
+        rc = lib.pupwave_chunk_decode(data.ctypes.data, data.nbytes, self._thread_count(), ctypes.byref(res), ctypes.byref(size),
                                       ctypes.byref(code), err, len(err))
         if rc != 0:
             raise ValueError("pupwave: cannot decode chunk: " + err.value.decode(errors="replace"))
         arr = _take(lib, res, size, _CODE_TYPES[code.value])
         return ndarray_copy(arr, out) if out is not None else arr
+
+    def _thread_count(self):
+        if self._threads is not None:
+            return self._threads
+        return 0 if threading.current_thread() is threading.main_thread() else 1
 
     def __repr__(self):
         return f"Pupwave(max_error={self.max_error!r}, bpv={self.bpv!r}, lossless={self.lossless!r})"
