@@ -36,8 +36,9 @@ extern "C" {
 // 5 f32, 6 f64) with `mode` (1 max_error, 2 bpv, 3 lossless) and `bound`, on `threads` threads
 // (0: all cores, 1: the calling thread; a Dask worker passes 1, so workers do not oversubscribe).
 int pupwave_chunk_encode(unsigned mode, double bound, unsigned type, unsigned ndims,
-                         const unsigned long long* dims, const void* data, std::size_t nbytes, unsigned threads,
-                         void** out, std::size_t* out_size, char* err, std::size_t err_size) {
+                         const unsigned long long* dims, const void* data, std::size_t nbytes,
+                         unsigned threads, void** out, std::size_t* out_size, char* err,
+                         std::size_t err_size) {
   using namespace pupwave::h5;
   try {
     if (!is_valid_type(type)) return fail("unknown element type code", err, err_size);
