@@ -33,6 +33,10 @@ MappedFile::MappedFile(const std::filesystem::path& path) {
   ::close(fd);
 }
 
+void MappedFile::advise_sequential() const {
+  if (map_ != nullptr) ::madvise(map_, size_, MADV_SEQUENTIAL);
+}
+
 MappedFile::~MappedFile() {
   if (map_ != nullptr) ::munmap(map_, size_);
 }

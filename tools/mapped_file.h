@@ -18,6 +18,8 @@ class MappedFile {
   MappedFile& operator=(const MappedFile&) = delete;
 
   std::span<const std::uint8_t> bytes() const { return {static_cast<const std::uint8_t*>(map_), size_}; }
+  // Tells the kernel the pages will be read in order (read-ahead), as raw volume slabs are.
+  void advise_sequential() const;
 
  private:
   void* map_ = nullptr;  // null for an empty file

@@ -6,9 +6,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "codec/volume/volume_view.h"
+#include "tools/mapped_file.h"
 
 namespace pupwave::cli {
 
@@ -20,7 +22,6 @@ class MappedRawVolume {
   // the file size must equal dims * bytes_per_voxel(type) and dims at most max_voxels.
   MappedRawVolume(const std::filesystem::path& path, const Extent& dims, VoxelType type,
                   std::size_t max_voxels);
-  ~MappedRawVolume();
   MappedRawVolume(const MappedRawVolume&) = delete;
   MappedRawVolume& operator=(const MappedRawVolume&) = delete;
 
@@ -28,8 +29,7 @@ class MappedRawVolume {
   const VolumeView& view() const { return view_; }
 
  private:
-  void* map_ = nullptr;
-  std::size_t size_ = 0;
+  std::optional<MappedFile> file_;     // little-endian hosts
   std::vector<std::uint8_t> swapped_;  // big-endian hosts only
   VolumeView view_;
 };
