@@ -42,6 +42,7 @@ install(FILES ${PUPWAVE_STATIC} DESTINATION lib)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/codec/include/pupwave DESTINATION include)
 install(TARGETS pupwave RUNTIME DESTINATION bin)
 install(TARGETS pupwave_oiio LIBRARY DESTINATION bin)  # the CLI loads it from beside its binary
+install(TARGETS pupwave_vdb LIBRARY DESTINATION bin)  # likewise, for .vdb files
 configure_file(${PROJECT_SOURCE_DIR}/cmake/PupwaveConfig.cmake.in ${CMAKE_BINARY_DIR}/PupwaveConfig.cmake @ONLY)
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/PupwaveConfigVersion.cmake VERSION ${PROJECT_VERSION}
                                  COMPATIBILITY SameMajorVersion)

@@ -32,8 +32,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli_numbers.h"
 #include "tools/commands.h"
-#include "tools/lod_pyramid.h"
-#include "tools/volume_io_vdb.h"
+#include "tools/vdb_module.h"
 #include "transforms/spec.h"
 
 namespace pupwave::cli {
@@ -121,34 +120,15 @@ void add_lod_command(CLI::App& app) {
     const LowPass low_pass = low_pass_of(*t);
     check_output_path(opt->output);
     const auto start = std::chrono::steady_clock::now();
-    VdbFile file = read_vdb_file(opt->input);
-    const std::vector<std::string> names = split_names(opt->names);
-    for (const std::string& name : names)
-      if (std::none_of(file.grids.begin(), file.grids.end(),
-                       [&](const auto& g) { return g->getName() == name; }))
-        throw std::runtime_error("cannot read " + opt->input + ": no grid named '" + name + "'");
     const LodEdge edge = opt->edge == "symmetric"    ? LodEdge::symmetric
                          : opt->edge == "background" ? LodEdge::background
                                                      : LodEdge::automatic;
-    openvdb::GridPtrVec out;
-    std::vector<std::string> report;
-    for (const openvdb::GridBase::Ptr& g : file.grids) {
-      if (!names.empty() && std::find(names.begin(), names.end(), g->getName()) == names.end()) continue;
-      if (!has_lod(*g)) {  // integer, bool, mask, unknown grids: kept as they are, never dropped
-        out.push_back(g);
-        report.push_back(g->getName() + ": " + g->valueType() + " grid, copied unchanged");
-        continue;
-      }
-      for (openvdb::GridBase::Ptr& level : level_of_detail(g, low_pass, levels, edge)) {
-        report.push_back(level->getName() + ": " + std::to_string(level->activeVoxelCount()) +
-                         " active voxels, voxel size " + std::to_string(level->voxelSize()[0]));
-        out.push_back(std::move(level));
-      }
-    }
-    write_vdb_file(out, file.metadata, opt->output);
+    const LodReport report =
+        vdb_module().lod({opt->input, opt->output, low_pass, levels, split_names(opt->names), edge});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for (const std::string& line : report) std::cout << line << '\n';
-    std::cout << opt->output << ": " << out.size() << " grid(s), " << t->spec() << ", " << seconds << " s\n";
+    for (const std::string& line : report.lines) std::cout << line << '\n';
+    std::cout << opt->output << ": " << report.grids << " grid(s), " << t->spec() << ", " << seconds
+              << " s\n";
   });
 }
 
