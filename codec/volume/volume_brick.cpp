@@ -99,62 +99,6 @@ CodedBrick code_coefficients(const BrickCoding& c, std::span<const float> coef, 
 
 namespace {
 
-// log2 of x >= 1 within 0.005: exponent plus a quadratic in the mantissa (the model needs no more).
-float approximate_log2(float x) {
-  const auto bits = std::bit_cast<std::uint32_t>(x);
-  const float f = std::bit_cast<float>((bits & 0x7fffffu) | 0x3f800000u) - 1.0f;
-  return float(int(bits >> 23) - 127) + f * (1.3466f - 0.3466f * f);
-}
-
-double binary_entropy_bits(double k, double n) {
-  if (k <= 0.0 || k >= n) return 0.0;
-  const double p = k / n;
-  return -n * (p * std::log2(p) + (1.0 - p) * std::log2(1.0 - p));
-}
-
-}  // namespace
-
-void requantize_brick(const BrickCoding& c, std::span<const float> coef, const Extent& size, double base_step,
-                      std::vector<float>& out, IndexStats* stats) {
-  const std::vector<float> steps = brick_steps(c, size, base_step);
-  out.resize(coef.size());
-  for (const CodeBlock& b : brick_blocks(c, size)) {
-    const float step = steps[b.band];
-    const float inv = 1.0f / step;  // as quantize() computes the index
-    std::size_t significant = 0;
-    float log2_sum = 0.0f;
-    bool too_large = false;
-    // Branch-free (whether an index is 0 is a coin toss at fine steps); the same float and
-    // double operations as quantize() and reconstruct(), so the values are identical.
-    for (std::size_t z = 0; z < b.size[2]; ++z)
-      for (std::size_t y = 0; y < b.size[1]; ++y) {
-        const std::size_t row = b.offset[0] + size[0] * ((b.offset[1] + y) + size[1] * (b.offset[2] + z));
-        for (std::size_t x = row; x < row + b.size[0]; ++x) {
-          const float v = coef[x];
-          const float m = (v < 0.0f ? -v : v) * inv;
-          const bool in_range = m < float(1u << kMaxBitPlanes);  // false for NaN too
-          too_large |= !in_range;
-          const std::uint32_t q = std::uint32_t(std::int32_t(in_range ? m : 0.0f));
-          const bool sig = q != 0;  // m >= 1
-          significant += sig ? 1 : 0;
-          log2_sum += approximate_log2(float(sig ? q : 1u));  // log2(1) is exactly 0
-          // reconstruct() of a fully decoded coefficient: index + delta in double, then float;
-          // insignificant: the decoder's reconstruct() gives +0.
-          const float r = float(double(q) + c.delta);
-          out[x] = sig ? (v < 0.0f ? -r : r) * step : 0.0f;
-        }
-      }
-    if (too_large) throw IndexRangeError("quantization index too large for the block coder");
-    if (stats == nullptr) continue;
-    stats->significant += double(significant);
-    stats->log2_sum += double(log2_sum);
-    stats->map_bits += binary_entropy_bits(double(significant), double(b.count()));
-  }
-  inverse(*c.transform, out.data(), size, c.levels, 0);
-}
-
-namespace {
-
 // Dequantized coefficients of every block the level needs, in the brick's in-place layout.
 template <class T>
 std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::span<const float> steps,
