@@ -103,11 +103,10 @@ VolumeInput read_volume_input(const CompressOptions& opt) {
   return in;
 }
 
-// Widens [lo, hi] by the active voxels of a box.
+// Widens [lo, hi] by the active voxels of a box (one typed pass, summarize_values).
 void widen(const VolumeView& v, double& lo, double& hi) {
-  for_each_voxel(v, [&](double value, bool active) {
-    if (active) lo = std::min(lo, value), hi = std::max(hi, value);
-  });
+  const ValueSummary s = summarize_values(v);
+  lo = std::min(lo, s.lo), hi = std::max(hi, s.hi);
 }
 
 // Largest value range (max - min of the active voxels, active tiles included) of the grids, for

@@ -3,7 +3,9 @@
 // as .vdb (all grids) or as a dense raw file of its stored type.
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -62,24 +64,44 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
 bool decompress_raw_in_place(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
   if (is_vdb_path(opt.output)) return false;
   const auto start = std::chrono::steady_clock::now();
-  std::vector<std::uint8_t> voxels;
-  const auto grid = [&] {
+  std::optional<VolumeGrid> grid;
+  // decode_volume_into asks for the output once it knows the grid's dims (never for the forms it
+  // leaves to decode_volumes, when it returns nullopt having written nothing).
+  const auto decode = [&](const std::function<VolumeOutput(const VolumeGrid&)>& allocate) {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
-    return decode_volume_into(bytes, opt.grid, opt.level, *make_pool_executor(opt.threads), opt.limits,
-                              [&](const VolumeGrid& g) {
-                                voxels.resize(g.volume.count() * bytes_per_voxel(g.volume.type));
-                                return contiguous_output(voxels.data(), g.volume.dims, g.volume.type);
-                              });
-  }();
-  if (!grid) return false;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    grid = decode_volume_into(bytes, opt.grid, opt.level, *make_pool_executor(opt.threads), opt.limits,
+                              allocate);
+  };
   if (is_stdio(opt.output)) {
+    std::vector<std::uint8_t> voxels;
+    decode([&](const VolumeGrid& g) {
+      voxels.resize(g.volume.count() * bytes_per_voxel(g.volume.type));
+      return contiguous_output(voxels.data(), g.volume.dims, g.volume.type);
+    });
+    if (!grid) return false;
     const ScratchFile scratch(".raw");
     write_raw_bytes(std::move(voxels), grid->volume.type, scratch.path());
     write_stdout(read_file_bytes(scratch.path()));
   } else {
-    write_raw_bytes(std::move(voxels), grid->volume.type, opt.output);
+    // Decoded straight into the output file, mapped under its temporary name (write_atomically).
+    struct NotInPlace {};
+    try {
+      write_atomically(opt.output, [&](const std::filesystem::path& tmp) {
+        std::unique_ptr<MappedOutput> file;
+        decode([&](const VolumeGrid& g) {
+          file = std::make_unique<MappedOutput>(tmp, g.volume.count() * bytes_per_voxel(g.volume.type),
+                                                opt.output);
+          return contiguous_output(file->bytes().data(), g.volume.dims, g.volume.type);
+        });
+        if (!grid) throw NotInPlace{};  // nothing was created
+        swap_to_little_endian(file->bytes(), grid->volume.type);
+        file->finish();
+      });
+    } catch (const NotInPlace&) {
+      return false;
+    }
   }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (std::FILE* status = opt.verbosity.stream())
     std::fprintf(status, "%s: grid '%s' %zux%zux%zu, %s, decoded in %.3f s\n", opt.output.c_str(),
                  grid->name.c_str(), grid->volume.dims[0], grid->volume.dims[1], grid->volume.dims[2],

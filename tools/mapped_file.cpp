@@ -41,4 +41,40 @@ MappedFile::~MappedFile() {
   if (map_ != nullptr) ::munmap(map_, size_);
 }
 
+MappedOutput::MappedOutput(const std::filesystem::path& path, std::size_t size,
+                           const std::filesystem::path& target)
+    : size_(size), target_(target) {
+  const auto fail = [&](const std::string& why) {
+    if (map_ != nullptr) ::munmap(map_, size_);
+    if (fd_ >= 0) ::close(fd_);
+    map_ = nullptr;
+    fd_ = -1;
+    throw std::runtime_error("cannot write " + target_.string() + ": " + why);
+  };
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd_ < 0) fail(std::strerror(errno));
+  if (size_ == 0) return;
+  if (const int err = ::posix_fallocate(fd_, 0, off_t(size_)); err != 0) fail(std::strerror(err));
+  void* map = ::mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
+  if (map == MAP_FAILED) fail(std::strerror(errno));
+  map_ = map;
+}
+
+void MappedOutput::finish() {
+  if (map_ != nullptr && ::munmap(map_, size_) != 0) {
+    map_ = nullptr;
+    throw std::runtime_error("cannot write " + target_.string() + ": " + std::strerror(errno));
+  }
+  map_ = nullptr;
+  const int fd = fd_;
+  fd_ = -1;
+  if (fd >= 0 && ::close(fd) != 0)
+    throw std::runtime_error("cannot write " + target_.string() + ": " + std::strerror(errno));
+}
+
+MappedOutput::~MappedOutput() {
+  if (map_ != nullptr) ::munmap(map_, size_);
+  if (fd_ >= 0) ::close(fd_);
+}
+
 }  // namespace pupwave::cli

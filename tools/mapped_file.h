@@ -26,4 +26,27 @@ class MappedFile {
   std::size_t size_ = 0;
 };
 
+// A new output file of a known size mapped writable, so a decoder writes its voxels straight
+// into the page cache (no heap buffer to zero, no copy by write()). Its blocks are reserved
+// first (posix_fallocate): a full disk is an error here, never a SIGBUS while writing through
+// the map. Used under write_atomically, on its temporary name.
+class MappedOutput {
+ public:
+  // Throws std::runtime_error("cannot write TARGET: reason") (target: the name the user gave).
+  MappedOutput(const std::filesystem::path& path, std::size_t size, const std::filesystem::path& target);
+  ~MappedOutput();
+  MappedOutput(const MappedOutput&) = delete;
+  MappedOutput& operator=(const MappedOutput&) = delete;
+
+  std::span<std::uint8_t> bytes() const { return {static_cast<std::uint8_t*>(map_), size_}; }
+  // Unmaps and closes the file; throws like the constructor when closing fails.
+  void finish();
+
+ private:
+  void* map_ = nullptr;
+  std::size_t size_ = 0;
+  int fd_ = -1;
+  std::filesystem::path target_;
+};
+
 }  // namespace pupwave::cli

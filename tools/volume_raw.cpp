@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Reverses the bytes of every `width`-byte element (raw files are little endian).
-void swap_elements(std::vector<std::uint8_t>& bytes, std::size_t width) {
+void swap_elements(std::span<std::uint8_t> bytes, std::size_t width) {
   for (std::size_t i = 0; i + width <= bytes.size(); i += width)
     std::reverse(bytes.begin() + std::ptrdiff_t(i), bytes.begin() + std::ptrdiff_t(i + width));
 }
@@ -39,6 +39,10 @@ MappedRawVolume::MappedRawVolume(const fs::path& path, const Extent& dims, Voxel
 void write_raw_bytes(std::vector<std::uint8_t> bytes, VoxelType type, const fs::path& path) {
   if constexpr (std::endian::native == std::endian::big) swap_elements(bytes, bytes_per_voxel(type));
   write_bytes_atomically(path, bytes);
+}
+
+void swap_to_little_endian(std::span<std::uint8_t> bytes, VoxelType type) {
+  if constexpr (std::endian::native == std::endian::big) swap_elements(bytes, bytes_per_voxel(type));
 }
 
 }  // namespace pupwave::cli

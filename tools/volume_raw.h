@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "codec/volume/volume_view.h"
@@ -37,5 +38,8 @@ class MappedRawVolume {
 // Writes `bytes` (voxels of `type` in host order, x fastest) as a little-endian raw file,
 // atomically.
 void write_raw_bytes(std::vector<std::uint8_t> bytes, VoxelType type, const std::filesystem::path& path);
+
+// Voxels of `type` in host order to little endian, in place (only big-endian hosts change them).
+void swap_to_little_endian(std::span<std::uint8_t> bytes, VoxelType type);
 
 }  // namespace pupwave::cli

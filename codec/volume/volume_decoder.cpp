@@ -500,12 +500,10 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
     const BrickBox box = bricks[g].at(b.brick);
     const auto values = brick_values(s, coding, b, box, level);
     const Extent part = level_extent(box.size, level);
-    std::size_t k = 0;
-    for (std::size_t z = 0; z < part[2]; ++z)
-      for (std::size_t y = 0; y < part[1]; ++y)
-        for (std::size_t x = 0; x < part[0]; ++x)
-          out.set((box.offset[0] >> level) + x, (box.offset[1] >> level) + y, (box.offset[2] >> level) + z,
-                  values[k++]);
+    for (std::size_t z = 0, k = 0; z < part[2]; ++z)
+      for (std::size_t y = 0; y < part[1]; ++y, k += part[0])
+        out.set_row(box.offset[0] >> level, (box.offset[1] >> level) + y, (box.offset[2] >> level) + z,
+                    values.data() + k, part[0]);
   });
   if (sparse) restore_output_states(out, grid.volume.background, grid.volume.type, s.masks[g]);
   return grid;

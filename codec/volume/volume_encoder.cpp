@@ -54,21 +54,18 @@ int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) 
   return k;
 }
 
-// Checks one dense box (a box grid or a block); `total` is the running voxel count of all grids.
-// Returns its largest |sample| (for the precision check).
-double validate_volume(const VolumeView& v, std::size_t total) {
+// Values of each part of each grid (grid_parts), read once for validation and planning.
+using Summaries = std::vector<std::vector<ValueSummary>>;
+
+// Checks one dense box (a box grid or a block) with the summary of its values; `total` is the
+// running voxel count of all grids. Returns its largest |sample| (for the precision check).
+double validate_volume(const VolumeView& v, const ValueSummary& values, std::size_t total) {
   for (std::size_t d : v.dims)
     if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
   if (total > kMaxVolumeVoxels) throw EncodeError("volumes exceed 2^31 voxels");
   if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
-  double largest = 0.0;
-  bool finite = true;
-  for_each_voxel(v, [&](double s, bool) {
-    finite = finite && std::isfinite(s);
-    largest = std::max(largest, std::fabs(s));
-  });
-  if (!finite) throw EncodeError("volume has non-finite samples (NaN or infinity)");
-  return largest;
+  if (!values.finite) throw EncodeError("volume has non-finite samples (NaN or infinity)");
+  return values.largest;
 }
 
 // Coordinates of blocks and tiles must stay in OpenVDB's 32-bit index range.
@@ -77,7 +74,8 @@ bool in_coord_range(std::int64_t o, std::int64_t extent) {
 }
 
 // Checks a sparse-native grid; returns its largest |sample| or |tile value|.
-double validate_blocked(const VolumeGrid& g, const std::vector<VolumeView>& parts, std::size_t& total) {
+double validate_blocked(const VolumeGrid& g, const std::vector<VolumeView>& parts,
+                        const std::vector<ValueSummary>& values, std::size_t& total) {
   double largest = 0.0;
   if (g.active_voxels() == 0)
     throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
@@ -87,7 +85,7 @@ double validate_blocked(const VolumeGrid& g, const std::vector<VolumeView>& part
   for (std::size_t k = 0; k < g.blocks.size(); ++k) {
     const VolumeBlock& b = g.blocks[k];
     total += b.volume.count();
-    largest = std::max(largest, validate_volume(parts[k], total));
+    largest = std::max(largest, validate_volume(parts[k], values[k], total));
     if (b.volume.type != g.volume.type || b.volume.background != g.volume.background)
       throw std::invalid_argument("grid '" + g.name + "': block type or background differs from the grid's");
     for (std::size_t a = 0; a < 3; ++a)
@@ -107,7 +105,7 @@ double validate_blocked(const VolumeGrid& g, const std::vector<VolumeView>& part
 }
 
 void validate(const std::vector<VolumeGrid>& grids, const std::vector<std::vector<VolumeView>>& parts,
-              const VolumeEncodeOptions& o) {
+              const Summaries& values, const VolumeEncodeOptions& o) {
   if (grids.empty()) throw EncodeError("no grids to encode");
   if (grids.size() > kMaxVolumeGrids) throw EncodeError("more than 1024 grids");
   if (o.mode != VolumeRateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
@@ -121,12 +119,12 @@ void validate(const std::vector<VolumeGrid>& grids, const std::vector<std::vecto
       if (!in_coord_range(c, 0) || c == (std::int64_t(1) << 31))
         throw EncodeError("grid '" + g.name + "': origin outside the 32-bit index range");
     if (g.is_blocked()) {
-      largest = std::max(largest, validate_blocked(g, parts[i], total));
+      largest = std::max(largest, validate_blocked(g, parts[i], values[i], total));
     } else {
       if (parts[i][0].count() == 0)
         throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
       total += parts[i][0].count();
-      largest = std::max(largest, validate_volume(parts[i][0], total));
+      largest = std::max(largest, validate_volume(parts[i][0], values[i][0], total));
     }
     if (o.mode == VolumeRateMode::lossless && !is_integer(g.volume.type))
       throw std::invalid_argument(
@@ -184,18 +182,10 @@ bool brick_has_active(const VolumeView& v, const BrickBox& box) {
   return false;
 }
 
-void widen_range(const VolumeView& v, double& lo, double& hi) {
-  for_each_voxel(v, [&](double value, bool active) {
-    if (!active) return;
-    lo = std::min(lo, value);
-    hi = std::max(hi, value);
-  });
-}
-
 // Value range of the active voxels (active tiles included).
-double value_range(const VolumeGrid& g, const std::vector<VolumeView>& parts) {
+double value_range(const VolumeGrid& g, const std::vector<ValueSummary>& values) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const VolumeView& v : parts) widen_range(v, lo, hi);
+  for (const ValueSummary& v : values) lo = std::min(lo, v.lo), hi = std::max(hi, v.hi);
   for (const VolumeTile& t : g.tiles)
     if (t.active) lo = std::min(lo, t.value), hi = std::max(hi, t.value);
   return hi > lo ? hi - lo : 0.0;
@@ -306,7 +296,10 @@ std::vector<std::vector<VolumeView>> grid_parts(const std::vector<VolumeGrid>& g
 VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
                         const VolumeEncodeOptions& o) {
   const std::vector<std::vector<VolumeView>> parts = grid_parts(grids, views);
-  validate(grids, parts, o);
+  Summaries values(parts.size());
+  for (std::size_t g = 0; g < parts.size(); ++g)
+    for (const VolumeView& v : parts[g]) values[g].push_back(summarize_values(v));
+  validate(grids, parts, values, o);
   VolumePlan plan;
   plan.transform = make_transform(o.transform);
   check_stream_spec(plan.transform->spec());  // never write a stream the decoder's bounds refuse
@@ -347,7 +340,7 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const Vo
       plan.voxels += grid.active_voxels();
     else if (!grid.is_opaque())
       plan.voxels += active_count(parts[g][0]);
-    plan.range = std::max(plan.range, value_range(grid, parts[g]));
+    plan.range = std::max(plan.range, value_range(grid, values[g]));
   }
   h.brick_chunks = std::uint32_t(plan.jobs.size());
   return plan;

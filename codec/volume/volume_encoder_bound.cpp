@@ -58,9 +58,7 @@ void evaluate(const BrickInput& in, double base, std::vector<float>& requantized
   IndexStats stats;
   requantize_brick(in.coding, in.coef, in.size, base, requantized, &stats);
   c.stored.resize(requantized.size());
-  for (std::size_t i = 0; i < requantized.size(); ++i)
-    c.stored[i] = to_stored(double(requantized[i]), in.type);
-  c.outliers = find_outliers(in.samples, c.stored, in.active, in.bound, in.type);
+  store_and_find_outliers(in.samples, requantized, c.stored, in.active, in.bound, in.type, c.outliers);
   c.outlier_bytes = encode_outliers(c.outliers);
   c.bytes = kBytesPerSignificant * stats.significant + kBytesPerLog2Index * stats.log2_sum +
             kBytesPerMapBit * stats.map_bits + double(c.outlier_bytes.size());
@@ -69,14 +67,15 @@ void evaluate(const BrickInput& in, double base, std::vector<float>& requantized
 // Largest and squared error over the voxels that count.
 void measure(std::span<const double> samples, std::span<const std::uint8_t> active,
              std::span<const double> stored, BrickCode& code) {
-  code.max_error = 0.0;
-  code.sse = 0.0;
+  double max_error = 0.0, sse = 0.0;  // locals: through `code` every voxel would store both
   for (std::size_t i = 0; i < samples.size(); ++i) {
     if (!active.empty() && active[i] == 0) continue;
     const double e = std::abs(samples[i] - stored[i]);
-    code.max_error = std::max(code.max_error, e);
-    code.sse += e * e;
+    max_error = std::max(max_error, e);
+    sse += e * e;
   }
+  code.max_error = max_error;
+  code.sse = sse;
 }
 
 }  // namespace

@@ -37,16 +37,48 @@ std::uint64_t get_varint(std::span<const std::uint8_t> in, std::size_t& pos) {
 std::uint64_t zigzag(std::int64_t v) { return (std::uint64_t(v) << 1) ^ std::uint64_t(v >> 63); }
 std::int64_t unzigzag(std::uint64_t v) { return std::int64_t(v >> 1) ^ -std::int64_t(v & 1u); }
 
+// The correction of voxel i, whose stored reconstruction `value` is farther than bound from
+// `original`: appends it to out and returns the corrected stored value.
+double correct(std::size_t i, double original, double value, double bound, VoxelType type,
+               std::vector<Outlier>& out) {
+  const double residual = original - value;
+  const double k = std::round(residual / bound);
+  if (!(std::abs(k) < kMaxCorrection)) throw EncodeError("error bound too small for the data range");
+  const double fixed = to_stored(value + k * bound, type);
+  if (!(std::abs(original - fixed) <= bound))
+    throw EncodeError("error bound below the precision of the stored type");
+  out.push_back({std::uint32_t(i), std::int64_t(k)});
+  return fixed;
+}
+
+template <VoxelType kType>
+void store_and_find(std::span<const double> original, std::span<const float> requantized,
+                    std::span<double> stored, std::span<const std::uint8_t> check, double bound,
+                    std::vector<Outlier>& out) {
+  for (std::size_t i = 0; i < original.size(); ++i) {
+    const double value = to_stored(double(requantized[i]), kType);
+    stored[i] = value;
+    if (std::abs(original[i] - value) <= bound || (!check.empty() && check[i] == 0)) continue;
+    stored[i] = correct(i, original[i], value, bound, kType, out);
+  }
+}
+
 }  // namespace
 
-double to_stored(double value, VoxelType type) {
-  switch (type) {
-    case VoxelType::u8: return std::clamp(std::round(value), 0.0, 255.0);
-    case VoxelType::u16: return std::clamp(std::round(value), 0.0, 65535.0);
-    case VoxelType::f32: return double(float(value));
-    case VoxelType::f64: return value;
+void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
+                             std::span<double> stored, std::span<const std::uint8_t> check, double bound,
+                             VoxelType type, std::vector<Outlier>& out) {
+  out.clear();
+  switch (type) {  // one loop per type, so that to_stored's switch leaves the loop
+    case VoxelType::u8:
+      return store_and_find<VoxelType::u8>(original, requantized, stored, check, bound, out);
+    case VoxelType::u16:
+      return store_and_find<VoxelType::u16>(original, requantized, stored, check, bound, out);
+    case VoxelType::f32:
+      return store_and_find<VoxelType::f32>(original, requantized, stored, check, bound, out);
+    case VoxelType::f64:
+      return store_and_find<VoxelType::f64>(original, requantized, stored, check, bound, out);
   }
-  return value;
 }
 
 std::vector<Outlier> find_outliers(std::span<const double> original, std::span<double> reconstruction,
@@ -54,15 +86,8 @@ std::vector<Outlier> find_outliers(std::span<const double> original, std::span<d
   std::vector<Outlier> out;
   for (std::size_t i = 0; i < original.size(); ++i) {
     if (!check.empty() && check[i] == 0) continue;
-    const double residual = original[i] - reconstruction[i];
-    if (std::abs(residual) <= bound) continue;
-    const double k = std::round(residual / bound);
-    if (!(std::abs(k) < kMaxCorrection)) throw EncodeError("error bound too small for the data range");
-    const double fixed = to_stored(reconstruction[i] + k * bound, type);
-    if (!(std::abs(original[i] - fixed) <= bound))
-      throw EncodeError("error bound below the precision of the stored type");
-    out.push_back({std::uint32_t(i), std::int64_t(k)});
-    reconstruction[i] = fixed;
+    if (std::abs(original[i] - reconstruction[i]) <= bound) continue;
+    reconstruction[i] = correct(i, original[i], reconstruction[i], bound, type, out);
   }
   return out;
 }

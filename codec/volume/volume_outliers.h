@@ -4,6 +4,8 @@
 // reconstruction (k = round(residual / E), so |residual - k E| <= E / 2 before the value is
 // rounded to its stored type, and <= E after, since the original is itself a stored value).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -18,13 +20,29 @@ struct Outlier {
 };
 
 // A reconstructed value as the output file stores it: rounded to float for f32, rounded and
-// clamped for u8/u16, unchanged for f64.
-double to_stored(double value, VoxelType type);
+// clamped for u8/u16, unchanged for f64. Inline: it runs once per voxel in encoder and decoder.
+inline double to_stored(double value, VoxelType type) {
+  switch (type) {
+    case VoxelType::u8: return std::clamp(std::round(value), 0.0, 255.0);
+    case VoxelType::u16: return std::clamp(std::round(value), 0.0, 65535.0);
+    case VoxelType::f32: return double(float(value));
+    case VoxelType::f64: return value;
+  }
+  return value;
+}
 
 // Outliers of a brick: voxels with `check[i]` whose stored reconstruction is farther than
 // `bound` from `original[i]`. Applies the corrections to `reconstruction` (stored values).
 std::vector<Outlier> find_outliers(std::span<const double> original, std::span<double> reconstruction,
                                    std::span<const std::uint8_t> check, double bound, VoxelType type);
+
+// find_outliers of a reconstruction held as float (`requantized`, as the decoder holds it before
+// widening): writes its stored values, corrections applied, to `stored` and the outliers to `out`
+// in one pass (no separate conversion pass). Same result as converting with to_stored, then
+// find_outliers.
+void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
+                             std::span<double> stored, std::span<const std::uint8_t> check, double bound,
+                             VoxelType type, std::vector<Outlier>& out);
 
 // Applies decoded corrections to a brick's reconstruction (then rounds to the stored type).
 void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> outliers, double bound,

@@ -1,7 +1,11 @@
 #include "codec/volume/volume_view.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace pupwave {
 namespace {
@@ -113,6 +117,69 @@ void gather_box(const VolumeView& view, const Extent& offset, const Extent& size
         active.push_back(view.active[view.offset(offset[0] + x, offset[1] + y, offset[2] + z)]);
 }
 
+namespace {
+
+// Min, max and finiteness of a dense row of one storage type, in four interleaved chains (one
+// chain per row waits on every previous comparison; four keep the core busy).
+template <class T>
+struct RowRange {
+  T lo[4], hi[4];
+  T nan_sum[4] = {T(0), T(0), T(0), T(0)};  // x - x is 0 for finite x, NaN otherwise
+  RowRange() {                              // NaNs never enter lo and hi, as with std::min and std::max
+    for (int k = 0; k < 4; ++k) {
+      lo[k] = std::numeric_limits<T>::has_infinity ? std::numeric_limits<T>::infinity()
+                                                   : std::numeric_limits<T>::max();
+      hi[k] = std::numeric_limits<T>::has_infinity ? -std::numeric_limits<T>::infinity()
+                                                   : std::numeric_limits<T>::lowest();
+    }
+  }
+  void add(const T* row, std::size_t n) {
+    std::size_t x = 0;
+    for (; x + 4 <= n; x += 4)
+      for (int k = 0; k < 4; ++k) take(k, row[x + std::size_t(k)]);
+    for (; x < n; ++x) take(0, row[x]);
+  }
+  void take(int k, T v) {
+    lo[k] = v < lo[k] ? v : lo[k];
+    hi[k] = v > hi[k] ? v : hi[k];
+    if constexpr (std::is_floating_point_v<T>) nan_sum[k] += v - v;
+  }
+  void finish(ValueSummary& s) const {
+    for (int k = 0; k < 4; ++k) {
+      s.lo = std::min(s.lo, double(lo[k]));
+      s.hi = std::max(s.hi, double(hi[k]));
+      s.finite = s.finite && nan_sum[k] == T(0);
+    }
+  }
+};
+
+}  // namespace
+
+ValueSummary summarize_values(const VolumeView& view) {
+  ValueSummary s;
+  s.lo = std::numeric_limits<double>::infinity();
+  s.hi = -s.lo;
+  if (view.count() == 0) return s;
+  if (view.active == nullptr && view.strides[0] == 1) {  // the usual case: typed rows, no mask
+    with_storage(view.storage, [&](auto t) {
+      using T = decltype(t);
+      const T* data = static_cast<const T*>(view.data);
+      RowRange<T> r;
+      for (std::size_t z = 0; z < view.dims[2]; ++z)
+        for (std::size_t y = 0; y < view.dims[1]; ++y) r.add(data + view.offset(0, y, z), view.dims[0]);
+      r.finish(s);
+    });
+    if (s.finite) s.largest = std::max(std::fabs(s.lo), std::fabs(s.hi));
+    return s;
+  }
+  for_each_voxel(view, [&](double v, bool active) {
+    s.finite = s.finite && std::isfinite(v);
+    s.largest = std::max(s.largest, std::fabs(v));
+    if (active) s.lo = std::min(s.lo, v), s.hi = std::max(s.hi, v);
+  });
+  return s;
+}
+
 std::size_t active_count(const VolumeView& view) {
   if (view.active == nullptr) return view.count();
   std::size_t n = 0;
@@ -126,6 +193,19 @@ void VolumeOutput::set(std::size_t x, std::size_t y, std::size_t z, double value
   with_storage(storage, [&](auto t) {
     using T = decltype(t);
     static_cast<T*>(data)[offset(x, y, z)] = T(value);
+  });
+}
+
+void VolumeOutput::set_row(std::size_t x, std::size_t y, std::size_t z, const double* values,
+                           std::size_t n) const {
+  with_storage(storage, [&](auto t) {
+    using T = decltype(t);
+    T* row = static_cast<T*>(data) + offset(x, y, z);
+    if (strides[0] == 1) {
+      for (std::size_t i = 0; i < n; ++i) row[i] = T(values[i]);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) row[std::ptrdiff_t(i) * strides[0]] = T(values[i]);
+    }
   });
 }
 

@@ -75,6 +75,15 @@ void for_each_voxel(const VolumeView& view, F f) {
     }
 }
 
+// What the encoder and the CLI need of a view's values, read in one pass: the range of the active
+// voxels, and whether every voxel (active or not) is finite and the largest magnitude of all.
+struct ValueSummary {
+  double lo = 0.0, hi = 0.0;  // min and max of the active voxels (lo > hi when there are none)
+  double largest = 0.0;       // largest |value| of all voxels (meaningful when finite)
+  bool finite = true;         // no NaN or infinity among all voxels
+};
+ValueSummary summarize_values(const VolumeView& view);
+
 // Active voxels of a view (all of them when dense).
 std::size_t active_count(const VolumeView& view);
 
@@ -93,6 +102,8 @@ struct VolumeOutput {
   }
   // Stores a value already rounded to the grid's stored type (to_stored).
   void set(std::size_t x, std::size_t y, std::size_t z, double value) const;
+  // Stores n such values from (x, y, z) on along x (one type dispatch per row, not per voxel).
+  void set_row(std::size_t x, std::size_t y, std::size_t z, const double* values, std::size_t n) const;
 };
 
 // Contiguous output (x fastest) of `storage` elements.
