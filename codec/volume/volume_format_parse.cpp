@@ -130,8 +130,10 @@ VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const Deco
   h.levels = int(r.u8());
   h.brick_log2 = int(r.u8());
   h.block_log2 = int(r.u8());
+  h.coder = std::uint8_t(r.u8());
   require_stream(reversible <= 1, "volume stream: reversible flag");
   h.reversible = reversible == 1;
+  require_stream(h.coder <= 1 && !(h.coder == 1 && h.reversible), "volume stream: coefficient coder");
   require_stream(h.brick_log2 >= 3 && h.brick_log2 <= 8, "volume stream: brick size");
   require_stream(h.block_log2 >= 4 && h.block_log2 <= 6, "volume stream: code-block size");
   require_stream(h.levels <= h.brick_log2, "volume stream: levels");
