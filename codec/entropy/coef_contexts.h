@@ -39,7 +39,7 @@ struct CoefModels {
   std::array<std::array<BitModel, kCoefUnaryModels>, kCoefClasses> unary{};
   // Top kCoefModelledLow low bits as a binary tree (node 1..), one tree for high part 0, one for > 0.
   std::array<std::array<BitModel, 2 << kCoefModelledLow>, kCoefClasses> low{};
-  std::array<BitModel, 27> sign{};  // by the signs of the x-1, y-1, z-1 neighbours
+  std::array<BitModel, 54> sign{};  // by the signs of the x-1, y-1, z-1 neighbours
 };
 
 // Block indices with a zero border before x, y, z and after x, so every causal neighbour of a

@@ -38,7 +38,8 @@ std::int32_t get_index(RangeDecoder& dec, CoefModels& m, int ctx, std::size_t si
   const std::uint64_t top = (node - (std::size_t(1) << modelled)) | (h << modelled);  // q >> rest_bits
   const int rest_bits = k - modelled;
   const std::uint64_t rest = get_raw(dec, rest_bits);
-  const bool negative = (top | rest) != 0 && dec.decode(m.sign[sign_ctx]) != 0;
+  const std::uint64_t mag = (top << rest_bits) | rest;
+  const bool negative = mag != 0 && dec.decode(m.sign[sign_ctx + (mag > 1 ? 27 : 0)]) != 0;
   const std::uint64_t value = (top << rest_bits) | rest;
   q = std::uint32_t(std::min(value, limit));
   return negative ? -std::int32_t(q) : std::int32_t(q);
