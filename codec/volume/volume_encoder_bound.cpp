@@ -2,8 +2,6 @@
 // the coded size (cheap statistics of the quantization indices) plus the exact size of the
 // corrections the step needs, then one block coding at that step.
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "codec/volume/volume_encoder_plan.h"
 #include "codec/volume/volume_outliers.h"
@@ -17,13 +15,14 @@ constexpr double kBoundStepFactors[] = {1.0, 1.12, 1.25, 1.4, 1.57, 1.76, 1.97,
                                         2.2, 2.47, 2.77, 3.1, 3.5,  3.9};
 constexpr std::size_t kFactorCount = std::size(kBoundStepFactors);
 constexpr std::size_t kFirstFactor = 3;  // 1.4: the best factor of most bricks is 1.25..1.76
-// Coded bytes of a brick's blocks ~ a K + b L + c H (least squares over the bricks of wmag91
-// and a 128^3 turbulence field at bounds 1e-2..1e-4 of range, 2.3% rms error): K significant
+// Coded bytes of a brick's blocks ~ a K + b L + c H (relative least squares over the bricks of
+// wmag91 and a 128^3 turbulence field at bounds 1e-2..1e-4 of range and 7 step factors each,
+// refitted for the coefficient coder: 2.1% rms error): K significant
 // coefficients (sign and significance), L = sum of log2(index) over them (refinement bits),
 // H = sum over blocks of n h(K_block / n) (where in the block they are).
-constexpr double kBytesPerSignificant = 0.362;
-constexpr double kBytesPerLog2Index = 0.129;
-constexpr double kBytesPerMapBit = 0.068;
+constexpr double kBytesPerSignificant = 0.315;
+constexpr double kBytesPerLog2Index = 0.133;
+constexpr double kBytesPerMapBit = 0.075;
 
 // One candidate step: its modelled size and the exact reconstruction and corrections.
 struct Candidate {
@@ -103,17 +102,6 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
       moved = true;
     }
     if (moved) break;  // the total fell going up; it rises going down
-  }
-  if (std::getenv("PUPWAVE_FIT")) {
-    for (std::size_t f = 0; f < kFactorCount; f += 2) {
-      IndexStats st;
-      std::vector<float> rq;
-      requantize_brick(plan.coding, coef, job.box.size, kBoundStepFactors[f] * bound, rq, &st);
-      const CodedBrick cb = code_coefficients(plan.coding, coef, job.box.size, kBoundStepFactors[f] * bound);
-      std::size_t bytes = 0;
-      for (const auto& b : cb.coded) bytes += b.size(b.pass_count());
-      std::fprintf(stderr, "FIT %g %g %g %zu\n", st.significant, st.log2_sum, st.map_bits, bytes);
-    }
   }
   BrickCode code;
   code.base_step = kBoundStepFactors[at] * bound;
