@@ -32,15 +32,20 @@ inline constexpr int kCoefUnaryModels = 4;
 inline constexpr int kCoefEscape = 12;
 // Raw bits the range coder takes at once (range >= 2^24 before, >= 2^8 after).
 inline constexpr int kCoefRawChunk = 16;
-// Low bits (below the high part) coded with models; the rest are raw.
+// Low bits (below the high part) coded with models, the rest raw: 0 costs 1-2.8% more bits, 1
+// 0.3% more on turbulence at 1e-3 / 1e-4.
 inline constexpr int kCoefModelledLow = 2;
+// Sign contexts: each of 3 neighbours negative, zero or positive.
+inline constexpr int kCoefSignContexts = 27;
 
 // Adaptive models of one block (fresh per block: each block's codeword decodes alone).
 struct CoefModels {
   std::array<std::array<BitModel, kCoefUnaryModels>, kCoefClasses> unary{};
   // Top kCoefModelledLow low bits as a binary tree (node 1..), one tree for high part 0, one for > 0.
   std::array<std::array<BitModel, 2 << kCoefModelledLow>, kCoefClasses> low{};
-  std::array<BitModel, 54> sign{};  // by the signs of the x-1, y-1, z-1 neighbours
+  // Sign, by the signs of the x-1, y-1, z-1 neighbours and whether the index is 1 or larger
+  // (neighbour signs agree more with a large coefficient's): streams 2-5% smaller than with raw signs.
+  std::array<BitModel, 2 * kCoefSignContexts> sign{};
 };
 
 // Block indices with a zero border before x, y, z and after x, so every causal neighbour of a

@@ -9,7 +9,8 @@
 namespace pupwave {
 namespace {
 
-std::uint64_t get_raw(RangeDecoder& dec, int n) {
+// More raw bits than the coder takes at once: rare (escapes, huge k), kept off the inlined path.
+[[gnu::noinline]] std::uint64_t get_raw_long(RangeDecoder& dec, int n) {
   std::uint64_t v = 0;
   while (n > kCoefRawChunk) {
     n -= kCoefRawChunk;
@@ -17,6 +18,12 @@ std::uint64_t get_raw(RangeDecoder& dec, int n) {
   }
   if (n > 0) v = (v << n) | dec.decode_raw(n);
   return v;
+}
+
+// `n` (0..64) raw bits, most significant chunk first.
+inline std::uint64_t get_raw(RangeDecoder& dec, int n) {
+  if (n > kCoefRawChunk) return get_raw_long(dec, n);
+  return n > 0 ? dec.decode_raw(n) : 0;
 }
 
 // Inverse of put_index (coef_encoder.cpp); the index is clamped below 2^bits (corrupt input only).
@@ -38,9 +45,8 @@ std::int32_t get_index(RangeDecoder& dec, CoefModels& m, int ctx, std::size_t si
   const std::uint64_t top = (node - (std::size_t(1) << modelled)) | (h << modelled);  // q >> rest_bits
   const int rest_bits = k - modelled;
   const std::uint64_t rest = get_raw(dec, rest_bits);
-  const std::uint64_t mag = (top << rest_bits) | rest;
-  const bool negative = mag != 0 && dec.decode(m.sign[sign_ctx + (mag > 1 ? 27 : 0)]) != 0;
   const std::uint64_t value = (top << rest_bits) | rest;
+  const bool negative = value != 0 && dec.decode(m.sign[sign_ctx + (value > 1 ? kCoefSignContexts : 0)]) != 0;
   q = std::uint32_t(std::min(value, limit));
   return negative ? -std::int32_t(q) : std::int32_t(q);
 }

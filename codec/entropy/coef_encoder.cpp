@@ -47,7 +47,7 @@ void put_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_t sign_ctx, 
   const int rest_bits = k - modelled;
   const std::uint32_t rest = q & ((1u << rest_bits) - 1u);
   put_raw(enc, rest, rest_bits);
-  if (q != 0) enc.encode(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? 27 : 0)]);
+  if (q != 0) enc.encode(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? kCoefSignContexts : 0)]);
 }
 
 }  // namespace
