@@ -55,14 +55,17 @@ class CoefPlane {
   explicit CoefPlane(const Extent& size)
       : nx_(size[0] + 2), ny_(size[1] + 2), q_(nx_ * ny_ * (size[2] + 1), 0u), s_(q_.size(), 0) {}
   // Position of block coefficient (x, y, z).
-  std::size_t at(std::size_t x, std::size_t y, std::size_t z) const { return (x + 1) + nx_ * ((y + 1) + ny_ * (z + 1)); }
+  std::size_t at(std::size_t x, std::size_t y, std::size_t z) const {
+    return (x + 1) + nx_ * ((y + 1) + ny_ * (z + 1));
+  }
   // Context class of the coefficient at `p` from its coded neighbours: x-1 (twice), y-1 (twice),
   // z-1 (twice), and the diagonals (x-1, y-1), (x+1, y-1), (x, y-1, z-1) once; 9 weights.
   int context(std::size_t p) const {
     const std::uint32_t* q = q_.data();
     const std::size_t dy = nx_, dz = nx_ * ny_;
-    const std::uint64_t s = 2 * (std::uint64_t(q[p - 1]) + q[p - dy] + q[p - dz]) + std::uint64_t(q[p - 1 - dy]) +
-                            q[p + 1 - dy] + q[p - dy - dz] + q[p - 1 - dz] + q[p + 1 - dz] + q[p + dy - dz];
+    const std::uint64_t s = 2 * (std::uint64_t(q[p - 1]) + q[p - dy] + q[p - dz]) +
+                            std::uint64_t(q[p - 1 - dy]) + q[p + 1 - dy] + q[p - dy - dz] + q[p - 1 - dz] +
+                            q[p + 1 - dz] + q[p + dy - dz];
     // Half-octave classes: the bit width and the bit below the leading one.
     const int w = int(std::bit_width(s));
     const int cls = s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u);

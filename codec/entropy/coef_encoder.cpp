@@ -20,12 +20,14 @@ void put_raw(RangeEncoder& enc, std::uint64_t v, int n) {
 }
 
 // One index: unary high part (escape: Elias-gamma raw), modelled top low bit, raw rest and sign.
-void put_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_t sign_ctx, std::uint32_t q, bool negative) {
+void put_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_t sign_ctx, std::uint32_t q,
+               bool negative) {
   const int k = coef_rice_k(ctx);
   const std::uint32_t h = q >> k;
   auto& unary = m.unary[std::size_t(ctx)];
   const std::uint32_t ones = std::min<std::uint32_t>(h, kCoefEscape);
-  for (std::uint32_t j = 0; j < ones; ++j) enc.encode(1, unary[std::min<std::size_t>(j, kCoefUnaryModels - 1)]);
+  for (std::uint32_t j = 0; j < ones; ++j)
+    enc.encode(1, unary[std::min<std::size_t>(j, kCoefUnaryModels - 1)]);
   if (h < kCoefEscape) {
     enc.encode(0, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]);
   } else {
@@ -60,7 +62,8 @@ CoefCodeword encode_coefficients(std::span<const std::uint32_t> index, std::span
   for (std::uint32_t q : index) all |= q;
   CoefCodeword out;
   out.bits = int(std::bit_width(all));
-  if (out.bits > kCoefMaxBits) throw IndexRangeError("quantization index too large for the coefficient coder");
+  if (out.bits > kCoefMaxBits)
+    throw IndexRangeError("quantization index too large for the coefficient coder");
   if (out.bits == 0) return out;
   RangeEncoder enc;
   CoefModels models;

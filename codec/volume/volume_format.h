@@ -22,6 +22,7 @@ namespace pupwave {
 // Version 4: VHDR's coder byte; max-error streams code their blocks with the non-embedded
 // coefficient coder (coef_encoder.h).
 inline constexpr std::uint8_t kVolumeStreamVersion = 4;
+inline constexpr std::uint8_t kOldestVolumeStreamVersion = 3;  // read as well (coder 0)
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;
