@@ -30,7 +30,8 @@ inline constexpr int kCoefKOffset = 2;
 // which the rest of the high part is sent raw (Elias-gamma style).
 inline constexpr int kCoefUnaryModels = 4;
 inline constexpr int kCoefEscape = 12;
-// Raw bits the range coder takes at once (range >= 2^24 before, >= 2^8 after).
+// Raw bits the range coder takes at once (range >= 2^24 before, >= 2^8 after); longer runs (at
+// most 31 bits: escapes, Rice parameters up to 21) go in two pieces.
 inline constexpr int kCoefRawChunk = 16;
 // Low bits (below the high part) coded with models, the rest raw: 0 costs 1-2.8% more bits, 1
 // 0.3% more on turbulence at 1e-3 / 1e-4.

@@ -9,20 +9,13 @@
 namespace pupwave {
 namespace {
 
-// More raw bits than the coder takes at once: rare (escapes, huge k), kept off the inlined path.
-[[gnu::noinline]] std::uint64_t get_raw_long(RangeDecoder& dec, int n) {
-  std::uint64_t v = 0;
-  while (n > kCoefRawChunk) {
-    n -= kCoefRawChunk;
-    v = (v << kCoefRawChunk) | dec.decode_raw(kCoefRawChunk);
-  }
-  if (n > 0) v = (v << n) | dec.decode_raw(n);
-  return v;
-}
-
-// `n` (0..64) raw bits, most significant chunk first.
+// `n` (0..32) raw bits, the high chunk first. Inline throughout: a call taking the decoder's
+// address would keep its state in memory instead of registers.
 inline std::uint64_t get_raw(RangeDecoder& dec, int n) {
-  if (n > kCoefRawChunk) return get_raw_long(dec, n);
+  if (n > kCoefRawChunk) {
+    const std::uint64_t high = dec.decode_raw(n - kCoefRawChunk);
+    return (high << kCoefRawChunk) | dec.decode_raw(kCoefRawChunk);
+  }
   return n > 0 ? dec.decode_raw(n) : 0;
 }
 

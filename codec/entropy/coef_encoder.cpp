@@ -10,13 +10,14 @@
 namespace pupwave {
 namespace {
 
-// `n` (0..64) raw bits of `v`, most significant chunk first (the coder takes at most 16 at once).
-void put_raw(RangeEncoder& enc, std::uint64_t v, int n) {
-  while (n > kCoefRawChunk) {
-    n -= kCoefRawChunk;
-    enc.encode_raw(std::uint32_t(v >> n), kCoefRawChunk);
+// `n` (0..32) raw bits of `v`, the high chunk first (the coder takes at most 16 at once).
+inline void put_raw(RangeEncoder& enc, std::uint64_t v, int n) {
+  if (n > kCoefRawChunk) {
+    enc.encode_raw(std::uint32_t(v >> kCoefRawChunk), n - kCoefRawChunk);
+    enc.encode_raw(std::uint32_t(v), kCoefRawChunk);
+  } else if (n > 0) {
+    enc.encode_raw(std::uint32_t(v), n);
   }
-  if (n > 0) enc.encode_raw(std::uint32_t(v), n);
 }
 
 // One index: unary high part (escape: Elias-gamma raw), modelled top low bit, raw rest and sign.
