@@ -47,7 +47,7 @@ Indices wide(const Extent& size, unsigned seed) {
   std::mt19937 rng(seed);
   Indices d;
   for (std::size_t i = 0; i < count(size); ++i) {
-    const unsigned bits = rng() % 31u;  // 0..30
+    const auto bits = unsigned(rng() % 31u);  // 0..30
     d.magnitude.push_back(bits == 0 ? 0u : std::uint32_t(rng()) & ((1u << bits) - 1u));
     d.negative.push_back(std::uint8_t(rng() & 1u));
   }
