@@ -27,6 +27,21 @@ class RangeDecoder {
     return bit;
   }
   int decode_equiprobable() { return decode_with(kProbabilityOne / 2); }
+  // Inverse of RangeEncoder::encode_raw: `n` (1..16) raw bits. A corrupt codeword can put the
+  // code past the last part; the value is then clamped (wrong bits, never out of range).
+  std::uint32_t decode_raw(int n) {
+    const std::uint32_t part = range_ >> n;
+    const std::uint32_t value = std::min(code_ / part, (1u << n) - 1u);
+    code_ -= value * part;
+    range_ = part;
+    // part >= 2^8 (range >= 2^24 before), so at most 2 bytes are shifted in.
+    if (range_ < (1u << 24)) {
+      const int bytes = std::countl_zero(range_) >> 3;
+      range_ <<= 8 * bytes;
+      code_ = (code_ << (8 * bytes)) | next_bytes(bytes);
+    }
+    return value;
+  }
 
  private:
   // The bit is selected without a branch: the bit of a well-adapted context is

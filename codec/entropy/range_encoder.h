@@ -30,6 +30,17 @@ class RangeEncoder {
   }
   // Codes a bit with probability one half (no adaptation).
   void encode_equiprobable(int bit) { encode_with(bit, std::uint16_t(kProbabilityOne / 2)); }
+  // Codes the low `n` (1..16) bits of `value` raw, all at once (the coefficient coder's
+  // bypass bits): the range is split into 2^n equal parts, no model, one renormalisation.
+  void encode_raw(std::uint32_t value, int n) {
+    const std::uint32_t part = range_ >> n;
+    low_ += std::uint64_t(value & ((1u << n) - 1u)) * part;
+    range_ = part;
+    while (range_ < (1u << 24)) {
+      range_ <<= 8;
+      shift_low();
+    }
+  }
 
   // The codeword that decodes every bit coded so far.
   TruncationPoint truncation_point() const;

@@ -6,6 +6,9 @@
 
 #include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_decoder.h"
+#include "codec/entropy/coef_contexts.h"
+#include "codec/entropy/coef_decoder.h"
+#include "codec/entropy/coef_encoder.h"
 #include "codec/error.h"
 #include "codec/image/image_components.h"
 #include "codec/rate/quantizer.h"
@@ -48,6 +51,27 @@ std::vector<float> brick_steps(const BrickCoding& c, const Extent& size, double 
 
 namespace {
 
+// A block through the coefficient coder, as an EncodedBlock of one pass (none when all zero) so
+// that the brick and stream code treats both coders alike.
+EncodedBlock code_indices(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
+                          const Extent& size) {
+  std::vector<std::uint32_t> index(magnitude.size());
+  for (std::size_t i = 0; i < magnitude.size(); ++i) {
+    const float m = magnitude[i];
+    if (!(m < float(1u << kCoefMaxBits))) throw IndexRangeError("quantization index too large for the coder");
+    index[i] = std::uint32_t(std::int32_t(m));  // as requantize_brick and the bit-plane coder truncate
+  }
+  CoefCodeword w = encode_coefficients(index, negative, size);
+  EncodedBlock out;
+  out.planes = w.bits;
+  if (w.bits > 0) {
+    out.passes.push_back(TruncationPoint{w.bytes.size(), {}});
+    out.distortion_drop.push_back(0.0);
+  }
+  out.committed = std::move(w.bytes);
+  return out;
+}
+
 // Index-unit magnitudes and signs of one block of transformed coefficients.
 template <class T>
 EncodedBlock code_one(const BrickCoding& c, std::span<const T> coef, const Extent& size, const CodeBlock& b,
@@ -57,6 +81,7 @@ EncodedBlock code_one(const BrickCoding& c, std::span<const T> coef, const Exten
   std::vector<float> magnitude(b.count());
   std::vector<std::uint8_t> negative(b.count());
   quantize<T>(values, step, magnitude, negative);
+  if (c.coef) return code_indices(magnitude, negative, b.size);
   return encode_block(magnitude, negative, b.size, b.orientation, c.delta);
 }
 
@@ -99,6 +124,28 @@ CodedBrick code_coefficients(const BrickCoding& c, std::span<const float> coef, 
 
 namespace {
 
+// Dequantized signed indices of a block, into its place in the brick: reconstruct()'s arithmetic
+// for a fully decoded coefficient (index + delta in double, then float, times the step), so
+// requantize_brick's values hold for this coder too.
+template <class T>
+void place_indices(std::span<const std::int32_t> indices, const BrickCoding& c, const Extent& size,
+                   const CodeBlock& b, float step, std::vector<T>& coef) {
+  std::size_t k = 0;
+  for (std::size_t z = 0; z < b.size[2]; ++z)
+    for (std::size_t y = 0; y < b.size[1]; ++y) {
+      T* row = coef.data() + b.offset[0] + size[0] * ((b.offset[1] + y) + size[1] * (b.offset[2] + z));
+      for (std::size_t x = 0; x < b.size[0]; ++x, ++k) {
+        const std::int32_t q = indices[k];
+        if constexpr (std::is_floating_point_v<T>) {
+          const float r = float(double(q < 0 ? -std::int64_t(q) : q) + c.delta);
+          row[x] = q == 0 ? 0.0f : (q < 0 ? -r : r) * step;
+        } else {
+          row[x] = T(q);
+        }
+      }
+    }
+}
+
 // Dequantized coefficients of every block the level needs, in the brick's in-place layout.
 template <class T>
 std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::span<const float> steps,
@@ -107,9 +154,17 @@ std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::s
   const auto blocks = brick_blocks(c, size);
   require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(), "brick block count");
   std::vector<T> coef(size[0] * size[1] * size[2], T(0));
+  std::vector<std::int32_t> indices;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const CodeBlock& b = blocks[i];
     if (b.resolution > c.levels - level || entries[i].passes == 0) continue;
+    if (c.coef) {
+      require_stream(entries[i].passes == 1, "volume stream: a coefficient-coded block has one pass");
+      indices.resize(b.count());
+      decode_coefficients(codewords[i], entries[i].planes, b.size, indices);
+      place_indices<T>(indices, c, size, b, steps[b.band], coef);
+      continue;
+    }
     const DecodedBlock d =
         decode_block(codewords[i], entries[i].planes, entries[i].passes, b.size, b.orientation);
     // Straight into the block's place in the brick (no block-sized copy in between).

@@ -32,6 +32,7 @@ struct BrickCoding {
   std::size_t block = 32;   // code-block edge
   double delta = 0.4375;    // reconstruction offset inside a bin (index units)
   bool reversible = false;  // integer transform, steps 1, bit exact
+  bool coef = false;        // non-embedded coefficient coder (coef_encoder.h), not the bit-plane coder
 };
 
 // Code-blocks of a brick of `size`, in partition_blocks order.

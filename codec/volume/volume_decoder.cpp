@@ -431,7 +431,8 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
     throw std::invalid_argument("level " + std::to_string(level) + " exceeds the stream's " +
                                 std::to_string(h.levels) + " levels");
   const auto t = stream_transform(h);
-  const BrickCoding coding{t.get(), h.levels, std::size_t(1) << h.block_log2, h.delta, h.reversible};
+  const BrickCoding coding{t.get(), h.levels,     std::size_t(1) << h.block_log2,
+                           h.delta, h.reversible, h.coder == 1};
   const auto bricks = grid_bricks(s);
   check_brick_set(s, bricks);
   std::vector<VolumeGrid> grids = h.grids;
@@ -485,7 +486,8 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
   const bool sparse = h.grids[g].volume.is_sparse();
   if (h.blocked[g] != 0 || (sparse && level > 0)) return std::nullopt;  // decode_volumes' forms
   const auto t = stream_transform(h);
-  const BrickCoding coding{t.get(), h.levels, std::size_t(1) << h.block_log2, h.delta, h.reversible};
+  const BrickCoding coding{t.get(), h.levels,     std::size_t(1) << h.block_log2,
+                           h.delta, h.reversible, h.coder == 1};
   const auto bricks = grid_bricks(s);
   check_brick_set(s, bricks);
   VolumeGrid grid = h.grids[g];

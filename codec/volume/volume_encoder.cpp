@@ -320,7 +320,9 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const Vo
             : o.mode == VolumeRateMode::max_error ? kMaxErrorDelta
                                                   : kDefaultReconstructionDelta;
   h.max_error = o.mode == VolumeRateMode::max_error ? o.target : 0.0;
-  plan.coding = BrickCoding{plan.transform.get(), h.levels, o.block, h.delta, reversible};
+  // Max-error bricks are never truncated: the coefficient coder codes every index in one pass.
+  h.coder = o.mode == VolumeRateMode::max_error ? 1 : 0;
+  plan.coding = BrickCoding{plan.transform.get(), h.levels, o.block, h.delta, reversible, h.coder == 1};
   plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.masks.resize(grids.size());
   plan.layouts.resize(grids.size());

@@ -15,13 +15,14 @@ constexpr double kBoundStepFactors[] = {1.0, 1.12, 1.25, 1.4, 1.57, 1.76, 1.97,
                                         2.2, 2.47, 2.77, 3.1, 3.5,  3.9};
 constexpr std::size_t kFactorCount = std::size(kBoundStepFactors);
 constexpr std::size_t kFirstFactor = 3;  // 1.4: the best factor of most bricks is 1.25..1.76
-// Coded bytes of a brick's blocks ~ a K + b L + c H (least squares over the bricks of wmag91
-// and a 128^3 turbulence field at bounds 1e-2..1e-4 of range, 2.3% rms error): K significant
+// Coded bytes of a brick's blocks ~ a K + b L + c H (relative least squares over the bricks of
+// wmag91 and a 128^3 turbulence field at bounds 1e-2..1e-4 of range and 7 step factors each,
+// refitted for the coefficient coder: 2.1% rms error): K significant
 // coefficients (sign and significance), L = sum of log2(index) over them (refinement bits),
 // H = sum over blocks of n h(K_block / n) (where in the block they are).
-constexpr double kBytesPerSignificant = 0.305;
-constexpr double kBytesPerLog2Index = 0.130;
-constexpr double kBytesPerMapBit = 0.083;
+constexpr double kBytesPerSignificant = 0.315;
+constexpr double kBytesPerLog2Index = 0.133;
+constexpr double kBytesPerMapBit = 0.075;
 
 // One candidate step: its modelled size and the exact reconstruction and corrections.
 struct Candidate {

@@ -77,6 +77,7 @@ void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader
   w.u8(std::uint32_t(h.levels));
   w.u8(std::uint32_t(h.brick_log2));
   w.u8(std::uint32_t(h.block_log2));
+  w.u8(h.coder);
   put_f64(w, h.delta);
   put_f64(w, h.max_error);
   put_text(w, h.spec);

@@ -19,7 +19,10 @@ namespace pupwave {
 // Version 2: chunks framed by codec/format/chunks.h (the CRC also covers the length field).
 // Version 3: sparse-native grids (layout 2) with a BLKS chunk of blocks and tiles, and opaque
 // grids (layout 3) carried as OpenVDB serialises them in an OPAQ chunk.
-inline constexpr std::uint8_t kVolumeStreamVersion = 3;
+// Version 4: VHDR's coder byte; max-error streams code their blocks with the non-embedded
+// coefficient coder (coef_encoder.h).
+inline constexpr std::uint8_t kVolumeStreamVersion = 4;
+inline constexpr std::uint8_t kOldestVolumeStreamVersion = 3;  // read as well (coder 0)
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;
@@ -40,6 +43,7 @@ struct VolumeStreamHeader {
   int levels = 0;                  // per brick
   int brick_log2 = 6;              // brick edge 2^k
   int block_log2 = 5;              // code-block edge 2^k
+  std::uint8_t coder = 0;          // 0 bit-plane coder, 1 coefficient coder (irreversible only)
   double delta = 0.4375;           // reconstruction offset in a bin (index units)
   double max_error = 0.0;          // bound the outlier corrections were quantized to (0: none)
   std::uint32_t brick_chunks = 0;  // BRIK chunks that follow (all grids)

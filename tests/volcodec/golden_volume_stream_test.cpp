@@ -4,9 +4,12 @@
 // update docs/bitstream.md and these values; an encoder-only change (a different step choice)
 // updates the lossy values without a version bump (as the modelled step choice and the max-error
 // reconstruction offset 0.5 of issue 17 did). Version 3 (sparse-native grids) changed only the version byte
-// of these box-grid streams.
+// of these box-grid streams. Version 4 added VHDR's coder byte (lossless and step streams: that
+// byte and the version only) and codes max-error streams with the coefficient coder.
 #include <gtest/gtest.h>
 
+#include "codec/error.h"
+#include "codec/format/chunks.h"
 #include "codec/format/crc32.h"
 #include "codec/volume/volume_codec.h"
 #include "volcodec/volcodec_test_util.h"
@@ -14,7 +17,7 @@
 namespace pupwave {
 namespace {
 
-std::uint32_t stream_crc(Volume v, VolumeRateMode mode, double target, const char* spec) {
+std::vector<std::uint8_t> encode_golden(Volume v, VolumeRateMode mode, double target, const char* spec) {
   VolumeGrid g;
   g.name = "golden";
   g.volume = std::move(v);
@@ -25,28 +28,67 @@ std::uint32_t stream_crc(Volume v, VolumeRateMode mode, double target, const cha
   o.brick = 16;
   o.block = 16;
   o.executor = &serial_executor();
-  return crc32(encode_volumes({g}, o).bytes);
+  return encode_volumes({g}, o).bytes;
+}
+
+std::uint32_t stream_crc(Volume v, VolumeRateMode mode, double target, const char* spec) {
+  return crc32(encode_golden(std::move(v), mode, target, spec));
+}
+
+// The version 3 form of a bit-plane coded version 4 stream: the same chunks without VHDR's coder
+// byte (the fifth byte of its payload).
+std::vector<std::uint8_t> as_version3(std::span<const std::uint8_t> v4) {
+  ChunkReader r(v4, "PUPV", 4, "volume stream");
+  std::vector<std::uint8_t> out;
+  write_signature(out, "PUPV", 3);
+  while (!r.at_end()) {
+    const Chunk c = r.next();
+    std::vector<std::uint8_t> payload(c.payload.begin(), c.payload.end());
+    if (c.is("VHDR")) {
+      EXPECT_EQ(payload[4], 0u);  // bit-plane coder
+      payload.erase(payload.begin() + 4);
+    }
+    const char tag[5] = {c.tag[0], c.tag[1], c.tag[2], c.tag[3], 0};
+    write_chunk(out, tag, payload);
+  }
+  return out;
 }
 
 TEST(GoldenVolumeStream, LosslessStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(test::smooth_volume({21, 17, 9}, VoxelType::u16, 4000.0), VolumeRateMode::lossless, 0,
                        "cdf53"),
-            3864634459u);
+            3588273919u);
 }
 
 TEST(GoldenVolumeStream, ErrorBoundedStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(test::smooth_volume({21, 17, 9}, VoxelType::f32, 10.0), VolumeRateMode::max_error,
                        1e-2, "cdf97"),
-            294715810u);
+            4251276653u);
   EXPECT_EQ(stream_crc(test::sphere_level_set({24, 24, 24}, 7.0, 2.5, 0.3), VolumeRateMode::max_error, 1e-3,
                        "cdf97"),
-            1481150550u);
+            3572078245u);
 }
 
 TEST(GoldenVolumeStream, StepStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(test::smooth_volume({19, 13, 11}, VoxelType::f64, 1.0, 3), VolumeRateMode::step, 1e-3,
                        "cdf53"),
-            1453194226u);
+            2246985985u);
+}
+
+// Version 3 streams (bit-plane coded throughout) still decode, to the same values.
+TEST(GoldenVolumeStream, Version3StreamsStillDecode) {
+  const auto v4 = encode_golden(test::smooth_volume({21, 17, 9}, VoxelType::u16, 4000.0),
+                                VolumeRateMode::lossless, 0, "cdf53");
+  const auto v3 = as_version3(v4);
+  ASSERT_EQ(v3[4], 3u);
+  ASSERT_EQ(v3.size() + 1, v4.size());
+  EXPECT_EQ(decode_volumes(v3)[0].volume.samples, decode_volumes(v4)[0].volume.samples);
+  const auto v2 = [&] {
+    auto b = v3;
+    b[4] = 2;
+    return b;
+  }();
+  EXPECT_THROW(decode_volumes(v2), DecodeError);
 }
 
 }  // namespace

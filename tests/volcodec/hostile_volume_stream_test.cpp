@@ -3,7 +3,9 @@
 // give DecodeError, never a crash or an unbounded allocation.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
+#include <string>
 
 #include "codec/error.h"
 #include "codec/volume/volume_codec.h"
@@ -73,6 +75,56 @@ TEST(HostileVolumeStream, CraftedHeadersAreRejected) {
   EXPECT_THROW(decode_volumes(crafted({4, 4, 4}, 9)), DecodeError);      // levels above log2(brick)
   EXPECT_THROW(decode_volumes(crafted({4, 4, 4}, 3, 20)), DecodeError);  // absurd brick
   EXPECT_THROW(decode_volumes(crafted({4, 4, 4})), DecodeError);         // a dense grid without bricks
+}
+
+// A dense max-error stream (coefficient coder) parsed, changed and written again with valid CRCs.
+std::vector<std::uint8_t> coef_stream_changed(const std::function<void(ParsedVolumeStream&)>& change) {
+  VolumeGrid g;
+  g.name = "c";
+  g.volume = test::smooth_volume({20, 12, 9}, VoxelType::f32, 50.0);
+  VolumeEncodeOptions o;
+  o.mode = VolumeRateMode::max_error;
+  o.target = 1e-3;
+  o.brick = 16;
+  o.block = 16;
+  const std::vector<std::uint8_t> bytes = encode_volumes({g}, o).bytes;  // the codewords point into it
+  ParsedVolumeStream s = parse_volume_stream(bytes);
+  EXPECT_EQ(s.header.coder, 1u);
+  change(s);
+  std::vector<std::uint8_t> out;
+  write_volume_signature(out);
+  write_header_chunk(out, s.header);
+  for (const BrickChunk& b : s.bricks) write_brick_chunk(out, b);
+  return out;
+}
+
+void expect_refused(const std::vector<std::uint8_t>& bytes, const std::string& message) {
+  try {
+    decode_volumes(bytes);
+    ADD_FAILURE() << "decoded; expected: " << message;
+  } catch (const DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+  }
+}
+
+TEST(HostileVolumeStream, CoefficientCoderFieldsAreChecked) {
+  EXPECT_NO_THROW(decode_volumes(coef_stream_changed([](ParsedVolumeStream&) {})));
+  expect_refused(coef_stream_changed([](ParsedVolumeStream& s) { s.header.coder = 2; }), "coefficient coder");
+  expect_refused(coef_stream_changed([](ParsedVolumeStream& s) {
+                   s.header.reversible = true;
+                   s.header.spec = "cdf53";
+                 }),
+                 "coefficient coder");
+  expect_refused(coef_stream_changed([](ParsedVolumeStream& s) {
+                   for (BlockEntry& e : s.bricks[0].entries)
+                     if (e.planes >= 2) e.passes = 2;
+                 }),
+                 "one pass");
+  // Coefficient codewords read as bit-plane ones (coder 0): wrong values or a DecodeError, no crash.
+  try {
+    decode_volumes(coef_stream_changed([](ParsedVolumeStream& s) { s.header.coder = 0; }));
+  } catch (const DecodeError&) {
+  }
 }
 
 TEST(HostileVolumeStream, ValidStreamDecodes) {
