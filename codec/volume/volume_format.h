@@ -19,7 +19,8 @@ namespace pupwave {
 // Version 2: chunks framed by codec/format/chunks.h (the CRC also covers the length field).
 // Version 3: sparse-native grids (layout 2) with a BLKS chunk of blocks and tiles, and opaque
 // grids (layout 3) carried as OpenVDB serialises them in an OPAQ chunk.
-inline constexpr std::uint8_t kVolumeStreamVersion = 3;
+// Version 4: the bit-plane block coder's far-neighbour contexts and trained priors.
+inline constexpr std::uint8_t kVolumeStreamVersion = 4;
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;
