@@ -174,10 +174,10 @@ class BlockState {
   // Far bits: rows y - 2 .. y + 2 of columns x - 2 .. x + 2 (in this slice). They span this
   // stripe and the one above (r < 2) or below; bits past the block's edges fall in pad words.
   const std::uint32_t far = 0x1Fu << (r + 2);  // rows of the stripes above, here, below: 4 bits each
-  const std::size_t top = r < 2 ? c - column_row_ : c;
+  const std::size_t far_row = r < 2 ? c - column_row_ : c;  // word of column x, upper stripe
   const std::uint32_t far_top = ((r < 2 ? far : far >> kStripe) & kRows) << kColumnFar;
   const std::uint32_t far_bottom = ((r < 2 ? far >> kStripe : far >> (2 * kStripe)) & kRows) << kColumnFar;
-  for (std::size_t cc = top - 2; cc <= top + 2; ++cc) {
+  for (std::size_t cc = far_row - 2; cc <= far_row + 2; ++cc) {
     columns_[cc] |= far_top;
     columns_[cc + column_row_] |= far_bottom;
   }
