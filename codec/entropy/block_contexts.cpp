@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "codec/entropy/ctx_priors.h"
+
 namespace pupwave {
 namespace {
 
@@ -66,6 +68,8 @@ const std::array<std::uint8_t, 45> BlockState::kSignTable = [] {
   return t;
 }();
 
+static_assert(std::tuple_size_v<decltype(kContextPriors)::value_type> == kBlockContexts);
+
 BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
   const bool high_x = orientation & 1u;
   const bool high_y = orientation & 2u;
@@ -76,13 +80,12 @@ BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
   neighbours_.assign(stride_z_ * (size[2] + 2), std::uint16_t(kSignCodeZero * kSignUnit));
   sig_table_ = kSigTable[std::size_t(table)].data();
   stripes_ = (size[1] + kStripe - 1) / kStripe;
-  column_row_ = size[0] + 2;
+  column_row_ = size[0] + 4;
   column_slice_ = column_row_ * (stripes_ + 2);
   columns_.assign(column_slice_ * (size[2] + 2), 0);
   active_.assign(stripes_ * size[2], 0);
-  // Most coefficients of a block stay insignificant with no significant neighbour.
-  models[0] = BitModel(std::uint16_t(kProbabilityOne * 15 / 16));
-  models[kRunContext] = BitModel(std::uint16_t(kProbabilityOne * 7 / 8));
+  const std::size_t prior_class = orientation == 0 ? 0 : (high_x && high_y ? 2 : 1);
+  for (std::size_t k = 0; k < models.size(); ++k) models[k] = prior_model(kContextPriors[prior_class][k]);
 }
 
 }  // namespace pupwave

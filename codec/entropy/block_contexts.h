@@ -2,8 +2,10 @@
 // Coding state and contexts of one code-block, shared by the bit-plane encoder and decoder
 // (EBCOT class, as in JPEG 2000 Part 1 Annex D): significance contexts from the 8 in-plane
 // neighbours (plus the 2 neighbours across slices for 3-D blocks) with orientation-dependent
-// tables, sign contexts from the signs of the 4 (or 6) direct neighbours, refinement
-// contexts, and the run-mode context.
+// tables (context 0 and the run context split by whether a coefficient two rows or columns
+// away is significant), sign contexts from the signs of the 4 (or 6) direct neighbours,
+// refinement contexts, and the run-mode context. Every context starts at a trained prior
+// (ctx_priors.h).
 //
 // The state is kept for speed in two incrementally updated forms: per coefficient, a word of
 // significant-neighbour counts and neighbour sign sums (so a context is one table look-up),
@@ -26,7 +28,11 @@ namespace pupwave {
 inline constexpr int kSignContext0 = 9;     // 9 significance contexts come first
 inline constexpr int kRefineContext0 = 14;  // then 5 sign contexts, then 3 refinement
 inline constexpr int kRunContext = 17;
-inline constexpr int kBlockContexts = 18;
+// Context 0 and the run context of coefficients (columns) with a significant coefficient two
+// rows or columns away (the 5x5 neighbourhood beyond the 8 neighbours).
+inline constexpr int kFarContext = 18;
+inline constexpr int kFarRunContext = 19;
+inline constexpr int kBlockContexts = 20;
 
 // Stripe height of the scan and of the run mode.
 inline constexpr std::size_t kStripe = 4;
@@ -43,6 +49,7 @@ inline constexpr unsigned kColumnSignificant = 0;  // a 1 bit has been coded
 inline constexpr unsigned kColumnVisited = 4;      // coded in this plane's significance pass
 inline constexpr unsigned kColumnRefined = 8;      // has had a magnitude refinement bit
 inline constexpr unsigned kColumnNeighbour = 12;   // has a significant neighbour
+inline constexpr unsigned kColumnFar = 16;         // has a significant coefficient 2 away
 inline constexpr std::uint32_t kRows = (1u << kStripe) - 1;
 
 class BlockState {
@@ -55,16 +62,23 @@ class BlockState {
   std::size_t at(std::size_t x, std::size_t y, std::size_t z) const {
     return (x + 1) + (y + 1) * stride_y_ + (z + 1) * stride_z_;
   }
-  // Position of the word of column x of stripe s in slice z in the padded column array.
+  // Position of the word of column x of stripe s in slice z in the padded column array (two
+  // pad columns on each side, for the far bits, and a pad stripe above and below).
   std::size_t column_at(std::size_t x, std::size_t s, std::size_t z) const {
-    return (x + 1) + (s + 1) * column_row_ + (z + 1) * column_slice_;
+    return (x + 2) + (s + 1) * column_row_ + (z + 1) * column_slice_;
   }
   std::uint32_t& column(std::size_t c) { return columns_[c]; }
   std::uint32_t column(std::size_t c) const { return columns_[c]; }
 
   // Significance context of coefficient p (JPEG 2000 Table D.1); 0 exactly when no
-  // neighbour is significant.
+  // neighbour is significant (then zero_context refines it).
   int significance_context(std::size_t p) const { return sig_table_[neighbours_[p] & 0xFFu]; }
+  // Significance context of row r of column word w whose significance_context is 0.
+  static int zero_context(std::uint32_t w, unsigned r) {
+    return kFarContext * int((w >> (kColumnFar + r)) & 1u);
+  }
+  // Run context of a stripe column with word w.
+  static int run_context(std::uint32_t w) { return (w >> kColumnFar) & kRows ? kFarRunContext : kRunContext; }
   // Sign context number and the bit the sign is XORed with before coding (Table D.3).
   std::pair<int, int> sign_context(std::size_t p) const {
     const std::uint8_t e = kSignTable[neighbours_[p] >> 8];
@@ -122,8 +136,10 @@ class BlockState {
   std::vector<std::uint8_t> active_;  // per stripe: see stripe_active
 };
 
-inline void BlockState::make_significant(std::size_t p, std::size_t x, std::size_t y, std::size_t z,
-                                         bool negative) {
+// Always inlined: called once per significant coefficient from the passes' inner loops, and
+// too large for the compiler's own inlining limit since the far bits were added.
+[[gnu::always_inline]] inline void BlockState::make_significant(std::size_t p, std::size_t x, std::size_t y,
+                                                                std::size_t z, bool negative) {
   // Counts and signs in the neighbours' words: h and v are the horizontal and vertical
   // (or across-slice) sign contributions, as two's-complement steps of the sign word.
   const std::uint16_t h =
@@ -155,6 +171,16 @@ inline void BlockState::make_significant(std::size_t p, std::size_t x, std::size
   columns_[c] |= (near & ~(1u << (kColumnNeighbour + r))) | (1u << (kColumnSignificant + r));
   const std::size_t a = z * stripes_;
   active_[a + s] = 1;
+  // Far bits: rows y - 2 .. y + 2 of columns x - 2 .. x + 2 (in this slice). They span this
+  // stripe and the one above (r < 2) or below; bits past the block's edges fall in pad words.
+  const std::uint32_t far = 0x1Fu << (r + 2);  // rows of the stripes above, here, below: 4 bits each
+  const std::size_t far_row = r < 2 ? c - column_row_ : c;  // word of column x, upper stripe
+  const std::uint32_t far_top = ((r < 2 ? far : far >> kStripe) & kRows) << kColumnFar;
+  const std::uint32_t far_bottom = ((r < 2 ? far >> kStripe : far >> (2 * kStripe)) & kRows) << kColumnFar;
+  for (std::size_t cc = far_row - 2; cc <= far_row + 2; ++cc) {
+    columns_[cc] |= far_top;
+    columns_[cc + column_row_] |= far_bottom;
+  }
   if (r == 0 && s > 0) {
     const std::uint32_t bottom = 1u << (kColumnNeighbour + kStripe - 1);
     columns_[c - column_row_ - 1] |= bottom;

@@ -69,7 +69,9 @@ class BitPlaneEncoder {
   bool code_significance(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
     const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
     const int bit = int((q_[i] >> p) & 1u);
-    rc.encode(bit, state_.models[std::size_t(state_.significance_context(f))]);
+    int ctx = state_.significance_context(f);
+    if (ctx == 0) ctx = BlockState::zero_context(state_.column(s.c0 + x), r);
+    rc.encode(bit, state_.models[std::size_t(ctx)]);
     if (bit) become_significant(rc, s, x, r, p);
     return bit != 0;
   }
@@ -135,7 +137,7 @@ class BitPlaneEncoder {
           const std::size_t i0 = s.i0 + x;
           const std::uint32_t column = q_[i0] | q_[i0 + is] | q_[i0 + 2 * is] | q_[i0 + 3 * is];
           const bool any = (column >> p) & 1u;
-          rc.encode(any, state_.models[kRunContext]);
+          rc.encode(any, state_.models[std::size_t(BlockState::run_context(w))]);
           if (!any) continue;
           unsigned first = 0;  // first coefficient of the column with bit p set
           while (!((q_[i0 + first * is] >> p) & 1u)) ++first;

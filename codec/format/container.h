@@ -21,7 +21,8 @@
 namespace pupwave {
 
 // Version 2: HEAD gained the transfer and flags bytes; optional META and NFIN chunks.
-inline constexpr std::uint8_t kStreamVersion = 2;
+// Version 3: the bit-plane block coder's far-neighbour contexts and trained priors.
+inline constexpr std::uint8_t kStreamVersion = 3;
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxAxisExtent = std::size_t(1) << 16;
 inline constexpr std::size_t kMaxTotalSamples = std::size_t(1) << 31;

@@ -20,9 +20,9 @@ namespace pupwave {
 // Version 3: sparse-native grids (layout 2) with a BLKS chunk of blocks and tiles, and opaque
 // grids (layout 3) carried as OpenVDB serialises them in an OPAQ chunk.
 // Version 4: VHDR's coder byte; max-error streams code their blocks with the non-embedded
-// coefficient coder (coef_encoder.h).
+// coefficient coder (coef_encoder.h); the bit-plane block coder's far-neighbour contexts and
+// trained priors (image version 3's coder), so version 3 streams are refused.
 inline constexpr std::uint8_t kVolumeStreamVersion = 4;
-inline constexpr std::uint8_t kOldestVolumeStreamVersion = 3;  // read as well (coder 0)
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;

@@ -122,16 +122,15 @@ std::size_t header_decoded_voxels(const VolumeStreamHeader& h, SparseBoxCount co
   return n;
 }
 
-// `coder_byte`: false for version 3 streams (no coder byte; every block bit-plane coded).
 VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const DecodeLimits& limits,
-                               SparseBoxCount count, bool coder_byte) {
+                               SparseBoxCount count) {
   ByteReader r(payload, "volume header");
   VolumeStreamHeader h;
   const std::uint32_t reversible = r.u8();
   h.levels = int(r.u8());
   h.brick_log2 = int(r.u8());
   h.block_log2 = int(r.u8());
-  h.coder = coder_byte ? std::uint8_t(r.u8()) : std::uint8_t(0);
+  h.coder = r.u8();
   require_stream(reversible <= 1, "volume stream: reversible flag");
   h.reversible = reversible == 1;
   require_stream(h.coder <= 1 && !(h.coder == 1 && h.reversible), "volume stream: coefficient coder");
@@ -283,14 +282,10 @@ BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamH
 
 ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits,
                                        SparseBoxCount count) {
-  // Version 3 streams (the same layout without VHDR's coder byte) are still read.
-  const bool version3 =
-      bytes.size() >= kSignatureBytes && bytes[kSignatureBytes - 1] == kOldestVolumeStreamVersion;
-  ChunkReader r(bytes, kVolumeSignature, version3 ? kOldestVolumeStreamVersion : kVolumeStreamVersion,
-                "volume stream");
+  ChunkReader r(bytes, kVolumeSignature, kVolumeStreamVersion, "volume stream");
   const Chunk head = r.expect("VHDR");
   ParsedVolumeStream s;
-  s.header = read_header(head.payload, limits, count, !version3);
+  s.header = read_header(head.payload, limits, count);
   // Voxels the decode allocates, against the limit; box mode counted whole boxes already.
   std::size_t decoded = header_decoded_voxels(s.header, count);
   const DecodeLimits mask_limits =

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <vector>
 
 #include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_decoder.h"
 #include "codec/entropy/block_encoder.h"
+#include "codec/entropy/ctx_priors.h"
 
 namespace pupwave {
 namespace {
@@ -106,6 +108,53 @@ TEST(BlockCoder, StructuredDataCompressesBelowRawSize) {
   const EncodedBlock enc = encode_block(c.magnitude, c.negative, size, 1, 0.5);
   // Raw: planes bits per coefficient plus a sign bit.
   EXPECT_LT(double(enc.size(enc.pass_count())), 64.0 * 64.0 * (enc.planes + 1) / 8.0 * 0.7);
+}
+
+// Detail coefficients of real data: differences along x of the Gray-Scott field
+// (testimages/gray_scott64.raw, 64^3 float32) over `size` from its corner, in steps of `step`.
+Coefficients gray_scott_details(const Extent& size, double step) {
+  std::ifstream in(PUPWAVE_TESTIMAGES_DIR "/gray_scott64.raw", std::ios::binary);
+  std::vector<float> field(64 * 64 * 64);
+  in.read(reinterpret_cast<char*>(field.data()), std::streamsize(field.size() * sizeof(float)));
+  EXPECT_TRUE(in.good());
+  Coefficients c;
+  for (std::size_t z = 0; z < size[2]; ++z)
+    for (std::size_t y = 0; y < size[1]; ++y)
+      for (std::size_t x = 0; x < size[0]; ++x) {
+        const std::size_t i = x + 64 * (y + 64 * z);
+        const double d = (double(field[i + 1]) - double(field[i])) / step;
+        c.magnitude.push_back(float(std::abs(d)));
+        c.negative.push_back(d < 0 ? 1 : 0);
+      }
+  return c;
+}
+
+// The magnitude-class contexts and priors on real data: every truncation point decodes to
+// what the encoder's distortion says, in 2-D and 3-D blocks, and the smooth field codes well
+// below its raw size.
+TEST(BlockCoder, RealDetailsRoundTripAndCompress) {
+  for (const Extent size : {Extent{63, 64, 1}, Extent{31, 16, 16}}) {
+    const Coefficients c = gray_scott_details(size, 1e-4);
+    check_all_truncations(c, size, 1);
+    const EncodedBlock enc = encode_block(c.magnitude, c.negative, size, 1, 0.5);
+    const double raw = double(c.magnitude.size()) * (enc.planes + 1) / 8.0;
+    EXPECT_LT(double(enc.size(enc.pass_count())), 0.7 * raw) << size[2];
+  }
+}
+
+// A prior is a starting probability worth kPriorCount bits: the first update moves it by
+// 1/16 of the way, not half of it.
+TEST(BlockCoder, PriorModelsStartAtTheirPriorWithWeight) {
+  BitModel m = prior_model(64);  // P(1) = 1/4
+  EXPECT_EQ(m.p0, kProbabilityOne * 3 / 4);
+  m.update(1);
+  EXPECT_EQ(m.p0, kProbabilityOne * 3 / 4 - (kProbabilityOne * 3 / 4 >> 4));
+  for (const auto& row : kContextPriors)
+    for (const auto one256 : row) {
+      const BitModel p = prior_model(one256);
+      EXPECT_GT(p.p0, BitModel::kMinP);
+      EXPECT_LT(p.p0, kProbabilityOne - BitModel::kMinP);
+    }
 }
 
 TEST(BlockCoder, GarbageCodewordsDecodeWithoutFault) {
