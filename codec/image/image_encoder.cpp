@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 
@@ -12,6 +14,7 @@
 #include "codec/error.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"
+#include "codec/image/image_strip_encoder.h"
 #include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/pcrd.h"
@@ -70,10 +73,19 @@ struct CodedImage {
   bool over_limit = false;          // stopped early: every pass would exceed the byte limit
 };
 
-// Codes every block, one component at a time so only one transformed component is held.
-// Stops early once the blocks with every pass hold more than `byte_limit` bytes (a lossless
-// stream that cannot beat a lossy one costs little this way). With `keep`, the transformed
-// components stay in the plan for the next call (release_coefficients frees them).
+// Whether component c is coded from a strip-wise transform (image_strip_encoder.h) rather
+// than from the transformed component held in the plan.
+bool streams(const ImagePlan& plan, std::size_t c, bool keep) {
+  const bool held =
+      (c < plan.coef.size() && !plan.coef[c].empty()) || (c < plan.icoef.size() && !plan.icoef[c].empty());
+  return plan.strip_reach > 0 && !keep && !held;
+}
+
+// Codes every block, one component at a time so only one transformed component is held (or,
+// by strips, only the rows the blocks being coded need). Stops early once the blocks with
+// every pass hold more than `byte_limit` bytes (a lossless stream that cannot beat a lossy one
+// costs little this way). With `keep`, the transformed components stay in the plan for the next
+// call (release_coefficients frees them).
 CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_limits<std::size_t>::max(),
                        bool keep = false) {
   CodedImage out;
@@ -81,22 +93,42 @@ CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_li
   out.hulls.resize(plan.blocks.size());
   std::atomic<std::size_t> total{0};
   std::atomic<bool> over{false};
+  const auto code = [&](std::size_t i, const std::vector<float>& magnitude,
+                        const std::vector<std::uint8_t>& negative) {
+    const CodeBlock& b = plan.blocks[i];
+    out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+    out.hulls[i] = rd_hull(out.blocks[i]);
+    const std::size_t full = out.blocks[i].size(out.blocks[i].pass_count());
+    if (total.fetch_add(full) + full > byte_limit) over = true;
+  };
+  const auto code_values = [&](std::size_t i, auto values) {
+    if (over.load(std::memory_order_relaxed)) return;
+    std::vector<float> magnitude;
+    std::vector<std::uint8_t> negative;
+    quantize_values(plan, i, values, magnitude, negative);
+    code(i, magnitude, negative);
+  };
+  const auto stop = [&] { return over.load(); };
   for (std::size_t c = 0; c < plan.header.channels && !over; ++c) {
+    if (streams(plan, c, keep)) {
+      if (plan.header.reversible)
+        stream_component<std::int32_t>(
+            plan, c, [&](std::size_t i, std::span<const std::int32_t> v) { code_values(i, v); }, stop);
+      else
+        stream_component<float>(
+            plan, c, [&](std::size_t i, std::span<const float> v) { code_values(i, v); }, stop);
+      continue;
+    }
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
       if (plan.blocks[i].component == c) ids.push_back(i);
     if (plan.coef.size() <= c || plan.coef[c].empty()) transform_component(plan, c);
     plan.executor->run(ids.size(), [&](std::size_t k) {
       if (over.load(std::memory_order_relaxed)) return;
-      const std::size_t i = ids[k];
       std::vector<float> magnitude;
       std::vector<std::uint8_t> negative;
-      quantize_block(plan, i, magnitude, negative);
-      const CodeBlock& b = plan.blocks[i];
-      out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-      out.hulls[i] = rd_hull(out.blocks[i]);
-      const std::size_t full = out.blocks[i].size(out.blocks[i].pass_count());
-      if (total.fetch_add(full) + full > byte_limit) over = true;
+      quantize_block(plan, ids[k], magnitude, negative);
+      code(ids[k], magnitude, negative);
     });
     if (!keep) release_component(plan, c);
   }
@@ -104,6 +136,20 @@ CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_li
   out.over_limit = over;
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
+}
+
+// Magnitudes of component c for the rate model (rate_guess.h), gathered block by block from
+// the strip-wise transform: the same counts as from the whole transformed component.
+MagnitudeHistogram stream_histogram(const ImagePlan& plan, std::size_t c) {
+  MagnitudeHistogram total;
+  std::mutex lock;
+  stream_component<float>(plan, c, [&](std::size_t i, std::span<const float> values) {
+    auto h = std::make_unique<MagnitudeHistogram>();
+    h->add(values, magnitude_scale(plan, c, plan.blocks[i].band));
+    const std::lock_guard<std::mutex> hold(lock);
+    total.merge(*h);
+  });
+  return total;
 }
 
 std::vector<BlockEntry> entries_for(const CodedImage& coded, const std::vector<int>& passes) {
@@ -317,11 +363,16 @@ Family code_family(ImagePlan& plan, double base, double budget, bool keep) {
 EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp, int effort) {
   const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
   double base = plan.peak / 512.0;
-  if (!plan.header.reversible) {
+  const bool keep = effort >= 2 && !plan.header.reversible && plan.samples <= kMaxKeptSamples;
+  if (!plan.header.reversible && streams(plan, 0, keep)) {
+    // A first strip-wise pass over component 0 for the model's statistics (the input is
+    // mapped: reading it again costs little), never the whole component in memory.
+    base = std::max(guess_base_step(stream_histogram(plan, 0), budget, guess_margin(plan)),
+                    kFinestBaseStep * plan.peak);
+  } else if (!plan.header.reversible) {
     transform_component(plan, 0);
     base = std::max(guess_base_step(plan, 0, budget, guess_margin(plan)), kFinestBaseStep * plan.peak);
   }
-  const bool keep = effort >= 2 && !plan.header.reversible && plan.samples <= kMaxKeptSamples;
   std::vector<Family> families;
   families.push_back(code_family(plan, base, budget, keep));
   for (int f = 1; keep && f < kSizeFamilies; ++f) {
