@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <functional>
 #include <limits>
 #include <memory>
@@ -66,6 +69,24 @@ double guess_margin(const ImagePlan& plan) { return plan.header.channels >= 3 ? 
 // Never finer than the old fixed start refined kMaxStepRefinements times (peak / 2^17):
 // finer indices would overflow the block coder without improving the result.
 constexpr double kFinestBaseStep = 1.0 / 131072.0;
+
+// Hands the pages of many small freed blocks (codewords copied into a stream) back to the
+// system every kTrimBytes: the allocator keeps them otherwise, and the copy and its source
+// would both stay resident (glibc's malloc_trim; elsewhere nothing is done).
+class FreedMemory {
+ public:
+  void add(std::size_t bytes) {
+    if ((pending_ += bytes) < kTrimBytes) return;
+    pending_ = 0;
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+  }
+
+ private:
+  static constexpr std::size_t kTrimBytes = std::size_t(16) << 20;
+  std::size_t pending_ = 0;
+};
 
 // All blocks coded with every pass; the PCRD inputs.
 struct CodedImage {
@@ -158,6 +179,7 @@ std::optional<std::vector<std::uint8_t>> code_every_pass(
         const int n = coded.pass_count();
         entries[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(coded.size(n))};
         words[i] = coded.codeword(n);
+        words[i].shrink_to_fit();  // codeword() leaves up to twice the capacity it needs
         if (total.fetch_add(words[i].size()) + words[i].size() > byte_limit) over = true;
       });
   if (over) return std::nullopt;
@@ -166,9 +188,11 @@ std::optional<std::vector<std::uint8_t>> code_every_pass(
   for (std::size_t i = 0; i < words.size(); ++i)
     sizes[std::size_t(plan.blocks[i].resolution)] += words[i].size();
   for (std::size_t r = 0; r < data.size(); ++r) data[r].reserve(sizes[r]);
+  FreedMemory freed;
   for (std::size_t i = 0; i < words.size(); ++i) {
     auto& d = data[std::size_t(plan.blocks[i].resolution)];
     d.insert(d.end(), words[i].begin(), words[i].end());
+    freed.add(words[i].size());
     std::vector<std::uint8_t>().swap(words[i]);
   }
   return write_container(plan.header, entries, data);
@@ -224,11 +248,15 @@ std::vector<std::uint8_t> build_stream(const ImagePlan& plan, Coded& coded, cons
   for (std::size_t i = 0; i < passes.size(); ++i)
     sizes[std::size_t(plan.blocks[i].resolution)] += entries[i].length;
   for (std::size_t r = 0; r < data.size(); ++r) data[r].reserve(sizes[r]);
+  FreedMemory freed;
   for (std::size_t i = 0; i < passes.size(); ++i) {
     const auto word = coded.blocks[i].codeword(passes[i]);
     auto& d = data[std::size_t(plan.blocks[i].resolution)];
     d.insert(d.end(), word.begin(), word.end());
-    if constexpr (!std::is_const_v<Coded>) coded.blocks[i] = EncodedBlock{};
+    if constexpr (!std::is_const_v<Coded>) {
+      freed.add(coded.blocks[i].committed.size());
+      coded.blocks[i] = EncodedBlock{};
+    }
   }
   return write_container(plan.header, entries, data);
 }

@@ -46,6 +46,10 @@ class BandBlocks final : public RowSink<T> {
         block_rows_.push_back({b.offset[1] - y0_, b.offset[1] - y0_ + b.size[1], {}});
       block_rows_.back().blocks.push_back(i);
     }
+    // The most rows held: a block row less one, and the rows one delivery adds.
+    std::size_t tallest = 0;
+    for (const auto& r : block_rows_) tallest = std::max(tallest, r.y1 - r.y0);
+    data_.reserve((tallest + kChunk / 2 + 1) * width_);
   }
 
   void add(const T* rows, std::size_t stride, std::size_t count) override {
@@ -97,7 +101,11 @@ class LevelAnalysis final : public RowSink<T> {
  public:
   LevelAnalysis(const Transform1D& t, std::size_t reach, const Extent& region, std::vector<RowSink<T>*> out,
                 const Executor& ex)
-      : t_(t), reach_(reach), width_(region[0]), height_(region[1]), out_(std::move(out)), ex_(ex) {}
+      : t_(t), reach_(reach), width_(region[0]), height_(region[1]), out_(std::move(out)), ex_(ex) {
+    // The most rows held: a window (a chunk and its reach on both sides) less one row, and the
+    // rows one delivery adds (so the buffer is never reallocated to twice that).
+    data_.reserve(std::min(height_, 2 * kChunk + 2 * reach_ + 2) * width_);
+  }
 
   void add(const T* rows, std::size_t stride, std::size_t count) override {
     data_.resize((hi_ + count - lo_) * width_);
