@@ -144,6 +144,15 @@ void quantize_blocks(ImagePlan& plan, bool keep, const std::function<bool()>& st
   if (!keep) release_coefficients(plan);
 }
 
+// Frees the spare capacity the block coder's growing buffers leave (up to half of the coded
+// data): every block of the image is held until rate control has cut them.
+void shrink(EncodedBlock& block) {
+  block.committed.shrink_to_fit();
+  for (TruncationPoint& p : block.passes) p.tail.shrink_to_fit();
+  block.passes.shrink_to_fit();
+  block.distortion_drop.shrink_to_fit();
+}
+
 // Codes every block with every pass and its rate-distortion hull (quantize_blocks).
 CodedImage code_blocks(ImagePlan& plan, bool keep = false) {
   CodedImage out;
@@ -155,6 +164,8 @@ CodedImage code_blocks(ImagePlan& plan, bool keep = false) {
         const CodeBlock& b = plan.blocks[i];
         out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
         out.hulls[i] = rd_hull(out.blocks[i]);
+        shrink(out.blocks[i]);
+        out.hulls[i].shrink_to_fit();
       });
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
