@@ -88,9 +88,62 @@ class FreedMemory {
   std::size_t pending_ = 0;
 };
 
+// A coded block as rate control keeps it until the final cut: EncodedBlock's truncation points
+// in flat arrays (a heap-allocated tail per pass costs more than the pass's bytes: about 0.35
+// GB over the 262,144 blocks of a 32768^2 image), with the same sizes and codewords.
+class KeptBlock {
+ public:
+  KeptBlock() = default;
+  explicit KeptBlock(EncodedBlock&& b)
+      : planes(b.planes),
+        initial_distortion(b.initial_distortion),
+        committed(std::move(b.committed)),
+        distortion_drop(std::move(b.distortion_drop)) {
+    committed.shrink_to_fit();  // the coder's buffer grows by doubling
+    distortion_drop.shrink_to_fit();
+    prefix_.reserve(b.passes.size());
+    tail_end_.reserve(b.passes.size());
+    for (const TruncationPoint& p : b.passes) {
+      prefix_.push_back(std::uint32_t(p.prefix));
+      tails_.insert(tails_.end(), p.tail.begin(), p.tail.end());
+      tail_end_.push_back(std::uint32_t(tails_.size()));
+    }
+    tails_.shrink_to_fit();
+  }
+
+  int pass_count() const { return int(prefix_.size()); }
+  // Size in bytes of the codeword of the first n passes (EncodedBlock::size).
+  std::size_t size(int n) const {
+    return n > 0 ? prefix_[std::size_t(n - 1)] + tail_end_[std::size_t(n - 1)] - tail_begin(n - 1) : 0;
+  }
+  // The codeword of the first n passes: the committed prefix, then that pass's tail (as
+  // RangeEncoder::codeword builds it).
+  std::vector<std::uint8_t> codeword(int n) const {
+    if (n <= 0) return {};
+    const auto k = std::size_t(n - 1);
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(size(n));
+    bytes.insert(bytes.end(), committed.begin(), committed.begin() + std::ptrdiff_t(prefix_[k]));
+    bytes.insert(bytes.end(), tails_.begin() + std::ptrdiff_t(tail_begin(n - 1)),
+                 tails_.begin() + std::ptrdiff_t(tail_end_[k]));
+    return bytes;
+  }
+
+  int planes = 0;
+  double initial_distortion = 0.0;
+  std::vector<std::uint8_t> committed;
+  std::vector<double> distortion_drop;
+
+ private:
+  std::size_t tail_begin(int k) const { return k > 0 ? tail_end_[std::size_t(k - 1)] : 0; }
+  std::vector<std::uint32_t> prefix_;    // per pass: bytes of `committed` its codeword starts with
+  std::vector<std::uint32_t> tail_end_;  // per pass: end of its tail in tails_
+  std::vector<std::uint8_t> tails_;
+};
+
 // All blocks coded with every pass; the PCRD inputs.
 struct CodedImage {
-  std::vector<EncodedBlock> blocks;
+  std::vector<KeptBlock> blocks;
   std::vector<std::vector<HullPoint>> hulls;
   double initial_distortion = 0.0;  // index units^2, nothing coded
 };
@@ -144,15 +197,6 @@ void quantize_blocks(ImagePlan& plan, bool keep, const std::function<bool()>& st
   if (!keep) release_coefficients(plan);
 }
 
-// Frees the spare capacity the block coder's growing buffers leave (up to half of the coded
-// data): every block of the image is held until rate control has cut them.
-void shrink(EncodedBlock& block) {
-  block.committed.shrink_to_fit();
-  for (TruncationPoint& p : block.passes) p.tail.shrink_to_fit();
-  block.passes.shrink_to_fit();
-  block.distortion_drop.shrink_to_fit();
-}
-
 // Codes every block with every pass and its rate-distortion hull (quantize_blocks).
 CodedImage code_blocks(ImagePlan& plan, bool keep = false) {
   CodedImage out;
@@ -162,10 +206,10 @@ CodedImage code_blocks(ImagePlan& plan, bool keep = false) {
       plan, keep, [] { return false; },
       [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
         const CodeBlock& b = plan.blocks[i];
-        out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-        out.hulls[i] = rd_hull(out.blocks[i]);
-        shrink(out.blocks[i]);
+        EncodedBlock coded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+        out.hulls[i] = rd_hull(coded);
         out.hulls[i].shrink_to_fit();
+        out.blocks[i] = KeptBlock(std::move(coded));
       });
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
@@ -266,7 +310,7 @@ std::vector<std::uint8_t> build_stream(const ImagePlan& plan, Coded& coded, cons
     d.insert(d.end(), word.begin(), word.end());
     if constexpr (!std::is_const_v<Coded>) {
       freed.add(coded.blocks[i].committed.size());
-      coded.blocks[i] = EncodedBlock{};
+      coded.blocks[i] = KeptBlock{};
     }
   }
   return write_container(plan.header, entries, data);
@@ -314,10 +358,9 @@ void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int
   }
 }
 
-// rd_hull with the distortion in output units (index units times `scale`, the base step
+// A hull (rd_hull) with the distortion in output units (index units times `scale`, the base step
 // squared), so blocks coded at different base steps compare.
-std::vector<HullPoint> scaled_hull(const EncodedBlock& block, double scale) {
-  auto hull = rd_hull(block);
+std::vector<HullPoint> scale_hull(std::vector<HullPoint> hull, double scale) {
   for (HullPoint& p : hull) {
     p.removed *= scale;
     p.slope *= scale;
@@ -373,7 +416,7 @@ std::size_t mixed_size(const ImagePlan& plan, const std::vector<Family>& familie
   for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
     const Family& fam = families[choice[band_group(plan, i)]];
     const int passes = passes_at_slope(fam.coded.hulls[i], lambda / (fam.base * fam.base));
-    const EncodedBlock& b = fam.coded.blocks[i];
+    const KeptBlock& b = fam.coded.blocks[i];
     entries[i] = {passes > 0 ? b.planes : 0, passes, std::uint32_t(b.size(passes))};
     data += entries[i].length;
   }
@@ -414,7 +457,7 @@ CodedImage mix_families(ImagePlan& plan, std::vector<Family>& families,
     Family& fam = families[choice[band_group(plan, i)]];
     scale[i] = fam.base * fam.base;
     mixed.blocks[i] = std::move(fam.coded.blocks[i]);
-    mixed.hulls[i] = scaled_hull(mixed.blocks[i], scale[i]);
+    mixed.hulls[i] = scale_hull(std::move(fam.coded.hulls[i]), scale[i]);
   }
   return mixed;
 }
@@ -436,8 +479,9 @@ bool pull_isolated_coefficients(const ImagePlan& plan, CodedImage& coded, const 
     const CodeBlock& b = plan.blocks[i];
     if (pull_isolated(magnitude, b.size, plane, plan.header.delta, lambda * kIsolatedBytes / scale[i]) == 0)
       return;
-    coded.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-    coded.hulls[i] = scaled_hull(coded.blocks[i], scale[i]);
+    EncodedBlock recoded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+    coded.hulls[i] = scale_hull(rd_hull(recoded), scale[i]);
+    coded.blocks[i] = KeptBlock(std::move(recoded));
     ++changed;
   });
   return changed > 0;
