@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Peak resident memory (max RSS, /usr/bin/time) of `pupwave compress` and `decompress` on the
 # 4096 x 4096 mosaics of testimages/ at 1 bpp, beside OpenJPH and Grok in the same run, and of a
-# 32768 x 32768 grey image (the grey mosaic tiled 8 x 8, 1 GiB raw) decoded to PGM at full
-# size and at --level 2 and 4 (issue 16). Writes bench/results/image_memory.md.
-# Usage: bench/image_memory.sh [build-dir] [work-dir]; BIG=0 skips the 32768^2 image, whose
-# encode still holds the image in float (about 9 GiB and minutes).
+# 32768 x 32768 grey image (the grey mosaic tiled 8 x 8, 1 GiB raw) encoded from PGM (--step 8
+# and --bpp 1) and decoded to PGM at full size and at --level 2 and 4 (issue 16). Writes
+# bench/results/image_memory.md.
+# Usage: bench/image_memory.sh [build-dir] [work-dir]; BIG=0 skips the 32768^2 image (minutes).
 set -euo pipefail
 build=${1:-build}
 work=${2:-/tmp/pupwave_image_memory}
@@ -65,10 +65,11 @@ with open(out, 'wb') as f:
     for y in range(n):
         f.write(raster[(y % h) * w:(y % h + 1) * w] * (n // w))
 EOF
-  # --step 8 gives about 1 bpp here without the lossless attempt and PCRD (memory as --bpp).
+  # --step 8 gives about 1 bpp here without PCRD (every pass of every block is kept).
   enc=$(measure "$pw" compress -q "$work/big.pgm" "$work/big.pw" --step 8)
   bpp=$(awk -v s="$(stat -c %s "$work/big.pw")" 'BEGIN { printf "%.3f", s * 8 / 32768 / 32768 }')
   big_rows+=("| compress --step 8 ($bpp bpp) | $enc |")
+  big_rows+=("| compress --bpp 1 | $(measure "$pw" compress -q "$work/big.pgm" "$work/big_bpp.pw" --bpp 1) |")
   big_rows+=("| decompress to PGM | $(measure "$pw" decompress -q --max-pixels 1073741824 "$work/big.pw" "$work/big_pw.pgm") |")
   for k in 2 4; do
     big_rows+=("| decompress --level $k to PGM | $(measure "$pw" decompress -q --level $k "$work/big.pw" "$work/big_pw$k.pgm") |")
@@ -84,7 +85,8 @@ fi
   echo "Max RSS from \`/usr/bin/time\` (it counts the pages of mapped input files that were read, and"
   echo "about 35 MiB of shared libraries in every pupwave process), and wall time, one run each."
   echo "pupwave decodes 8-bit PGM/PPM output strip by strip (codec/image/image_strips.h) and"
-  echo "encodes 8-bit PGM/PPM input from the file mapped in place."
+  echo "encodes 8-bit PGM/PPM input from the file mapped in place, by strips"
+  echo "(codec/image/image_strip_encoder.h), dropping the rows it has read from memory."
   echo
   echo "| image | coder | compress 1 bpp | decompress | decompress at 1/4 size |"
   echo "|---|---|---|---|---|"

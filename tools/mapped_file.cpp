@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -35,6 +36,14 @@ MappedFile::MappedFile(const std::filesystem::path& path) {
 
 void MappedFile::advise_sequential() const {
   if (map_ != nullptr) ::madvise(map_, size_, MADV_SEQUENTIAL);
+}
+
+void MappedFile::drop(std::size_t offset, std::size_t length) const {
+  if (map_ == nullptr || offset >= size_) return;
+  const auto page = std::size_t(::sysconf(_SC_PAGESIZE));
+  const std::size_t first = offset / page * page, end = std::min(size_, offset + length);
+  // MADV_DONTNEED on a read-only private mapping only unmaps: the file's pages stay cached.
+  ::madvise(static_cast<std::uint8_t*>(map_) + first, end - first, MADV_DONTNEED);
 }
 
 MappedFile::~MappedFile() {

@@ -20,6 +20,9 @@ class MappedFile {
   std::span<const std::uint8_t> bytes() const { return {static_cast<const std::uint8_t*>(map_), size_}; }
   // Tells the kernel the pages will be read in order (read-ahead), as raw volume slabs are.
   void advise_sequential() const;
+  // Drops the pages holding bytes [offset, offset + length) from the process's resident memory
+  // (whole pages, clamped to the file); reading them again maps them back from the page cache.
+  void drop(std::size_t offset, std::size_t length) const;
 
  private:
   void* map_ = nullptr;  // null for an empty file

@@ -179,6 +179,15 @@ std::unique_ptr<MappedPnm> MappedPnm::open(const fs::path& path) {
   const PnmHeader& h = opened->header;
   pnm->view_ = interleaved_view(pnm->file_.bytes().data() + opened->offset, h.width, h.height, h.channels,
                                 SampleType::u8);
+  // The strip-wise encoder reads the rows a strip at a time: let it drop those it has read.
+  pnm->view_.drop_context = &pnm->file_;
+  pnm->view_.drop_rows = [](const void* context, const ImageView& v, std::size_t y0, std::size_t y1) {
+    const auto* file = static_cast<const MappedFile*>(context);
+    const auto* base = static_cast<const std::uint8_t*>(v.data);
+    const std::size_t row = std::size_t(v.row_stride);  // u8 samples: elements are bytes
+    const std::size_t offset = std::size_t(base - file->bytes().data()) + y0 * row;
+    file->drop(offset, (y1 - y0) * row);
+  };
   return pnm;
 }
 

@@ -153,12 +153,16 @@ const char* to_string(EntropyCoder coder) { return coder == EntropyCoder::ebcot 
 
 std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
                                           const std::vector<std::vector<std::uint8_t>>& resolution_data) {
+  const auto coded = encode_index(index);
+  std::size_t data_bytes = 0;
+  for (const auto& data : resolution_data) data_bytes += data.size();
   std::vector<std::uint8_t> out;
+  // Sized once: grown by doubling, the last reallocation holds up to three times the stream.
+  out.reserve(container_size(header, coded.size(), data_bytes));
   write_signature(out, kSignature, kStreamVersion);
   write_chunk(out, "HEAD", header_payload(header));
   if (!header.metadata.empty()) write_chunk(out, "META", metadata_payload(header.metadata));
   if (!header.nonfinite.empty()) write_chunk(out, "NFIN", nonfinite_payload(header.nonfinite));
-  const auto coded = encode_index(index);
   std::vector<std::uint8_t> index_payload;
   index_payload.reserve(4 + coded.size());
   ByteWriter iw(index_payload);

@@ -49,6 +49,11 @@ struct EncodeOptions {
   // Channel names, windows and attributes stored in the stream (META chunk); null: none
   // (the Image overload of encode_image passes the image's own).
   const ImageMetadata* metadata = nullptr;
+  // Integer images with a transform whose analysis is local are transformed strip by strip,
+  // each code-block coded as soon as its rows are complete (image_strip_encoder.h), so memory
+  // does not grow with the image; false holds each component whole instead. The bytes are
+  // the same either way (tests compare the two).
+  bool strip_encode = true;
 };
 
 struct EncodeResult {

@@ -104,47 +104,45 @@ void for_row_chunks(const Executor& ex, std::size_t width, std::size_t height,
 
 }  // namespace
 
-void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out,
-                     const Executor& ex) {
+void float_component_rows(const ImageView& image, ColourTransform colour, std::size_t c, std::size_t y0,
+                          std::size_t y1, float* out, const Executor& ex) {
   const std::size_t w = image.width;
   const auto shift = float(level_shift(image.type));
-  out.resize(image.plane_size());
   if (colour != ColourTransform::ict || c >= 3) {
-    for_row_chunks(ex, w, image.height, [&](std::size_t y0, std::size_t y1) {
-      for (std::size_t y = y0; y < y1; ++y) {
-        float* row = out.data() + y * w;
-        image.read_row(c, y, row);
+    for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
+      for (std::size_t y = a; y < b; ++y) {
+        float* row = out + y * w;
+        image.read_row(c, y0 + y, row);
         for (std::size_t x = 0; x < w; ++x) row[x] -= shift;
       }
     });
     return;
   }
-  for_row_chunks(ex, w, image.height, [&](std::size_t y0, std::size_t y1) {
+  for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
     std::vector<float> rows(3 * w);
-    for (std::size_t y = y0; y < y1; ++y) {
-      for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
+    for (std::size_t y = a; y < b; ++y) {
+      for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y0 + y, rows.data() + k * w);
       const float* const rgb[3] = {rows.data(), rows.data() + w, rows.data() + 2 * w};
-      forward_ict_row(rgb, shift, c, out.data() + y * w, w);
+      forward_ict_row(rgb, shift, c, out + y * w, w);
     }
   });
 }
 
-void integer_component(const ImageView& image, ColourTransform colour, std::size_t c,
-                       std::vector<std::int32_t>& out, const Executor& ex) {
+void integer_component_rows(const ImageView& image, ColourTransform colour, std::size_t c, std::size_t y0,
+                            std::size_t y1, std::int32_t* out, const Executor& ex) {
   const std::size_t w = image.width;
   const auto shift = std::int32_t(level_shift(image.type));
-  out.resize(image.plane_size());
   const std::size_t used = colour == ColourTransform::rct && c < 3 ? 3 : 1;
-  for_row_chunks(ex, w, image.height, [&](std::size_t y0, std::size_t y1) {
+  for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
     std::vector<float> rows(used * w);
-    for (std::size_t y = y0; y < y1; ++y) {
-      std::int32_t* dst = out.data() + y * w;
+    for (std::size_t y = a; y < b; ++y) {
+      std::int32_t* dst = out + y * w;
       if (used == 1) {
-        image.read_row(c, y, rows.data());
+        image.read_row(c, y0 + y, rows.data());
         for (std::size_t x = 0; x < w; ++x) dst[x] = std::int32_t(rows[x]) - shift;
         continue;
       }
-      for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y, rows.data() + k * w);
+      for (std::size_t k = 0; k < 3; ++k) image.read_row(k, y0 + y, rows.data() + k * w);
       for (std::size_t x = 0; x < w; ++x) {
         const std::int32_t rgb[3] = {std::int32_t(rows[x]) - shift, std::int32_t(rows[w + x]) - shift,
                                      std::int32_t(rows[2 * w + x]) - shift};
@@ -152,6 +150,18 @@ void integer_component(const ImageView& image, ColourTransform colour, std::size
       }
     }
   });
+}
+
+void float_component(const ImageView& image, ColourTransform colour, std::size_t c, std::vector<float>& out,
+                     const Executor& ex) {
+  out.resize(image.plane_size());
+  float_component_rows(image, colour, c, 0, image.height, out.data(), ex);
+}
+
+void integer_component(const ImageView& image, ColourTransform colour, std::size_t c,
+                       std::vector<std::int32_t>& out, const Executor& ex) {
+  out.resize(image.plane_size());
+  integer_component_rows(image, colour, c, 0, image.height, out.data(), ex);
 }
 
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour) {

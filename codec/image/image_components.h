@@ -29,6 +29,13 @@ void float_component(const ImageView& image, ColourTransform colour, std::size_t
 void integer_component(const ImageView& image, ColourTransform colour, std::size_t c,
                        std::vector<std::int32_t>& out, const Executor& ex = serial_executor());
 
+// Rows [y0, y1) of component c the same way, into `out` ((y1 - y0) rows of image.width): the
+// strip-wise encoder's input.
+void float_component_rows(const ImageView& image, ColourTransform colour, std::size_t c, std::size_t y0,
+                          std::size_t y1, float* out, const Executor& ex = serial_executor());
+void integer_component_rows(const ImageView& image, ColourTransform colour, std::size_t c, std::size_t y0,
+                            std::size_t y1, std::int32_t* out, const Executor& ex = serial_executor());
+
 // Squared output error per unit error of each component (ICT components weigh more).
 std::vector<double> component_weights(std::size_t channels, ColourTransform colour);
 

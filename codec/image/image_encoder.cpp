@@ -3,15 +3,24 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+#include <functional>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 #include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_encoder.h"
 #include "codec/error.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"
+#include "codec/image/image_strip_encoder.h"
+#include "codec/image/kept_block.h"
 #include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/pcrd.h"
@@ -62,48 +71,148 @@ double guess_margin(const ImagePlan& plan) { return plan.header.channels >= 3 ? 
 // finer indices would overflow the block coder without improving the result.
 constexpr double kFinestBaseStep = 1.0 / 131072.0;
 
-// All blocks coded with every pass; the PCRD inputs.
-struct CodedImage {
-  std::vector<EncodedBlock> blocks;
-  std::vector<std::vector<HullPoint>> hulls;
-  double initial_distortion = 0.0;  // index units^2, nothing coded
-  bool over_limit = false;          // stopped early: every pass would exceed the byte limit
+// Hands the pages of many small freed blocks (codewords copied into a stream) back to the
+// system every kTrimBytes: the allocator keeps them otherwise, and the copy and its source
+// would both stay resident (glibc's malloc_trim; elsewhere nothing is done).
+class FreedMemory {
+ public:
+  void add(std::size_t bytes) {
+    if ((pending_ += bytes) < kTrimBytes) return;
+    pending_ = 0;
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+  }
+
+ private:
+  static constexpr std::size_t kTrimBytes = std::size_t(16) << 20;
+  std::size_t pending_ = 0;
 };
 
-// Codes every block, one component at a time so only one transformed component is held.
-// Stops early once the blocks with every pass hold more than `byte_limit` bytes (a lossless
-// stream that cannot beat a lossy one costs little this way). With `keep`, the transformed
-// components stay in the plan for the next call (release_coefficients frees them).
-CodedImage code_blocks(ImagePlan& plan, std::size_t byte_limit = std::numeric_limits<std::size_t>::max(),
-                       bool keep = false) {
-  CodedImage out;
-  out.blocks.resize(plan.blocks.size());
-  out.hulls.resize(plan.blocks.size());
-  std::atomic<std::size_t> total{0};
-  std::atomic<bool> over{false};
-  for (std::size_t c = 0; c < plan.header.channels && !over; ++c) {
+// All blocks coded with every pass; the PCRD inputs.
+struct CodedImage {
+  std::vector<KeptBlock> blocks;
+  std::vector<std::vector<HullPoint>> hulls;
+  double initial_distortion = 0.0;  // index units^2, nothing coded
+};
+
+// Whether component c is coded from a strip-wise transform (image_strip_encoder.h) rather
+// than from the transformed component held in the plan.
+bool streams(const ImagePlan& plan, std::size_t c, bool keep) {
+  const bool held =
+      (c < plan.coef.size() && !plan.coef[c].empty()) || (c < plan.icoef.size() && !plan.icoef[c].empty());
+  return plan.strip_reach > 0 && !keep && !held;
+}
+
+using BlockCoder = std::function<void(std::size_t block, const std::vector<float>& magnitude,
+                                      const std::vector<std::uint8_t>& negative)>;
+
+// Quantizes every block and hands it to `code` (on the executor's threads), one component at
+// a time so only one transformed component is held (or, by strips, only the rows the blocks
+// being coded need), until `stop` returns true. With `keep`, the transformed components stay
+// in the plan for the next call (release_coefficients frees them).
+void quantize_blocks(ImagePlan& plan, bool keep, const std::function<bool()>& stop, const BlockCoder& code) {
+  const auto code_values = [&](std::size_t i, auto values) {
+    if (stop()) return;
+    std::vector<float> magnitude;
+    std::vector<std::uint8_t> negative;
+    quantize_values(plan, i, values, magnitude, negative);
+    code(i, magnitude, negative);
+  };
+  for (std::size_t c = 0; c < plan.header.channels && !stop(); ++c) {
+    if (streams(plan, c, keep)) {
+      if (plan.header.reversible)
+        stream_component<std::int32_t>(
+            plan, c, [&](std::size_t i, std::span<const std::int32_t> v) { code_values(i, v); }, stop);
+      else
+        stream_component<float>(
+            plan, c, [&](std::size_t i, std::span<const float> v) { code_values(i, v); }, stop);
+      continue;
+    }
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
       if (plan.blocks[i].component == c) ids.push_back(i);
     if (plan.coef.size() <= c || plan.coef[c].empty()) transform_component(plan, c);
     plan.executor->run(ids.size(), [&](std::size_t k) {
-      if (over.load(std::memory_order_relaxed)) return;
-      const std::size_t i = ids[k];
+      if (stop()) return;
       std::vector<float> magnitude;
       std::vector<std::uint8_t> negative;
-      quantize_block(plan, i, magnitude, negative);
-      const CodeBlock& b = plan.blocks[i];
-      out.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-      out.hulls[i] = rd_hull(out.blocks[i]);
-      const std::size_t full = out.blocks[i].size(out.blocks[i].pass_count());
-      if (total.fetch_add(full) + full > byte_limit) over = true;
+      quantize_block(plan, ids[k], magnitude, negative);
+      code(ids[k], magnitude, negative);
     });
     if (!keep) release_component(plan, c);
   }
   if (!keep) release_coefficients(plan);
-  out.over_limit = over;
+}
+
+// Codes every block with every pass and its rate-distortion hull (quantize_blocks).
+CodedImage code_blocks(ImagePlan& plan, bool keep = false) {
+  CodedImage out;
+  out.blocks.resize(plan.blocks.size());
+  out.hulls.resize(plan.blocks.size());
+  quantize_blocks(
+      plan, keep, [] { return false; },
+      [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
+        const CodeBlock& b = plan.blocks[i];
+        EncodedBlock coded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+        out.hulls[i] = rd_hull(coded);
+        out.hulls[i].shrink_to_fit();
+        out.blocks[i] = KeptBlock(std::move(coded));
+      });
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
   return out;
+}
+
+// The stream with every pass of every block (step and lossless encodes), or nullopt once the
+// codewords exceed `byte_limit` bytes. Only each block's whole codeword is kept, not its
+// truncation points and hull (those take more memory than the codewords: 0.6 GB for a
+// 32768^2 image).
+std::optional<std::vector<std::uint8_t>> code_every_pass(
+    ImagePlan& plan, std::size_t byte_limit = std::numeric_limits<std::size_t>::max()) {
+  std::vector<BlockEntry> entries(plan.blocks.size());
+  std::vector<std::vector<std::uint8_t>> words(plan.blocks.size());
+  std::atomic<std::size_t> total{0};
+  std::atomic<bool> over{false};
+  quantize_blocks(
+      plan, false, [&] { return over.load(std::memory_order_relaxed); },
+      [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
+        const CodeBlock& b = plan.blocks[i];
+        const EncodedBlock coded =
+            encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+        const int n = coded.pass_count();
+        entries[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(coded.size(n))};
+        words[i] = coded.codeword(n);
+        words[i].shrink_to_fit();  // codeword() leaves up to twice the capacity it needs
+        if (total.fetch_add(words[i].size()) + words[i].size() > byte_limit) over = true;
+      });
+  if (over) return std::nullopt;
+  std::vector<std::vector<std::uint8_t>> data(std::size_t(plan.header.levels) + 1);
+  std::vector<std::size_t> sizes(data.size(), 0);
+  for (std::size_t i = 0; i < words.size(); ++i)
+    sizes[std::size_t(plan.blocks[i].resolution)] += words[i].size();
+  for (std::size_t r = 0; r < data.size(); ++r) data[r].reserve(sizes[r]);
+  FreedMemory freed;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    auto& d = data[std::size_t(plan.blocks[i].resolution)];
+    d.insert(d.end(), words[i].begin(), words[i].end());
+    freed.add(words[i].size());
+    std::vector<std::uint8_t>().swap(words[i]);
+  }
+  return write_container(plan.header, entries, data);
+}
+
+// Magnitudes of component c for the rate model (rate_guess.h), gathered block by block from
+// the strip-wise transform: the same counts as from the whole transformed component.
+MagnitudeHistogram stream_histogram(const ImagePlan& plan, std::size_t c) {
+  MagnitudeHistogram total;
+  std::mutex lock;
+  stream_component<float>(plan, c, [&](std::size_t i, std::span<const float> values) {
+    auto h = std::make_unique<MagnitudeHistogram>();
+    h->add(values, magnitude_scale(plan, c, plan.blocks[i].band));
+    const std::lock_guard<std::mutex> hold(lock);
+    total.merge(*h);
+  });
+  return total;
 }
 
 std::vector<BlockEntry> entries_for(const CodedImage& coded, const std::vector<int>& passes) {
@@ -130,11 +239,40 @@ double remaining_distortion(const CodedImage& coded, const std::vector<int>& pas
   return coded.initial_distortion - removed;
 }
 
+// The stream of `coded` cut at `passes`. Each block's codeword goes straight into its
+// resolution's payload (sized first, so it is never reallocated); `release` frees each block's
+// coded data once copied when `coded` is not const, for the last build of an encode (the
+// coded blocks and the stream are then not both held whole).
+template <class Coded>
+std::vector<std::uint8_t> build_stream(const ImagePlan& plan, Coded& coded, const std::vector<int>& passes) {
+  const auto entries = entries_for(coded, passes);
+  std::vector<std::vector<std::uint8_t>> data(std::size_t(plan.header.levels) + 1);
+  std::vector<std::size_t> sizes(data.size(), 0);
+  for (std::size_t i = 0; i < passes.size(); ++i)
+    sizes[std::size_t(plan.blocks[i].resolution)] += entries[i].length;
+  for (std::size_t r = 0; r < data.size(); ++r) data[r].reserve(sizes[r]);
+  FreedMemory freed;
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    const auto word = coded.blocks[i].codeword(passes[i]);
+    auto& d = data[std::size_t(plan.blocks[i].resolution)];
+    d.insert(d.end(), word.begin(), word.end());
+    if constexpr (!std::is_const_v<Coded>) {
+      freed.add(coded.blocks[i].committed.size());
+      coded.blocks[i] = KeptBlock{};
+    }
+  }
+  return write_container(plan.header, entries, data);
+}
+
 std::vector<std::uint8_t> build(const ImagePlan& plan, const CodedImage& coded,
                                 const std::vector<int>& passes) {
-  std::vector<std::vector<std::uint8_t>> words(passes.size());
-  for (std::size_t i = 0; i < passes.size(); ++i) words[i] = coded.blocks[i].codeword(passes[i]);
-  return assemble(plan, entries_for(coded, passes), words);
+  return build_stream(plan, coded, passes);
+}
+
+// The last build of an encode: frees the coded blocks as it goes.
+std::vector<std::uint8_t> build_final(const ImagePlan& plan, CodedImage& coded,
+                                      const std::vector<int>& passes) {
+  return build_stream(plan, coded, passes);
 }
 
 std::vector<int> all_passes(const CodedImage& coded) {
@@ -168,10 +306,9 @@ void fill_budget(const ImagePlan& plan, const CodedImage& coded, std::vector<int
   }
 }
 
-// rd_hull with the distortion in output units (index units times `scale`, the base step
+// A hull (rd_hull) with the distortion in output units (index units times `scale`, the base step
 // squared), so blocks coded at different base steps compare.
-std::vector<HullPoint> scaled_hull(const EncodedBlock& block, double scale) {
-  auto hull = rd_hull(block);
+std::vector<HullPoint> scale_hull(std::vector<HullPoint> hull, double scale) {
   for (HullPoint& p : hull) {
     p.removed *= scale;
     p.slope *= scale;
@@ -227,7 +364,7 @@ std::size_t mixed_size(const ImagePlan& plan, const std::vector<Family>& familie
   for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
     const Family& fam = families[choice[band_group(plan, i)]];
     const int passes = passes_at_slope(fam.coded.hulls[i], lambda / (fam.base * fam.base));
-    const EncodedBlock& b = fam.coded.blocks[i];
+    const KeptBlock& b = fam.coded.blocks[i];
     entries[i] = {passes > 0 ? b.planes : 0, passes, std::uint32_t(b.size(passes))};
     data += entries[i].length;
   }
@@ -268,7 +405,7 @@ CodedImage mix_families(ImagePlan& plan, std::vector<Family>& families,
     Family& fam = families[choice[band_group(plan, i)]];
     scale[i] = fam.base * fam.base;
     mixed.blocks[i] = std::move(fam.coded.blocks[i]);
-    mixed.hulls[i] = scaled_hull(mixed.blocks[i], scale[i]);
+    mixed.hulls[i] = scale_hull(std::move(fam.coded.hulls[i]), scale[i]);
   }
   return mixed;
 }
@@ -290,8 +427,9 @@ bool pull_isolated_coefficients(const ImagePlan& plan, CodedImage& coded, const 
     const CodeBlock& b = plan.blocks[i];
     if (pull_isolated(magnitude, b.size, plane, plan.header.delta, lambda * kIsolatedBytes / scale[i]) == 0)
       return;
-    coded.blocks[i] = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-    coded.hulls[i] = scaled_hull(coded.blocks[i], scale[i]);
+    EncodedBlock recoded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+    coded.hulls[i] = scale_hull(rd_hull(recoded), scale[i]);
+    coded.blocks[i] = KeptBlock(std::move(recoded));
     ++changed;
   });
   return changed > 0;
@@ -302,7 +440,7 @@ bool pull_isolated_coefficients(const ImagePlan& plan, CodedImage& coded, const 
 Family code_family(ImagePlan& plan, double base, double budget, bool keep) {
   for (int round = 0;; ++round, base /= 4.0) {
     set_base_step(plan, base);
-    CodedImage coded = code_blocks(plan, std::numeric_limits<std::size_t>::max(), keep);
+    CodedImage coded = code_blocks(plan, keep);
     const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
     if (fits_all && round < kMaxStepRefinements) continue;
     return Family{base, std::move(coded)};
@@ -317,17 +455,22 @@ Family code_family(ImagePlan& plan, double base, double budget, bool keep) {
 EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp, int effort) {
   const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
   double base = plan.peak / 512.0;
-  if (!plan.header.reversible) {
+  const bool keep = effort >= 2 && !plan.header.reversible && plan.samples <= kMaxKeptSamples;
+  if (!plan.header.reversible && streams(plan, 0, keep)) {
+    // A first strip-wise pass over component 0 for the model's statistics (the input is
+    // mapped: reading it again costs little), never the whole component in memory.
+    base = std::max(guess_base_step(stream_histogram(plan, 0), budget, guess_margin(plan)),
+                    kFinestBaseStep * plan.peak);
+  } else if (!plan.header.reversible) {
     transform_component(plan, 0);
     base = std::max(guess_base_step(plan, 0, budget, guess_margin(plan)), kFinestBaseStep * plan.peak);
   }
-  const bool keep = effort >= 2 && !plan.header.reversible && plan.samples <= kMaxKeptSamples;
   std::vector<Family> families;
   families.push_back(code_family(plan, base, budget, keep));
   for (int f = 1; keep && f < kSizeFamilies; ++f) {
     set_base_step(plan, families[0].base * std::exp2(-double(f) / kSizeFamilies));
-    families.push_back(Family{families[0].base * std::exp2(-double(f) / kSizeFamilies),
-                              code_blocks(plan, std::numeric_limits<std::size_t>::max(), true)});
+    families.push_back(
+        Family{families[0].base * std::exp2(-double(f) / kSizeFamilies), code_blocks(plan, true)});
   }
   const double lambda = mixed_threshold(plan, families, budget);
   base = families[0].base;  // the base step reported: family 0's (bands may use finer ones)
@@ -340,7 +483,7 @@ EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp
     passes = allocate_by_slope(mixed.hulls, true, fits);
   release_coefficients(plan);
   fill_budget(plan, mixed, passes, budget);
-  auto bytes = build(plan, mixed, passes);
+  auto bytes = build_final(plan, mixed, passes);
   mixed = CodedImage{};  // free the coded blocks before the PSNR check decodes the stream
   return make_encode_result(image, plan, std::move(bytes), base);
 }
@@ -523,7 +666,7 @@ std::optional<Trial> search_family(const ImageView& image, ImagePlan& plan, doub
   for (;; ++round) {
     base = std::max(first * std::pow(4.0, -round), finest);
     set_base_step(plan, base);
-    const CodedImage coded = code_blocks(plan, std::numeric_limits<std::size_t>::max(), keep);
+    const CodedImage coded = code_blocks(plan, keep);
     auto found = best ? search_below(image, plan, coded, psnr, base, *best)
                       : search_psnr(image, plan, coded, psnr, base);
     if (found || best || round >= kMaxStepRefinements || base <= finest) return found;
@@ -571,13 +714,11 @@ EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& opt
   if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
   switch (options.mode) {
     case RateMode::lossless: {
-      const CodedImage coded = code_blocks(plan);
-      return make_encode_result(image, plan, build(plan, coded, all_passes(coded)), 1.0);
+      return make_encode_result(image, plan, *code_every_pass(plan), 1.0);
     }
     case RateMode::step: {
       set_base_step(plan, options.target);
-      const CodedImage coded = code_blocks(plan);
-      return make_encode_result(image, plan, build(plan, coded, all_passes(coded)), options.target);
+      return make_encode_result(image, plan, *code_every_pass(plan), options.target);
     }
     case RateMode::bpp: return encode_for_size(image, plan, options.target, options.effort);
     case RateMode::psnr: return encode_for_psnr(image, plan, options.target);
@@ -617,9 +758,9 @@ std::optional<EncodeResult> encode_exact(const ImageView& image, const EncodeOpt
   if (exact.entropy == EntropyCoder::zstd) {
     r = encode_zstd(image, plan, exact);
   } else {
-    const CodedImage coded = code_blocks(plan, byte_limit);
-    if (coded.over_limit) return std::nullopt;
-    r = make_encode_result(image, plan, build(plan, coded, all_passes(coded)), 1.0);
+    auto bytes = code_every_pass(plan, byte_limit);
+    if (!bytes) return std::nullopt;
+    r = make_encode_result(image, plan, std::move(*bytes), 1.0);
   }
   if (r.bytes.size() > byte_limit) return std::nullopt;
   r.psnr = std::numeric_limits<double>::infinity();

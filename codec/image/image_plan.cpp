@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "codec/error.h"
 #include "codec/image/image_components.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/quantizer.h"
+#include "transforms/analysis_reach.h"
 #include "transforms/norms.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
@@ -163,6 +165,7 @@ ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
     h.steps.assign(plan.bands.size() * h.channels, 1.0f);
   else
     plan.norms = synthesis_norms(*t, h.dims, h.levels);
+  if (o.strip_encode && is_integer(image.type)) plan.strip_reach = analysis_reach(*t);
   plan.transform = std::move(t);
   return plan;
 }
@@ -208,22 +211,37 @@ void release_coefficients(ImagePlan& plan) {
   std::vector<std::vector<std::int32_t>>().swap(plan.icoef);
 }
 
-void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
-                    std::vector<std::uint8_t>& negative) {
+template <class T>
+void quantize_values(const ImagePlan& plan, std::size_t i, std::span<const T> values,
+                     std::vector<float>& magnitude, std::vector<std::uint8_t>& negative) {
   const CodeBlock& b = plan.blocks[i];
-  const float step = plan.header.steps[b.component * plan.bands.size() + b.band];
   magnitude.resize(b.count());
   negative.resize(b.count());
-  if (plan.header.reversible) {
-    std::vector<std::int32_t> values(b.count());
-    copy_block_out(plan.icoef[b.component].data(), plan.header.dims, b, values.data());
+  if constexpr (std::is_same_v<T, std::int32_t>) {
     for (std::int32_t v : values)
       if (v >= (1 << 24) || v <= -(1 << 24)) throw EncodeError("reversible coefficient out of range");
     quantize<std::int32_t>(values, 1.0f, magnitude, negative);
   } else {
+    quantize<float>(values, plan.header.steps[b.component * plan.bands.size() + b.band], magnitude, negative);
+  }
+}
+
+template void quantize_values<float>(const ImagePlan&, std::size_t, std::span<const float>,
+                                     std::vector<float>&, std::vector<std::uint8_t>&);
+template void quantize_values<std::int32_t>(const ImagePlan&, std::size_t, std::span<const std::int32_t>,
+                                            std::vector<float>&, std::vector<std::uint8_t>&);
+
+void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
+                    std::vector<std::uint8_t>& negative) {
+  const CodeBlock& b = plan.blocks[i];
+  if (plan.header.reversible) {
+    std::vector<std::int32_t> values(b.count());
+    copy_block_out(plan.icoef[b.component].data(), plan.header.dims, b, values.data());
+    quantize_values<std::int32_t>(plan, i, values, magnitude, negative);
+  } else {
     std::vector<float> values(b.count());
     copy_block_out(plan.coef[b.component].data(), plan.header.dims, b, values.data());
-    quantize<float>(values, step, magnitude, negative);
+    quantize_values<float>(plan, i, values, magnitude, negative);
   }
 }
 

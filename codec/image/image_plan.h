@@ -55,6 +55,9 @@ struct ImagePlan {
   double peak = 1.0;                   // PSNR peak of the input
   const Executor* executor = nullptr;  // EncodeOptions::executor, resolved (never null)
   bool measure_psnr = true;            // EncodeOptions::measure_psnr
+  // Analysis reach of the transform when components are transformed by strips
+  // (EncodeOptions::strip_encode, integer images, local analysis), else 0.
+  std::size_t strip_reach = 0;
 };
 
 // Validates the image and options and lays out bands and blocks; no coefficients yet.
@@ -78,6 +81,11 @@ void release_coefficients(ImagePlan& plan);
 // Index-unit magnitudes and signs of block i under the plan's steps.
 void quantize_block(const ImagePlan& plan, std::size_t i, std::vector<float>& magnitude,
                     std::vector<std::uint8_t>& negative);
+
+// The same from block i's coefficients (x fastest), T float or int32_t as the plan's.
+template <class T>
+void quantize_values(const ImagePlan& plan, std::size_t i, std::span<const T> values,
+                     std::vector<float>& magnitude, std::vector<std::uint8_t>& negative);
 
 // The .pw file of the plan with the given per-block index entries and codewords.
 std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<BlockEntry>& entries,

@@ -39,6 +39,11 @@ struct ImageView {
   // PSNR peak of these samples if > 0 (a float image in the log transfer domain: 1 stop);
   // 0: derived from the type and the samples (psnr_peak).
   double peak = 0.0;
+  // Optional, for views of a file mapped read-only: called (with drop_context) for rows
+  // [y0, y1) the strip-wise encoder has read for now, so their pages can leave the process's
+  // resident memory (read again, they come back from the page cache). Null: nothing is dropped.
+  void (*drop_rows)(const void* context, const ImageView& view, std::size_t y0, std::size_t y1) = nullptr;
+  const void* drop_context = nullptr;
 
   std::size_t plane_size() const { return width * height; }
   // Sample (c, x, y) as float (exact for every supported type).

@@ -17,7 +17,8 @@ constexpr std::size_t kBins = std::size_t(1) << (32 - kBinShift);
 // the first component at every pass, from 0.1 to 4 bpp.
 constexpr double kOverheadBits = 4.0;
 
-using Histogram = std::array<std::uint64_t, kBins>;
+using Histogram = MagnitudeHistogram::Counts;
+static_assert(std::tuple_size_v<Histogram> == kBins);
 
 // log2 of the centre of bin k.
 double bin_log2(std::size_t k) {
@@ -26,25 +27,20 @@ double bin_log2(std::size_t k) {
 }
 
 Histogram histogram(const ImagePlan& plan, std::size_t c) {
-  Histogram h{};
+  MagnitudeHistogram h;
   const float* plane = plan.coef[c].data();
   const Extent& dims = plan.header.dims;
-  const double w = std::sqrt(plan.weights[c]);
   for (std::size_t b = 0; b < plan.bands.size(); ++b) {
     const Subband& band = plan.bands[b];
-    // Output units: index units times the base step, the same scale in every band.
-    const float scale = float(plan.norms[b] * w);
+    const float scale = magnitude_scale(plan, c, b);
     for (std::size_t z = 0; z < band.size[2]; ++z)
       for (std::size_t y = 0; y < band.size[1]; ++y) {
         const float* row =
             plane + band.offset[0] + dims[0] * ((band.offset[1] + y) + dims[1] * (band.offset[2] + z));
-        for (std::size_t x = 0; x < band.size[0]; ++x) {
-          const float v = std::fabs(row[x]) * scale;
-          ++h[std::bit_cast<std::uint32_t>(v) >> kBinShift];
-        }
+        h.add(std::span<const float>(row, band.size[0]), scale);
       }
   }
-  return h;
+  return h.counts;
 }
 
 double model_bits(const Histogram& h, double log2_base) {
@@ -57,10 +53,7 @@ double model_bits(const Histogram& h, double log2_base) {
   return bits;
 }
 
-}  // namespace
-
-double guess_base_step(const ImagePlan& plan, std::size_t c, double budget_bytes, double margin) {
-  const Histogram h = histogram(plan, c);
+double step_for_bits(const Histogram& h, double budget_bytes, double margin) {
   const double budget_bits = 8.0 * budget_bytes;
   // Bits fall as the step grows; bisect log2(step) over the float range in 1/64 octave.
   double lo = -150.0, hi = 130.0;
@@ -69,6 +62,32 @@ double guess_base_step(const ImagePlan& plan, std::size_t c, double budget_bytes
     (model_bits(h, mid) > budget_bits ? lo : hi) = mid;
   }
   return std::exp2(hi) / margin;
+}
+
+}  // namespace
+
+float magnitude_scale(const ImagePlan& plan, std::size_t c, std::size_t band) {
+  // Output units: index units times the base step, the same scale in every band.
+  return float(plan.norms[band] * std::sqrt(plan.weights[c]));
+}
+
+void MagnitudeHistogram::add(std::span<const float> values, float scale) {
+  for (const float x : values) {
+    const float v = std::fabs(x) * scale;
+    ++counts[std::bit_cast<std::uint32_t>(v) >> kBinShift];
+  }
+}
+
+void MagnitudeHistogram::merge(const MagnitudeHistogram& other) {
+  for (std::size_t k = 0; k < kBins; ++k) counts[k] += other.counts[k];
+}
+
+double guess_base_step(const ImagePlan& plan, std::size_t c, double budget_bytes, double margin) {
+  return step_for_bits(histogram(plan, c), budget_bytes, margin);
+}
+
+double guess_base_step(const MagnitudeHistogram& h, double budget_bytes, double margin) {
+  return step_for_bits(h.counts, budget_bytes, margin);
 }
 
 }  // namespace pupwave

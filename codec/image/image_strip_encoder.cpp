@@ -1,0 +1,242 @@
+#include "codec/image/image_strip_encoder.h"
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "codec/image/image_components.h"
+#include "transforms/separable.h"
+
+namespace pupwave {
+namespace {
+
+// Rows of input read, and of coefficients (interleaved) produced per level, at a time: the
+// column analysis of a window costs its 2 * reach overlap rows once per chunk.
+constexpr std::size_t kChunk = 64;
+// Columns per column-analysis task (a window of them stays in cache while lifted).
+constexpr std::size_t kColumnChunk = 128;
+
+// A code-block whose rows are complete, waiting to be handed to the sink.
+template <class T>
+struct ReadyBlock {
+  std::size_t block;
+  std::vector<T> values;
+};
+
+// Takes rows top to bottom: `count` rows of the receiver's width, row i at rows + i * stride.
+template <class T>
+class RowSink {
+ public:
+  virtual ~RowSink() = default;
+  virtual void add(const T* rows, std::size_t stride, std::size_t count) = 0;
+};
+
+// One subband of the component: keeps its rows until a block row is complete, then copies its
+// blocks out to `ready` and drops those rows.
+template <class T>
+class BandBlocks final : public RowSink<T> {
+ public:
+  BandBlocks(const ImagePlan& plan, const std::vector<std::size_t>& blocks, const Subband& band,
+             std::vector<ReadyBlock<T>>& ready)
+      : plan_(plan), ready_(ready), x0_(band.offset[0]), y0_(band.offset[1]), width_(band.size[0]) {
+    for (std::size_t i : blocks) {  // partition order: block rows top to bottom, x fastest
+      const CodeBlock& b = plan.blocks[i];
+      if (block_rows_.empty() || block_rows_.back().y0 != b.offset[1] - y0_)
+        block_rows_.push_back({b.offset[1] - y0_, b.offset[1] - y0_ + b.size[1], {}});
+      block_rows_.back().blocks.push_back(i);
+    }
+    // The most rows held: a block row less one, and the rows one delivery adds.
+    std::size_t tallest = 0;
+    for (const auto& r : block_rows_) tallest = std::max(tallest, r.y1 - r.y0);
+    data_.reserve((tallest + kChunk / 2 + 1) * width_);
+  }
+
+  void add(const T* rows, std::size_t stride, std::size_t count) override {
+    data_.resize((hi_ + count - lo_) * width_);
+    for (std::size_t r = 0; r < count; ++r)
+      std::copy_n(rows + r * stride, width_, data_.data() + (hi_ + r - lo_) * width_);
+    hi_ += count;
+    while (next_ < block_rows_.size() && hi_ >= block_rows_[next_].y1) emit_row(block_rows_[next_++]);
+  }
+
+  bool done() const { return next_ == block_rows_.size(); }
+
+ private:
+  struct BlockRow {
+    std::size_t y0, y1;  // band rows
+    std::vector<std::size_t> blocks;
+  };
+
+  void emit_row(const BlockRow& br) {
+    for (std::size_t i : br.blocks) {
+      const CodeBlock& b = plan_.blocks[i];
+      ReadyBlock<T> r{i, std::vector<T>(b.count())};
+      for (std::size_t y = 0; y < b.size[1]; ++y)
+        std::copy_n(data_.data() + (br.y0 + y - lo_) * width_ + (b.offset[0] - x0_), b.size[0],
+                    r.values.data() + y * b.size[0]);
+      ready_.push_back(std::move(r));
+    }
+    data_.erase(data_.begin(), data_.begin() + std::ptrdiff_t((br.y1 - lo_) * width_));
+    lo_ = br.y1;
+  }
+
+  const ImagePlan& plan_;
+  std::vector<ReadyBlock<T>>& ready_;
+  std::size_t x0_, y0_, width_;
+  std::vector<BlockRow> block_rows_;
+  std::size_t next_ = 0;  // first block row not emitted yet
+  std::vector<T> data_;   // band rows [lo_, hi_)
+  std::size_t lo_ = 0, hi_ = 0;
+};
+
+// One level of the forward transform: takes the rows of the level-(l-1) coarse band (the
+// image at l = 1), analyses each row as it arrives, and produces coefficient rows a chunk at a
+// time by column analysis over a window reaching `reach` rows beyond the chunk. The coarse
+// rows' low half goes to the next level (or the coarse band), the rest to the detail bands:
+// out[0] coarse rows' low half, out[1] their high half, out[2] and out[3] the detail rows'
+// halves (Mallat layout; null where the band does not exist).
+template <class T>
+class LevelAnalysis final : public RowSink<T> {
+ public:
+  LevelAnalysis(const Transform1D& t, std::size_t reach, const Extent& region, std::vector<RowSink<T>*> out,
+                const Executor& ex)
+      : t_(t), reach_(reach), width_(region[0]), height_(region[1]), out_(std::move(out)), ex_(ex) {
+    // The most rows held: a window (a chunk and its reach on both sides) less one row, and the
+    // rows one delivery adds (so the buffer is never reallocated to twice that).
+    data_.reserve(std::min(height_, 2 * kChunk + 2 * reach_ + 2) * width_);
+  }
+
+  void add(const T* rows, std::size_t stride, std::size_t count) override {
+    data_.resize((hi_ + count - lo_) * width_);
+    T* first = data_.data() + (hi_ - lo_) * width_;
+    for (std::size_t r = 0; r < count; ++r) std::copy_n(rows + r * stride, width_, first + r * width_);
+    if (width_ > 1)
+      ex_.run(count, [&](std::size_t r) { t_.analyze(std::span<T>(first + r * width_, width_)); });
+    hi_ += count;
+    while (p_ < height_) {
+      const std::size_t p1 = std::min(height_, p_ + kChunk);
+      if (hi_ < window_end(p1)) break;
+      produce(p1);
+      p_ = p1;
+      const std::size_t keep = window_start(p_);
+      if (keep > lo_) {
+        data_.erase(data_.begin(), data_.begin() + std::ptrdiff_t((keep - lo_) * width_));
+        lo_ = keep;
+      }
+    }
+  }
+
+ private:
+  // Window [window_start(p0), window_end(p1)) of the columns for coefficients [p0, p1): starts
+  // even (so its even wire is the coarse band) and ends at an even row or the column's end.
+  std::size_t window_start(std::size_t p0) const { return (p0 > reach_ ? p0 - reach_ : 0) & ~std::size_t(1); }
+  std::size_t window_end(std::size_t p1) const {
+    std::size_t w1 = std::min(height_, p1 + reach_);
+    if (w1 % 2 != 0 && w1 < height_) ++w1;
+    return w1;
+  }
+
+  void produce(std::size_t p1) {
+    const std::size_t wc = coarse_size(width_);
+    if (height_ == 1) {  // no column to analyse: the row is the coarse row
+      deliver(data_.data(), 1, true, wc);
+      return;
+    }
+    const std::size_t w0 = window_start(p_), w1 = window_end(p1), n = w1 - w0;
+    const std::size_t c0 = p_ / 2, c1 = (p1 + 1) / 2, d1 = p1 / 2, nc = coarse_size(n);
+    std::vector<T> coarse((c1 - c0) * width_), detail((d1 > c0 ? d1 - c0 : 0) * width_);
+    const std::size_t chunks = (width_ + kColumnChunk - 1) / kColumnChunk;
+    ex_.run(chunks, [&](std::size_t k) {
+      const std::size_t x0 = k * kColumnChunk, nb = std::min(kColumnChunk, width_ - x0);
+      std::vector<T> g(n * nb);
+      for (std::size_t i = 0; i < n; ++i)
+        std::copy_n(data_.data() + (w0 + i - lo_) * width_ + x0, nb, &g[i * nb]);
+      t_.analyze_columns(std::span<T>(g.data(), g.size()), nb);
+      for (std::size_t j = c0; j < c1; ++j)
+        std::copy_n(&g[(j - w0 / 2) * nb], nb, coarse.data() + (j - c0) * width_ + x0);
+      for (std::size_t j = c0; j < d1; ++j)
+        std::copy_n(&g[(nc + j - w0 / 2) * nb], nb, detail.data() + (j - c0) * width_ + x0);
+    });
+    deliver(coarse.data(), c1 - c0, true, wc);
+    if (d1 > c0) deliver(detail.data(), d1 - c0, false, wc);
+  }
+
+  void deliver(const T* rows, std::size_t count, bool coarse, std::size_t wc) {
+    RowSink<T>* low = out_[coarse ? 0 : 2];
+    RowSink<T>* high = out_[coarse ? 1 : 3];
+    if (low) low->add(rows, width_, count);
+    if (high) high->add(rows + wc, width_, count);
+  }
+
+  const Transform1D& t_;
+  std::size_t reach_, width_, height_;
+  std::vector<RowSink<T>*> out_;
+  const Executor& ex_;
+  std::vector<T> data_;          // row-analysed input rows [lo_, hi_)
+  std::size_t lo_ = 0, hi_ = 0;  // input rows held
+  std::size_t p_ = 0;            // next coefficient (interleaved row) to produce
+};
+
+// Index of the band of `level` with `orientation` in plan.bands, or npos.
+std::size_t find_band(const ImagePlan& plan, int level, unsigned orientation) {
+  for (std::size_t i = 0; i < plan.bands.size(); ++i)
+    if (plan.bands[i].level == level && plan.bands[i].orientation == orientation) return i;
+  return std::size_t(-1);
+}
+
+template <class T>
+void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out) {
+  if constexpr (std::is_same_v<T, float>)
+    float_component_rows(plan.source, plan.header.colour, c, y0, y1, out, *plan.executor);
+  else
+    integer_component_rows(plan.source, plan.header.colour, c, y0, y1, out, *plan.executor);
+}
+
+}  // namespace
+
+template <class T>
+void stream_component(const ImagePlan& plan, std::size_t c, const BlockSink<T>& sink,
+                      const std::function<bool()>& stop) {
+  if (plan.strip_reach == 0) throw std::logic_error("stream_component: the plan's transform is not local");
+  const StreamHeader& h = plan.header;
+  const Executor& ex = *plan.executor;
+  std::vector<ReadyBlock<T>> ready;
+  std::vector<std::vector<std::size_t>> by_band(plan.bands.size());
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+    if (plan.blocks[i].component == c) by_band[plan.blocks[i].band].push_back(i);
+  std::vector<std::unique_ptr<BandBlocks<T>>> bands(plan.bands.size());
+  for (std::size_t b = 0; b < plan.bands.size(); ++b)
+    bands[b] = std::make_unique<BandBlocks<T>>(plan, by_band[b], plan.bands[b], ready);
+  // Levels from the coarsest up, each feeding the next coarser one.
+  std::vector<std::unique_ptr<LevelAnalysis<T>>> levels;
+  RowSink<T>* top = bands[0].get();
+  for (int l = h.levels; l >= 1; --l) {
+    std::vector<RowSink<T>*> out{top, nullptr, nullptr, nullptr};
+    for (unsigned o : {1u, 2u, 3u})
+      if (const std::size_t b = find_band(plan, l, o); b != std::size_t(-1)) out[o] = bands[b].get();
+    levels.push_back(std::make_unique<LevelAnalysis<T>>(*plan.transform, plan.strip_reach,
+                                                        level_extent(h.dims, l - 1), std::move(out), ex));
+    top = levels.back().get();
+  }
+  const std::size_t width = h.dims[0], height = h.dims[1];
+  std::vector<T> rows(kChunk * width);
+  for (std::size_t y0 = 0; y0 < height; y0 += kChunk) {
+    const std::size_t y1 = std::min(height, y0 + kChunk);
+    component_rows<T>(plan, c, y0, y1, rows.data());
+    if (plan.source.drop_rows) plan.source.drop_rows(plan.source.drop_context, plan.source, y0, y1);
+    top->add(rows.data(), width, y1 - y0);
+    ex.run(ready.size(), [&](std::size_t k) { sink(ready[k].block, ready[k].values); });
+    ready.clear();
+    if (stop()) return;
+  }
+  for (const auto& b : bands)
+    if (!b->done()) throw std::logic_error("stream_component: a code-block was never completed");
+}
+
+template void stream_component<float>(const ImagePlan&, std::size_t, const BlockSink<float>&,
+                                      const std::function<bool()>&);
+template void stream_component<std::int32_t>(const ImagePlan&, std::size_t, const BlockSink<std::int32_t>&,
+                                             const std::function<bool()>&);
+
+}  // namespace pupwave
