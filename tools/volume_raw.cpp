@@ -12,6 +12,15 @@ namespace pupwave::cli {
 namespace fs = std::filesystem;
 namespace {
 
+// VolumeView::drop_slabs for a view of a mapped raw file: unmaps planes [z0, z1) (the encoder's
+// passes read the input slab by slab; pages read stay resident until dropped).
+void drop_planes(const void* context, const VolumeView& v, std::size_t z0, std::size_t z1) {
+  const auto* file = static_cast<const MappedFile*>(context);
+  const std::size_t plane = std::size_t(v.strides[2]) * bytes_per_voxel(v.storage);
+  const std::size_t start = std::size_t(static_cast<const std::uint8_t*>(v.data) - file->bytes().data());
+  file->drop(start + z0 * plane, (z1 - z0) * plane);
+}
+
 // Reverses the bytes of every `width`-byte element (raw files are little endian).
 void swap_elements(std::span<std::uint8_t> bytes, std::size_t width) {
   for (std::size_t i = 0; i + width <= bytes.size(); i += width)
@@ -34,6 +43,7 @@ MappedRawVolume::MappedRawVolume(const fs::path& path, const Extent& dims, Voxel
     data = swapped_.data();
   }
   view_ = contiguous_view(data, dims, type);
+  if (file_) view_.drop_context = &*file_, view_.drop_slabs = drop_planes;
 }
 
 void write_raw_bytes(std::vector<std::uint8_t> bytes, VoxelType type, const fs::path& path) {

@@ -247,6 +247,7 @@ std::size_t code_bytes(const BrickCode& c) {
 std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
                                   const VolumeEncodeOptions& o) {
   std::vector<BrickCode> codes(plan.jobs.size());
+  SlabRelease release(plan.jobs);  // the input's last read: each slab dropped once coded
   plan.executor->run(plan.jobs.size(), [&](std::size_t i) {
     const BrickJob& job = plan.jobs[i];
     const VolumeGrid& grid = grids[job.grid];
@@ -257,6 +258,7 @@ std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const Vo
       codes[i] = code_within_bound(plan, grid, job, samples, active);
     else
       codes[i] = code_at_step(plan, grid, job, samples, o.mode == VolumeRateMode::step ? o.target : 1.0);
+    release.done(i);
   });
   return codes;
 }

@@ -3,6 +3,8 @@
 // bricks to code, shared by the fixed-step / max-error path (volume_encoder.cpp) and the
 // rate-controlled path (volume_encoder_rate.cpp).
 
+#include <atomic>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -46,6 +48,21 @@ struct BrickCode {
   std::size_t outlier_count = 0;
   double max_error = 0.0;  // over voxels that must meet the bound, after correction
   double sse = 0.0;        // squared error over the same voxels
+};
+
+// Drops (VolumeView::drop) each z-slab of bricks of a view once every brick of the slab has been
+// read in a brick pass, so a mapped input does not stay resident until the end. Bricks run in
+// parallel and finish in any order: one atomic count of bricks left per slab.
+class SlabRelease {
+ public:
+  explicit SlabRelease(const std::vector<BrickJob>& jobs);
+  // Job i has read its input for the last time in this pass (thread-safe).
+  void done(std::size_t i);
+
+ private:
+  const std::vector<BrickJob>& jobs_;
+  std::vector<std::size_t> slab_;                     // per job, its slab (empty: no view drops)
+  std::unique_ptr<std::atomic<std::size_t>[]> left_;  // per slab, bricks not yet done
 };
 
 // `views[g]` (when its data is set) holds the values of box grid g; see encode_volumes.

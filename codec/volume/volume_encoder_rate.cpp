@@ -26,12 +26,14 @@ struct Coded {
 Coded code_all(const VolumePlan& plan, double base) {
   Coded c;
   c.codes.resize(plan.jobs.size());
+  SlabRelease release(plan.jobs);  // measure_all reads the input again (from the page cache)
   plan.executor->run(plan.jobs.size(), [&](std::size_t i) {
     std::vector<double> samples;
     std::vector<std::uint8_t> active;
     brick_samples(plan.jobs[i], samples, active);
     c.codes[i].base_step = base;
     c.codes[i].coded = code_brick(plan.coding, samples, plan.jobs[i].box.size, base);
+    release.done(i);
   });
   for (std::size_t i = 0; i < c.codes.size(); ++i)
     for (std::size_t k = 0; k < c.codes[i].coded.coded.size(); ++k) {
@@ -67,9 +69,11 @@ double remaining(const Coded& c, const std::vector<int>& passes) {
 
 // Measures every brick's reconstruction (max error, squared error) for the chosen passes.
 double measure_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan, Coded& c) {
+  SlabRelease release(plan.jobs);
   plan.executor->run(c.codes.size(), [&](std::size_t i) {
     measure_brick(grids[plan.jobs[i].grid], plan.jobs[i], reconstruct_brick(plan, plan.jobs[i], c.codes[i]),
                   c.codes[i]);
+    release.done(i);
   });
   double sse = 0.0;
   for (const auto& code : c.codes) sse += code.sse;

@@ -165,8 +165,10 @@ ValueSummary summarize_values(const VolumeView& view) {
       using T = decltype(t);
       const T* data = static_cast<const T*>(view.data);
       RowRange<T> r;
-      for (std::size_t z = 0; z < view.dims[2]; ++z)
+      for (std::size_t z = 0; z < view.dims[2]; ++z) {
         for (std::size_t y = 0; y < view.dims[1]; ++y) r.add(data + view.offset(0, y, z), view.dims[0]);
+        view.drop(z, z + 1);
+      }
       r.finish(s);
     });
     if (s.finite) s.largest = std::max(std::fabs(s.lo), std::fabs(s.hi));
@@ -177,6 +179,7 @@ ValueSummary summarize_values(const VolumeView& view) {
     s.largest = std::max(s.largest, std::fabs(v));
     if (active) s.lo = std::min(s.lo, v), s.hi = std::max(s.hi, v);
   });
+  view.drop(0, view.dims[2]);  // masked or strided views: at the end (the raw CLI input is neither)
   return s;
 }
 

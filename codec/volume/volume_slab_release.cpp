@@ -1,0 +1,35 @@
+// SlabRelease: per z-slab counts of bricks left in a brick pass (volume_encoder_plan.h).
+#include <map>
+#include <tuple>
+
+#include "codec/volume/volume_encoder_plan.h"
+
+namespace pupwave {
+
+SlabRelease::SlabRelease(const std::vector<BrickJob>& jobs) : jobs_(jobs) {
+  bool any = false;
+  for (const BrickJob& job : jobs) any = any || job.view.drop_slabs != nullptr;
+  if (!any) return;  // nothing to drop: no counting either
+  // A slab: the bricks of one grid and block (one view) that start at the same z.
+  std::map<std::tuple<std::uint32_t, std::uint32_t, std::size_t>, std::size_t> index;
+  std::vector<std::size_t> count;
+  slab_.reserve(jobs.size());
+  for (const BrickJob& job : jobs) {
+    const auto [it, added] = index.try_emplace({job.grid, job.block, job.box.offset[2]}, count.size());
+    if (added) count.push_back(0);
+    ++count[it->second];
+    slab_.push_back(it->second);
+  }
+  left_ = std::make_unique<std::atomic<std::size_t>[]>(count.size());
+  for (std::size_t s = 0; s < count.size(); ++s) left_[s].store(count[s], std::memory_order_relaxed);
+}
+
+void SlabRelease::done(std::size_t i) {
+  if (slab_.empty()) return;
+  // acq_rel: the last brick of a slab sees every other brick's reads finished before it drops.
+  if (left_[slab_[i]].fetch_sub(1, std::memory_order_acq_rel) != 1) return;
+  const BrickJob& job = jobs_[i];
+  job.view.drop(job.box.offset[2], job.box.offset[2] + job.box.size[2]);
+}
+
+}  // namespace pupwave
