@@ -200,6 +200,9 @@ std::vector<std::uint8_t> sparse_box_stream(std::size_t n, VoxelType type, std::
 }
 
 TEST(HostileHeader, EmptySparseRegionsCostNothing) {
+  // The old cost shows in memory (over the 1 GiB address-space limit), not only in time; wall time is
+  // recorded, not asserted (it flaked at 5 s on a loaded machine), and a hang is killed after a minute.
+  constexpr double kGuard = 60.0;
   // Sparse 512^3 and 1024^3, every voxel inactive (4.4 KB, 33 KB): were 27 s and 2.8 GiB, and
   // std::bad_alloc after 35 s and 10 GiB. To .vdb they decode to empty grids; info reads them.
   for (const std::size_t n : {512, 1024}) {
@@ -207,10 +210,9 @@ TEST(HostileHeader, EmptySparseRegionsCostNothing) {
     const auto bytes = sparse_box_stream(n, VoxelType::f32);
     EXPECT_LT(bytes.size(), 100'000u);
     save(scratch(name + ".pw"), bytes);
-    const auto r =
-        run_cli_bounded({"decompress", scratch(name + ".pw"), scratch(name + ".vdb"), "--threads", "2"});
+    const auto r = run_cli_bounded(
+        {"decompress", scratch(name + ".pw"), scratch(name + ".vdb"), "--threads", "2"}, kGuard);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_LT(r.seconds, 5.0) << n;
     // Was 2.8 GiB at 512^3: now the stream, one mask batch and the program.
     EXPECT_LT(r.max_rss_kb, 200 * 1024) << n;
     ::testing::Test::RecordProperty(
@@ -218,10 +220,9 @@ TEST(HostileHeader, EmptySparseRegionsCostNothing) {
     const auto grids = cli::read_vdb(scratch(name + ".vdb"));
     ASSERT_EQ(grids.size(), 1u);
     EXPECT_EQ(grids[0].active_voxels(), 0u);
-    const auto info = run_cli_bounded({"info", scratch(name + ".pw")});
+    const auto info = run_cli_bounded({"info", scratch(name + ".pw")}, kGuard);
     EXPECT_EQ(info.exit_code, 0) << info.output;
     EXPECT_NE(info.output.find("0 active voxels"), std::string::npos) << info.output;
-    EXPECT_LT(info.seconds, 5.0) << n;
   }
   // Raw output is the dense box: the limit counts its voxels, so 1024^3 is refused before anything
   // is allocated or written, and 512^3 u8 (a 128 MiB file) is decoded.
@@ -229,9 +230,9 @@ TEST(HostileHeader, EmptySparseRegionsCostNothing) {
                  "voxels of all grids of 1073741824 exceeds the decode limit");
   EXPECT_FALSE(fs::exists(scratch("empty1024.raw")));
   save(scratch("u8.pw"), sparse_box_stream(512, VoxelType::u8, 2));  // last voxel: -background
-  const auto raw = run_cli_bounded({"decompress", scratch("u8.pw"), scratch("u8.raw"), "--threads", "2"});
+  const auto raw =
+      run_cli_bounded({"decompress", scratch("u8.pw"), scratch("u8.raw"), "--threads", "2"}, kGuard);
   ASSERT_EQ(raw.exit_code, 0) << raw.output;
-  EXPECT_LT(raw.seconds, 5.0);
   EXPECT_EQ(fs::file_size(scratch("u8.raw")), std::size_t(512) * 512 * 512);
   fs::remove(scratch("u8.raw"));
   // A mask whose every voxel is inactive with value -background (a level set's inside) is not
