@@ -11,8 +11,8 @@
 #include "codec/image/image_components.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/quantizer.h"
-#include "transforms/analysis_reach.h"
 #include "transforms/norms.h"
+#include "transforms/reach.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 

@@ -8,6 +8,7 @@
 
 #include "codec/error.h"
 #include "codec/image/image_components.h"
+#include "transforms/reach.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -211,35 +212,6 @@ std::unique_ptr<LevelRows<T>> build_levels(const ParsedStream& s,
 }
 
 }  // namespace
-
-namespace {
-
-// The farthest output sample a NaN at one coarse or detail coefficient in the middle of a
-// line of n samples reaches.
-std::size_t nan_reach(const Transform1D& t, std::size_t n) {
-  const std::size_t j = n / 4;
-  std::size_t reach = 0;
-  for (std::size_t wire = 0; wire < 2; ++wire) {
-    std::vector<float> line(n, 0.0f);
-    line[wire == 0 ? j : n / 2 + j] = std::numeric_limits<float>::quiet_NaN();
-    const std::size_t position = 2 * j + wire;  // coarse j sits at 2j, detail j at 2j + 1
-    t.synthesize(std::span<float>(line));
-    for (std::size_t i = 0; i < n; ++i)
-      if (std::isnan(line[i])) reach = std::max(reach, i > position ? i - position : position - i);
-  }
-  return reach;
-}
-
-}  // namespace
-
-// Probed on two line lengths: a reach that grows with the line (a solve along the whole line,
-// or a cascade of log n stages) is not local. Reaches above kMaxReach would make each strip's
-// windows mostly overlap, so those transforms decode whole too.
-std::size_t synthesis_reach(const Transform1D& t) {
-  constexpr std::size_t kMaxReach = 32;
-  const std::size_t reach = nan_reach(t, 1024);
-  return reach <= kMaxReach && nan_reach(t, 2048) == reach ? reach : 0;
-}
 
 struct ImageStripDecoder::State {
   ParsedStream stream;

@@ -23,12 +23,6 @@ namespace pupwave {
 template <class T>
 void decode_block_at(const ParsedStream& s, std::size_t i, T* first, std::size_t stride);
 
-// How far (in samples of the line) the synthesis of t reads around a sample: every output
-// sample depends only on coefficients at interleaved positions within this distance. Found by
-// synthesizing a line holding one NaN (NaN reaches every output computed from it). 0 when the
-// synthesis is not local (a transform solving along the whole line).
-std::size_t synthesis_reach(const Transform1D& t);
-
 class ImageStripDecoder {
  public:
   // A decoder for an integer-sample image stream at 1/2^level size, or null when the stream is

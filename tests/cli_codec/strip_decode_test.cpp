@@ -10,9 +10,11 @@
 #include <iterator>
 #include <string>
 
+#include "cli_codec/photo_crops.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_strips.h"
 #include "tools/image_io.h"
+#include "transforms/reach.h"
 #include "transforms/spec.h"
 
 namespace pupwave {
@@ -20,18 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Image photo(const std::string& name) {
-  return cli::read_image(std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name);
-}
-
-// The top-left w x h pixels (odd sizes exercise the ends of every level's lines).
-Image crop(const Image& in, std::size_t w, std::size_t h) {
-  Image out(w, h, in.channels, in.type);
-  for (std::size_t c = 0; c < in.channels; ++c)
-    for (std::size_t y = 0; y < h; ++y)
-      for (std::size_t x = 0; x < w; ++x) out.at(c, x, y) = in.at(c, x, y);
-  return out;
-}
+using test::crop;
+using test::photo;
 
 // The whole image reassembled from strips of `rows` rows.
 Image decode_by_strips(const std::vector<std::uint8_t>& bytes, int level, std::size_t rows,

@@ -11,12 +11,13 @@
 #include <iterator>
 #include <string>
 
+#include "cli_codec/photo_crops.h"
 #include "codec/entropy/codeblocks.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/image_strip_encoder.h"
 #include "tools/image_io.h"
-#include "transforms/analysis_reach.h"
+#include "transforms/reach.h"
 #include "transforms/spec.h"
 
 namespace pupwave {
@@ -24,17 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Image photo(const std::string& name) {
-  return cli::read_image(std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name);
-}
-
-Image crop(const Image& in, std::size_t w, std::size_t h) {
-  Image out(w, h, in.channels, in.type);
-  for (std::size_t c = 0; c < in.channels; ++c)
-    for (std::size_t y = 0; y < h; ++y)
-      for (std::size_t x = 0; x < w; ++x) out.at(c, x, y) = in.at(c, x, y);
-  return out;
-}
+using test::crop;
+using test::photo;
 
 EncodeOptions options(const std::string& transform, RateMode mode, double target) {
   EncodeOptions o;
