@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "codec/entropy/block_tally.h"
 #include "codec/entropy/ctx_priors.h"
 
 namespace pupwave {
@@ -84,8 +85,9 @@ BlockState::BlockState(const Extent& size, unsigned orientation) : size_(size) {
   column_slice_ = column_row_ * (stripes_ + 2);
   columns_.assign(column_slice_ * (size[2] + 2), 0);
   active_.assign(stripes_ * size[2], 0);
-  const std::size_t prior_class = orientation == 0 ? 0 : (high_x && high_y ? 2 : 1);
-  for (std::size_t k = 0; k < models.size(); ++k) models[k] = prior_model(kContextPriors[prior_class][k]);
+  const std::size_t prior_class = prior_class_of(orientation);
+  for (std::size_t k = 0; k < models.size(); ++k)
+    models[k] = prior_model(kContextPriors[prior_class][k], kContextPriorCounts[prior_class][k]);
 }
 
 }  // namespace pupwave

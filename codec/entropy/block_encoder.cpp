@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "codec/entropy/block_contexts.h"
+#include "codec/entropy/block_tally.h"
 
 namespace pupwave {
 namespace {
@@ -20,7 +21,9 @@ class BitPlaneEncoder {
         size_(size),
         flag_row_(size[0] + 2),
         delta_(delta),
-        q_(magnitude.size()) {
+        q_(magnitude.size()),
+        tally_(active_block_tally()),
+        prior_class_(prior_class_of(orientation)) {
     for (std::size_t i = 0; i < q_.size(); ++i) {
       if (!(m_[i] < float(1u << kMaxBitPlanes)))
         throw IndexRangeError("quantization index too large for the block coder");
@@ -46,6 +49,7 @@ class BitPlaneEncoder {
     }
     auto committed = rc_.committed();
     out.committed.assign(committed.begin(), committed.end());
+    if (tally_ != nullptr) add_to_tally();
     return out;
   }
 
@@ -57,6 +61,21 @@ class BitPlaneEncoder {
   }
   void add_gain(double m, double before, double after) {
     gain_ += (m - before) * (m - before) - (m - after) * (m - after);
+  }
+
+  // Codes `bit` in context ctx (kept for prior training while a BlockTallyScope lives).
+  void code(RangeEncoder& rc, int bit, int ctx) {
+    if (tally_ != nullptr && seen_[std::size_t(ctx)] < kTallyWindow) {
+      start_[std::size_t(ctx)] |= std::uint32_t(bit) << seen_[std::size_t(ctx)];
+      ++seen_[std::size_t(ctx)];
+    }
+    rc.encode(bit, state_.models[std::size_t(ctx)]);
+  }
+  void add_to_tally() {
+    const std::lock_guard lock(block_tally_mutex());
+    for (std::size_t k = 0; k < std::size_t(kBlockContexts); ++k)
+      if (seen_[k] != 0) ++tally_->starts[prior_class_][k][tally_key(start_[k], seen_[k])];
+    ++tally_->blocks;
   }
 
   void finish_pass(EncodedBlock& out) {
@@ -71,14 +90,14 @@ class BitPlaneEncoder {
     const int bit = int((q_[i] >> p) & 1u);
     int ctx = state_.significance_context(f);
     if (ctx == 0) ctx = BlockState::zero_context(state_.column(s.c0 + x), r);
-    rc.encode(bit, state_.models[std::size_t(ctx)]);
+    code(rc, bit, ctx);
     if (bit) become_significant(rc, s, x, r, p);
     return bit != 0;
   }
   void become_significant(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
     const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
     const auto [ctx, flip] = state_.sign_context(f);
-    rc.encode(int(negative_[i] != 0) ^ flip, state_.models[std::size_t(ctx)]);
+    code(rc, int(negative_[i] != 0) ^ flip, ctx);
     state_.make_significant(f, x, s.y0 + r, s.z, negative_[i] != 0);
     add_gain(m_[i], 0.0, reconstruction(q_[i], p));
   }
@@ -115,7 +134,7 @@ class BitPlaneEncoder {
         for (std::uint32_t t = todo; t != 0; t &= t - 1) {
           const unsigned r = unsigned(std::countr_zero(t));
           const std::size_t i = s.i0 + x + r * size_[0];
-          rc.encode(int((q_[i] >> p) & 1u), state_.models[std::size_t(BlockState::refinement_context(w, r))]);
+          code(rc, int((q_[i] >> p) & 1u), BlockState::refinement_context(w, r));
           add_gain(m_[i], reconstruction(q_[i], p + 1), reconstruction(q_[i], p));
         }
         w |= todo << kColumnRefined;
@@ -137,7 +156,7 @@ class BitPlaneEncoder {
           const std::size_t i0 = s.i0 + x;
           const std::uint32_t column = q_[i0] | q_[i0 + is] | q_[i0 + 2 * is] | q_[i0 + 3 * is];
           const bool any = (column >> p) & 1u;
-          rc.encode(any, state_.models[std::size_t(BlockState::run_context(w))]);
+          code(rc, int(any), BlockState::run_context(w));
           if (!any) continue;
           unsigned first = 0;  // first coefficient of the column with bit p set
           while (!((q_[i0 + first * is] >> p) & 1u)) ++first;
@@ -162,6 +181,10 @@ class BitPlaneEncoder {
   std::vector<std::uint32_t> q_;
   RangeEncoder rc_;
   double gain_ = 0.0;
+  ContextTally* tally_;                                // null unless prior training counts bits
+  std::size_t prior_class_;                            // band class of the block (ctx_priors.h)
+  std::array<std::uint8_t, kBlockContexts> seen_{};    // bits kept per context (<= kTallyWindow)
+  std::array<std::uint32_t, kBlockContexts> start_{};  // and the bits themselves
 };
 
 }  // namespace

@@ -22,7 +22,8 @@ namespace pupwave {
 // Version 4: VHDR's coder byte; max-error streams code their blocks with the non-embedded
 // coefficient coder (coef_encoder.h); the bit-plane block coder's far-neighbour contexts and
 // trained priors (image version 3's coder), so version 3 streams are refused.
-inline constexpr std::uint8_t kVolumeStreamVersion = 4;
+// Version 5: the bit-plane block coder's priors retrained, as image version 4.
+inline constexpr std::uint8_t kVolumeStreamVersion = 5;
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;

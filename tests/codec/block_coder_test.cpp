@@ -5,11 +5,13 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_decoder.h"
 #include "codec/entropy/block_encoder.h"
+#include "codec/entropy/block_tally.h"
 #include "codec/entropy/ctx_priors.h"
 
 namespace pupwave {
@@ -142,19 +144,61 @@ TEST(BlockCoder, RealDetailsRoundTripAndCompress) {
   }
 }
 
-// A prior is a starting probability worth kPriorCount bits: the first update moves it by
-// 1/16 of the way, not half of it.
+// A prior is a starting probability worth `count` bits: at count 7 the first update moves it
+// by 1/16 of the way, not half of it; every trained prior is a usable probability.
 TEST(BlockCoder, PriorModelsStartAtTheirPriorWithWeight) {
-  BitModel m = prior_model(64);  // P(1) = 1/4
+  BitModel m = prior_model(64, 7);  // P(1) = 1/4
   EXPECT_EQ(m.p0, kProbabilityOne * 3 / 4);
   m.update(1);
   EXPECT_EQ(m.p0, kProbabilityOne * 3 / 4 - (kProbabilityOne * 3 / 4 >> 4));
-  for (const auto& row : kContextPriors)
-    for (const auto one256 : row) {
-      const BitModel p = prior_model(one256);
+  BitModel fresh = prior_model(64, 0);  // worth nothing: the first bit moves it half way
+  fresh.update(1);
+  EXPECT_EQ(fresh.p0, kProbabilityOne * 3 / 8);
+  for (std::size_t c = 0; c < kContextPriors.size(); ++c)
+    for (std::size_t k = 0; k < kContextPriors[c].size(); ++k) {
+      const BitModel p = prior_model(kContextPriors[c][k], kContextPriorCounts[c][k]);
       EXPECT_GT(p.p0, BitModel::kMinP);
       EXPECT_LT(p.p0, kProbabilityOne - BitModel::kMinP);
     }
+}
+
+// Prior training (bench/train_priors.cpp) keeps, per block and context, the first
+// kTallyWindow bits coded, in the block's band class, only while a scope is alive: a block of
+// all-ones magnitudes codes one run bit, a 1 (the next columns have significant neighbours).
+TEST(BlockCoder, TallyKeepsTheFirstBitsOfEachContextWhileAScopeLives) {
+  const Extent size{64, 64, 1};
+  const Coefficients c = make_coefficients(size, 6.0, 4);
+  ContextTally tally;
+  {
+    const BlockTallyScope scope(tally);
+    EXPECT_THROW(BlockTallyScope{tally}, std::logic_error);
+    encode_block(c.magnitude, c.negative, size, 3, 0.5);  // high-pass in x and y: class 2
+    encode_block(c.magnitude, c.negative, size, 3, 0.5);
+  }
+  encode_block(c.magnitude, c.negative, size, 0, 0.5);  // no scope: not kept
+  EXPECT_EQ(tally.blocks, 2u);
+  std::size_t contexts_seen = 0;
+  for (std::size_t k = 0; k < std::size_t(kBlockContexts); ++k) {
+    EXPECT_TRUE(tally.starts[0][k].empty() && tally.starts[1][k].empty());
+    for (const auto& [key, blocks] : tally.starts[2][k]) {
+      EXPECT_EQ(blocks, 2u);  // the same block twice
+      EXPECT_GE(tally_length(key), 1u);
+      EXPECT_LE(tally_length(key), unsigned(kTallyWindow));
+      EXPECT_EQ(std::uint64_t(tally_bits(key)) >> tally_length(key), 0u);
+    }
+    contexts_seen += tally.starts[2][k].size();
+  }
+  EXPECT_GE(contexts_seen, 8u);  // significance, sign and refinement contexts
+
+  ContextTally ones;
+  const std::vector<float> one(64 * 64, 1.0f);
+  const std::vector<std::uint8_t> positive(64 * 64, 0);
+  {
+    const BlockTallyScope scope(ones);
+    encode_block(one, positive, size, 0, 0.5);
+  }
+  ASSERT_EQ(ones.starts[0][kRunContext].size(), 1u);
+  EXPECT_EQ(ones.starts[0][kRunContext].begin()->first, tally_key(1, 1));
 }
 
 TEST(BlockCoder, GarbageCodewordsDecodeWithoutFault) {

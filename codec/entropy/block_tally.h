@@ -1,0 +1,54 @@
+#pragma once
+// The bits each block-coder context codes at the start of each block, by band class: what the
+// context priors (ctx_priors.h) are trained from (bench/train_priors.cpp). Off unless a
+// BlockTallyScope is alive; then every encode_block adds to it, on any thread.
+
+#include <array>
+#include <cstdint>
+#include <mutex>
+#include <unordered_map>
+
+#include "codec/entropy/block_contexts.h"
+
+namespace pupwave {
+
+// Bits kept per context and block: a prior is worth a few bits (ctx_priors.h), so after this
+// many the model has all but forgotten where it started.
+inline constexpr int kTallyWindow = 32;
+
+// A context's first bits in one block as a key: length << 32 | bits (bit i = i-th coded bit).
+constexpr std::uint64_t tally_key(std::uint32_t bits, unsigned length) {
+  return std::uint64_t(length) << 32 | bits;
+}
+constexpr unsigned tally_length(std::uint64_t key) { return unsigned(key >> 32); }
+constexpr std::uint32_t tally_bits(std::uint64_t key) { return std::uint32_t(key); }
+
+struct ContextTally {
+  // [band class][context]: how many blocks started that context with each bit sequence
+  // (tally_key; contexts a block never codes are not counted). Band class 0 is low-pass, 1
+  // high-pass along one axis, 2 along both (as kContextPriors).
+  std::array<std::array<std::unordered_map<std::uint64_t, std::uint64_t>, kBlockContexts>, 3> starts;
+  std::uint64_t blocks = 0;
+};
+
+// Band class of a subband orientation (bit a set: high-pass along axis a).
+constexpr std::size_t prior_class_of(unsigned orientation) {
+  const bool high_x = orientation & 1u, high_y = orientation & 2u;
+  return orientation == 0 ? 0 : (high_x && high_y ? 2 : 1);
+}
+
+// While alive, encode_block adds its blocks' first kTallyWindow bits per context to `tally`.
+// One scope at a time (a second throws std::logic_error).
+class BlockTallyScope {
+ public:
+  explicit BlockTallyScope(ContextTally& tally);
+  ~BlockTallyScope();
+  BlockTallyScope(const BlockTallyScope&) = delete;
+  BlockTallyScope& operator=(const BlockTallyScope&) = delete;
+};
+
+// The tally of the live scope (null when none) and the lock that guards adding to it.
+ContextTally* active_block_tally();
+std::mutex& block_tally_mutex();
+
+}  // namespace pupwave
