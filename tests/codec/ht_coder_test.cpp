@@ -138,6 +138,23 @@ TEST(HtCoder, ImagesRoundTripAtEveryRateMode) {
   }
 }
 
+TEST(HtCoder, FloatAndSixteenBitImagesRoundTrip) {
+  for (SampleType type : {SampleType::u16, SampleType::f32}) {
+    const Image img = synthetic_image(120, 90, 3, type, 4);
+    const EncodeResult r = encode_image(img, ht_options(RateMode::bpp, 2.0));
+    EXPECT_LE(double(r.bytes.size()) * 8.0 / double(img.plane_size()), 2.0);
+    const Image out = decode_image(r.bytes);
+    ASSERT_EQ(out.type, type);
+    ASSERT_EQ(out.samples.size(), img.samples.size());
+    // Float images are coded in the log domain (transfer.h): compare with the bit-plane coder.
+    EncodeOptions e = ht_options(RateMode::bpp, 2.0);
+    e.entropy = EntropyCoder::ebcot;
+    const double ebcot = psnr_of(img, decode_image(encode_image(img, e).bytes));
+    EXPECT_GT(psnr_of(img, out), ebcot - 3.0) << to_string(type) << " ebcot " << ebcot;
+    EXPECT_GT(psnr_of(img, out), 25.0) << to_string(type);
+  }
+}
+
 TEST(HtCoder, LosslessIsBitExact) {
   for (SampleType type : {SampleType::u8, SampleType::u16})
     for (std::size_t channels : {1u, 3u, 4u})
