@@ -31,6 +31,10 @@ constexpr double kSampleClose = 0.003;
 // Trial encodes (each decoded and measured) for a PSNR target, met within kPsnrTolerance dB above.
 constexpr int kMaxPsnrTrials = 12;
 constexpr double kPsnrTolerance = 0.05;
+// Before those, the step is found on the PSNR the quantization error predicts (no decode):
+// at most kMaxEstimateSteps passes, until within kEstimateClose dB.
+constexpr int kMaxEstimateSteps = 8;
+constexpr double kEstimateClose = 0.01;
 // Where the secant has one point only: bytes ~ step^-1.5 and PSNR falls 20 log10(2) dB per
 // doubling of the step (typical of the photographs at 0.25-2 bpp).
 constexpr double kSizeSlope = -1.5;
@@ -259,6 +263,47 @@ std::pair<std::vector<std::uint8_t>, double> search_size(ImagePlan& plan, double
   return {assemble(plan, high->coded.entries, high->coded.words), std::exp(high->log_step)};
 }
 
+// The PSNR the quantization alone predicts at base step exp(t), without coding or decoding: a
+// unit index error costs base^2 of output squared error in every band (quantizer.h).
+double estimated_psnr(ImagePlan& plan, double t) {
+  set_base_step(plan, std::exp(t));
+  std::vector<double> sums(plan.blocks.size());
+  const float delta = float(plan.header.delta);
+  plan.executor->run(plan.blocks.size(), [&](std::size_t i) {
+    const CodeBlock& b = plan.blocks[i];
+    thread_local std::vector<float> values;
+    values.resize(b.count());
+    copy_block_out(plan.coef[b.component].data(), plan.header.dims, b, values.data());
+    const float inv = 1.0f / plan.header.steps[b.component * plan.bands.size() + b.band];
+    double sum = 0.0;
+    for (const float v : values) {
+      const float m = std::fabs(v) * inv, q = std::floor(m);
+      const float e = m - (q == 0.0f ? 0.0f : q + delta);
+      sum += double(e) * double(e);
+    }
+    sums[i] = sum;
+  });
+  double total = 0.0;
+  for (const double s : sums) total += s;  // in block order: the same sum on any thread count
+  const double mse = total * std::exp(2.0 * t) / double(plan.samples);
+  return 10.0 * std::log10(plan.peak * plan.peak / std::max(mse, 1e-300));
+}
+
+// The log step at which the estimate meets `goal` (a secant from t): where the real trials start.
+double estimate_search(ImagePlan& plan, double goal, double t, double finest) {
+  double score = estimated_psnr(plan, t), slope = kPsnrSlope;
+  for (int n = 0; n < kMaxEstimateSteps && std::abs(score - goal) > kEstimateClose; ++n) {
+    const double move = std::clamp((goal - score) / slope, -4.0 * std::numbers::ln2, 4.0 * std::numbers::ln2);
+    const double next_t = std::max(t + move, finest);
+    if (next_t == t) break;
+    const double next = estimated_psnr(plan, next_t);
+    if (next != score) slope = std::clamp((next - score) / (next_t - t), -20.0, -2.0);
+    t = next_t;
+    score = next;
+  }
+  return t;
+}
+
 // The coarsest step found whose decoded PSNR reaches `psnr` (within kPsnrTolerance above it
 // when the trials allow).
 std::pair<std::vector<std::uint8_t>, double> search_psnr(const ImageView& image, ImagePlan& plan, double psnr,
@@ -267,6 +312,7 @@ std::pair<std::vector<std::uint8_t>, double> search_psnr(const ImageView& image,
   // A uniform quantizer's error is step^2 / 12 in index units times base^2 (quantizer.h).
   const double mse = plan.peak * plan.peak / std::pow(10.0, psnr / 10.0);
   double t = std::max(std::log(std::sqrt(12.0 * mse)), finest);
+  t = estimate_search(plan, psnr + 0.5 * kPsnrTolerance, t, finest);
   std::optional<Trial> low, high;  // low: reaches the target (the answer); high: misses it
   std::vector<std::uint8_t> best;
   for (int n = 0; n < kMaxPsnrTrials || !low; ++n) {
