@@ -68,6 +68,8 @@ for image in rgb grey; do
     for ((i = 0; i < runs; i++)); do
       timed pe "$pw" compress "$in" "$work/m.pw" --bpp "$rate"
       timed pd "$pw" decompress "$work/m.pw" "$work/m_pw.$ext"
+      timed te "$pw" compress "$in" "$work/t.pw" --bpp "$rate" --entropy ht
+      timed td "$pw" decompress "$work/t.pw" "$work/t_pw.$ext"
       if ((one_thread)); then
         timed pe1 "$pw" compress "$in" "$work/m1.pw" --bpp "$rate" --threads 1
         timed pd1 "$pw" decompress "$work/m1.pw" "$work/m1_pw.$ext" --threads 1
@@ -88,6 +90,7 @@ for image in rgb grey; do
       rows+=("| $image | $rate | $1 | $e ($(median_cpu "$2")) | $d ($(median_cpu "$3")) | $(ratio "$e" "$pe") | $(ratio "$d" "$pd") | ${rss[$2]} / ${rss[$3]} | $(bpp_of "$4") | $(psnr_of "$in" "$5") |")
     }
     row "pupwave (2 threads)" pe pd "$work/m.pw" "$work/m_pw.$ext"
+    row "pupwave --entropy ht" te td "$work/t.pw" "$work/t_pw.$ext"
     if ((one_thread)); then
       row "pupwave --threads 1" pe1 pd1 "$work/m1.pw" "$work/m1_pw.$ext"
       row "grk -H 1" ge1 gd1 "$work/g1.j2k" "$work/g1.$ext"
@@ -114,7 +117,7 @@ gbench=$("$build/bench/codec_bench" --benchmark_min_time=1 2>/dev/null | grep -E
   echo "\`--write-grey-mosaic\` for its Rec. 601 luma). Whole-process wall time, median of $runs interleaved"
   echo "runs; peak resident memory (max RSS) over the runs. Ratios are the peer's time over pupwave's"
   echo "(2 threads) in the same run: above 1, pupwave is faster; CPU s is user + system time. Commands:"
-  echo "\`pupwave compress --bpp R\`,"
+  echo "\`pupwave compress --bpp R\` (and \`--entropy ht\`, the high-throughput block coder),"
   echo "\`opj_compress -I -r 8C/R -n 6\`, \`grk_compress -H T -I -r 8C/R -n 6\`, \`ojph_compress -num_decomps 6"
   echo "-qstep Q\` (Q bisected to the largest file within the target), decoders at their defaults."
   echo

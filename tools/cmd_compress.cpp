@@ -53,7 +53,8 @@ struct CompressOptions {
 };
 
 EntropyCoder entropy_coder(const std::string& name) {
-  return name == "zstd" ? EntropyCoder::zstd : EntropyCoder::ebcot;
+  if (name == "zstd") return EntropyCoder::zstd;
+  return name == "ht" ? EntropyCoder::ht : EntropyCoder::ebcot;
 }
 
 // The input as a readable path: the file itself, or stdin saved to a temporary file ("-").
@@ -353,8 +354,10 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--dtype", opt->dtype, "raw volume input: u8, u16, f32 or f64 (little endian)");
   cmd->add_option("--grid", opt->grid, ".vdb input: compress only the grids of this name");
   cmd->add_option("--brick", opt->brick, "volumes: brick edge (power of two, 8..256, default 64)");
-  cmd->add_option("--entropy", opt->entropy, "entropy coder: ebcot (bit-plane, default) or zstd")
-      ->transform(CLI::IsMember({"ebcot", "zstd"}, CLI::ignore_case));
+  cmd->add_option(
+         "--entropy", opt->entropy,
+         "entropy coder: ebcot (bit-plane, default), ht (high-throughput, no arithmetic coding) or zstd")
+      ->transform(CLI::IsMember({"ebcot", "ht", "zstd"}, CLI::ignore_case));
   cmd->add_option("--effort", opt->effort,
                   "images, --bpp: 1 (default, fastest) or 2 (three base steps per band and RDOQ: about 1% "
                   "smaller at equal PSNR, up to 1.9x the encode time)")

@@ -19,6 +19,7 @@ struct pupwave_options {
   unsigned threads = 0;
   std::size_t brick = 64;
   bool zstd = false;
+  bool ht = false;
   int effort = 1;
 };
 
@@ -109,6 +110,7 @@ pupwave::api::ImageOptions image_options(const pupwave_options* o) {
   out.levels = o->levels;
   out.threads = o->threads;
   out.zstd = o->zstd;
+  out.ht = o->ht;
   out.effort = o->effort;
   return out;
 }
@@ -125,6 +127,7 @@ pupwave::api::VolumeOptions volume_options(const pupwave_options* o) {
     out.target = o->target;
   }
   require(!o->zstd, "the zstd entropy coder applies to images only");
+  require(!o->ht, "the ht entropy coder applies to images only");
   out.transform = o->transform;
   out.levels = o->levels;
   out.threads = o->threads;
@@ -199,6 +202,13 @@ pupwave_status pupwave_options_set_zstd(pupwave_options* options, int zstd) {
   return guarded([&] {
     require(options != nullptr, "options is null");
     options->zstd = zstd != 0;
+  });
+}
+
+pupwave_status pupwave_options_set_ht(pupwave_options* options, int ht) {
+  return guarded([&] {
+    require(options != nullptr, "options is null");
+    options->ht = ht != 0;
   });
 }
 

@@ -73,7 +73,8 @@ void store_interleaved(const pupwave::Image& image, std::byte* out) {
 EncodeOptions encode_options(const ImageOptions& options) {
   EncodeOptions enc;
   enc.levels = options.levels;
-  enc.entropy = options.zstd ? EntropyCoder::zstd : EntropyCoder::ebcot;
+  if (options.zstd && options.ht) detail::fail("choose one entropy coder: zstd or ht");
+  enc.entropy = options.ht ? EntropyCoder::ht : options.zstd ? EntropyCoder::zstd : EntropyCoder::ebcot;
   enc.effort = options.effort;
   enc.measure_psnr = false;
   enc.target = options.target;

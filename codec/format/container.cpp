@@ -77,7 +77,7 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
   h.channels = r.u8();
   validate_shape(h);
   const std::uint32_t type = r.u8(), colour = r.u8(), entropy = r.u8(), reversible = r.u8();
-  require_stream(type <= 3 && colour <= 2 && entropy <= 1 && reversible <= 1,
+  require_stream(type <= 3 && colour <= 2 && entropy <= 2 && reversible <= 1,
                  "sample type, colour or coder field");
   h.type = SampleType(type);
   h.colour = ColourTransform(colour);
@@ -149,7 +149,14 @@ void locate_codewords(ParsedStream& s) {
 
 }  // namespace
 
-const char* to_string(EntropyCoder coder) { return coder == EntropyCoder::ebcot ? "ebcot" : "zstd"; }
+const char* to_string(EntropyCoder coder) {
+  switch (coder) {
+    case EntropyCoder::ebcot: return "ebcot";
+    case EntropyCoder::zstd: return "zstd";
+    case EntropyCoder::ht: return "ht";
+  }
+  return "unknown";
+}
 
 std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
                                           const std::vector<std::vector<std::uint8_t>>& resolution_data) {

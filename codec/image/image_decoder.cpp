@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "codec/entropy/block_decoder.h"
+#include "codec/entropy/ht_blocks.h"
 #include "codec/entropy/zstd_blocks.h"
 #include "codec/error.h"
 #include "codec/format/container.h"
@@ -28,8 +29,12 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   const StreamHeader& h = s.header;
   std::vector<T> values(b.count(), T(0));
   if (e.passes == 0) return values;
-  if (h.entropy == EntropyCoder::zstd) {
-    const auto q = zstd_decode_block(s.codeword(i), b.count());
+  if (h.entropy != EntropyCoder::ebcot) {
+    std::vector<std::int32_t> q(b.count());
+    if (h.entropy == EntropyCoder::zstd)
+      q = zstd_decode_block(s.codeword(i), b.count());
+    else
+      ht_decode_block(s.codeword(i), b.size[0], b.size[1], e.planes, q.data());
     for (std::size_t k = 0; k < q.size(); ++k) {
       const double offset = (h.reversible || q[k] == 0) ? 0.0 : (q[k] < 0 ? -h.delta : h.delta);
       values[k] = T(double(q[k]) + offset);
@@ -59,6 +64,27 @@ void dequantize_into(const ParsedStream& s, std::size_t i, T* first, std::size_t
   }
 }
 
+// ht block i decoded, dequantized and written into its place (as dequantize_into).
+template <class T>
+void ht_dequantize_into(const ParsedStream& s, std::size_t i, T* first, std::size_t stride) {
+  const CodeBlock& b = s.blocks[i];
+  const StreamHeader& h = s.header;
+  thread_local std::vector<std::int32_t> q;
+  q.resize(b.count());
+  ht_decode_block(s.codeword(i), b.size[0], b.size[1], s.index[i].planes, q.data());
+  const float step = h.steps[b.component * s.bands.size() + b.band];
+  const T delta = T(h.delta);
+  for (std::size_t y = 0; y < b.size[1]; ++y) {
+    T* row = first + y * stride;
+    const std::int32_t* in = q.data() + y * b.size[0];
+    for (std::size_t x = 0; x < b.size[0]; ++x) {
+      const std::int32_t v = in[x];
+      const T offset = v == 0 ? T(0) : (v < 0 ? -delta : delta);
+      row[x] = (T(v) + offset) * step;
+    }
+  }
+}
+
 }  // namespace
 
 template <class T>
@@ -69,7 +95,8 @@ void decode_block_at(const ParsedStream& s, std::size_t i, T* first, std::size_t
     return;
   }
   if constexpr (std::is_floating_point_v<T>) {
-    if (s.header.entropy != EntropyCoder::zstd) return dequantize_into(s, i, first, stride);
+    if (s.header.entropy == EntropyCoder::ebcot) return dequantize_into(s, i, first, stride);
+    if (s.header.entropy == EntropyCoder::ht) return ht_dequantize_into(s, i, first, stride);
   }
   std::vector<T> values = block_values<T>(s, i);
   if constexpr (std::is_floating_point_v<T>) {

@@ -18,6 +18,7 @@
 #include "codec/entropy/block_encoder.h"
 #include "codec/error.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_encoder_ht.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/image_strip_encoder.h"
 #include "codec/image/kept_block.h"
@@ -712,6 +713,7 @@ EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& opt
   plan.header.nonnegative = domain.nonnegative;
   plan.header.nonfinite = domain.nonfinite;
   if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
+  if (options.entropy == EntropyCoder::ht) return encode_ht(image, plan, options);
   switch (options.mode) {
     case RateMode::lossless: {
       return make_encode_result(image, plan, *code_every_pass(plan), 1.0);
@@ -757,6 +759,9 @@ std::optional<EncodeResult> encode_exact(const ImageView& image, const EncodeOpt
   EncodeResult r;
   if (exact.entropy == EntropyCoder::zstd) {
     r = encode_zstd(image, plan, exact);
+  } else if (exact.entropy == EntropyCoder::ht) {
+    r = encode_ht(image, plan, exact, byte_limit);
+    if (r.bytes.empty()) return std::nullopt;
   } else {
     auto bytes = code_every_pass(plan, byte_limit);
     if (!bytes) return std::nullopt;

@@ -81,6 +81,12 @@ static void test_image_rates(void) {
   CHECK(pupwave_options_set_zstd(o, 1) == PUPWAVE_OK);
   CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
   pupwave_stream_destroy(s);
+  CHECK(pupwave_options_set_ht(o, 1) == PUPWAVE_OK); /* with zstd: one coder only */
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_ERROR_ARGUMENT);
+  CHECK(pupwave_options_set_zstd(o, 0) == PUPWAVE_OK);
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
+  CHECK(s && pupwave_stream_size(s) > 0);
+  pupwave_stream_destroy(s);
   pupwave_options_destroy(o);
   free(rgb);
 }

@@ -87,6 +87,8 @@ TEST(StripDecode, LosslessAndZstdAndSixteenBit) {
   EncodeOptions z = options("cdf97", RateMode::step, 4.0);
   z.entropy = EntropyCoder::zstd;
   expect_strips_match(encode_image(rgb, z).bytes, 3, "zstd");
+  z.entropy = EntropyCoder::ht;
+  expect_strips_match(encode_image(rgb, z).bytes, 3, "ht");
   Image wide = crop(photo("camera.png"), 333, 129);
   wide.type = SampleType::u16;
   for (float& v : wide.samples) v *= 257.0f;

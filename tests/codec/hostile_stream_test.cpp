@@ -59,7 +59,7 @@ TEST(HostileStream, EmptyAndTinyInputsAreRejected) {
 }
 
 TEST(HostileStream, EveryTruncationIsRejected) {
-  for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::zstd}) {
+  for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::zstd, EntropyCoder::ht}) {
     const auto bytes = sample_stream(coder);
     for (std::size_t cut : chunk_starts(bytes)) {
       const std::vector<std::uint8_t> head(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
@@ -84,6 +84,36 @@ TEST(HostileStream, EveryFlippedBitIsDetected) {
     bad[b / 8] ^= std::uint8_t(1u << (b % 8));
     EXPECT_THROW(decode_image(bad), DecodeError) << "bit " << b;
   }
+}
+
+// ht code-blocks with flipped bits behind valid chunk CRCs reach the ht decoder: each decode
+// gives an error or an image of the right shape (a flipped sign or magnitude bit of the last
+// coefficients can be undetectable), never a crash or an overrun.
+TEST(HostileStream, CorruptHtBlocksBehindValidCrcsAreContained) {
+  const auto bytes = sample_stream(EntropyCoder::ht);
+  std::mt19937 rng(16);
+  int rejected = 0, trials = 0;
+  for (std::size_t start : chunk_starts(bytes)) {
+    if (std::string(bytes.begin() + std::ptrdiff_t(start), bytes.begin() + std::ptrdiff_t(start) + 4) !=
+        "DATA")
+      continue;
+    ByteReader r(std::span<const std::uint8_t>(bytes).subspan(start + 4, 4), "length");
+    const std::size_t length = r.u32();
+    for (int k = 0; k < 60 && length > 0; ++k, ++trials) {
+      auto bad = bytes;
+      bad[start + 8 + rng() % length] ^= std::uint8_t(1u << (rng() % 8));
+      const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bad).subspan(start, 8 + length));
+      for (int i = 0; i < 4; ++i) bad[start + 8 + length + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
+      try {
+        const Image out = decode_image(bad);
+        EXPECT_EQ(out.width, 70u);
+      } catch (const DecodeError&) {
+        ++rejected;
+      }
+    }
+  }
+  EXPECT_GT(trials, 0);
+  EXPECT_GT(rejected, trials / 2);
 }
 
 TEST(HostileStream, RandomBytesAreRejected) {

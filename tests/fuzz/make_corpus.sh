@@ -47,7 +47,7 @@ crop "$tmp/astronaut.ppm" 180 60 24 20 "$tmp/rgb.ppm"
 crop "$tmp/camera.pgm" 10 10 7 5 "$tmp/tiny.pgm"
 cp "$tmp/grey.pgm" "$tmp/tiny.pgm" "$tmp/rgb.ppm" "$out/pnm/"
 
-# Image streams: lossless and lossy, both coders, every transform family, odd sizes.
+# Image streams: lossless and lossy, every coder, every transform family, odd sizes.
 img=0
 enc() {  # enc INPUT ARGS...: one image seed
   local input=$1
@@ -63,6 +63,9 @@ enc "$tmp/grey.pgm" --bpp 2 --transform kobbelt:k4pt --levels 2
 enc "$tmp/rgb.ppm" --lossless
 enc "$tmp/rgb.ppm" --psnr 30
 enc "$tmp/tiny.pgm" --lossless --levels 1
+# The high-throughput coder (entropy coder 2): lossy and lossless, so the target reaches it.
+enc "$tmp/grey.pgm" --bpp 1.5 --entropy ht
+enc "$tmp/rgb.ppm" --lossless --entropy ht
 for f in "$out"/image/seed-*.pw; do
   for level in 0 1 2; do
     { printf "\\x$(printf %02x $level)"; cat "$f"; } > "$out/image_level/$(basename "$f" .pw)-level$level"

@@ -74,6 +74,9 @@ pupwave_status pupwave_options_set_threads(pupwave_options* options, unsigned th
 pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick);
 /* Images: 1 selects the zstd entropy coder instead of the bit-plane coder. */
 pupwave_status pupwave_options_set_zstd(pupwave_options* options, int zstd);
+/* Images: 1 selects the high-throughput block coder (no arithmetic coding; faster, larger files
+ * at the same quality). Not together with zstd. */
+pupwave_status pupwave_options_set_ht(pupwave_options* options, int ht);
 /* Images, BPP targets: encoder effort 1 (default, fastest) or 2 (three base steps per band
  * and RDOQ: about 1 % less rate at equal PSNR for up to 1.9x the encode time). */
 pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort);

@@ -75,6 +75,7 @@ struct ImageOptions {
   std::string transform;  // transform spec (cdf97, cdf53, pups:..., kobbelt:...); "": cdf97, cdf53 lossless
   int levels = -1;        // decomposition levels, -1: from the image size
   bool zstd = false;      // entropy coder: false = bit-plane coder (default), true = zstd
+  bool ht = false;        // entropy coder: high-throughput block coder (not with zstd)
   unsigned threads = 0;   // most worker threads (0: all cores, 1: the calling thread)
   // Encoder effort for bpp targets: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
   // and more memory (same format; other rates ignore it).

@@ -1,0 +1,17 @@
+#pragma once
+// encode_image with the high-throughput block coder (`--entropy ht`, codec/entropy/ht_blocks.h).
+
+#include <cstddef>
+#include <limits>
+
+#include "codec/image/image_plan.h"
+
+namespace pupwave {
+
+// Encodes with the ht coder: one codeword per block, rate control by the quantizer base step
+// (a few trial encodes from the rate model's step). A lossless encode whose codewords exceed
+// `byte_limit` stops early and returns an empty result (bytes empty).
+EncodeResult encode_ht(const ImageView& image, ImagePlan& plan, const EncodeOptions& options,
+                       std::size_t byte_limit = std::numeric_limits<std::size_t>::max());
+
+}  // namespace pupwave
