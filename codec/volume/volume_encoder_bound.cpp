@@ -24,10 +24,10 @@ constexpr double kBytesPerSignificant = 0.315;
 constexpr double kBytesPerLog2Index = 0.133;
 constexpr double kBytesPerMapBit = 0.075;
 
-// One candidate step: its modelled size and the exact reconstruction and corrections.
+// One candidate step: its modelled size, the exact corrections and the error they leave.
 struct Candidate {
   double bytes = 0.0;
-  std::vector<double> stored;  // reconstruction as stored, outliers corrected
+  StoredError error;  // of the reconstruction as stored, outliers corrected
   std::vector<Outlier> outliers;
   std::vector<std::uint8_t> outlier_bytes;
 };
@@ -37,8 +37,8 @@ struct Candidate {
 struct Scratch {
   std::vector<float> requantized;
   Candidate best, trial;
-  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~5 MB, not the
-  // hundreds a 256^3 brick takes.
+  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~1 MB (the float
+  // reconstruction and the outlier lists), not the hundreds a 256^3 brick takes.
   void trim() {
     constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
     if (requantized.capacity() > kKeptVoxels) *this = Scratch{};
@@ -58,25 +58,10 @@ struct BrickInput {
 void evaluate(const BrickInput& in, double base, std::vector<float>& requantized, Candidate& c) {
   IndexStats stats;
   requantize_brick(in.coding, in.coef, in.size, base, requantized, &stats);
-  c.stored.resize(requantized.size());
-  store_and_find_outliers(in.samples, requantized, c.stored, in.active, in.bound, in.type, c.outliers);
+  store_and_find_outliers(in.samples, requantized, {}, in.active, in.bound, in.type, c.outliers, c.error);
   c.outlier_bytes = encode_outliers(c.outliers);
   c.bytes = kBytesPerSignificant * stats.significant + kBytesPerLog2Index * stats.log2_sum +
             kBytesPerMapBit * stats.map_bits + double(c.outlier_bytes.size());
-}
-
-// Largest and squared error over the voxels that count.
-void measure(std::span<const double> samples, std::span<const std::uint8_t> active,
-             std::span<const double> stored, BrickCode& code) {
-  double max_error = 0.0, sse = 0.0;  // locals: through `code` every voxel would store both
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    if (!active.empty() && active[i] == 0) continue;
-    const double e = std::abs(samples[i] - stored[i]);
-    max_error = std::max(max_error, e);
-    sse += e * e;
-  }
-  code.max_error = max_error;
-  code.sse = sse;
 }
 
 }  // namespace
@@ -108,7 +93,8 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   for (const auto& b : code.coded.coded) code.passes.push_back(b.pass_count());
   code.outliers = best.outlier_bytes;
   code.outlier_count = best.outliers.size();
-  measure(samples, active, best.stored, code);
+  code.max_error = best.error.max;
+  code.sse = best.error.sse;
   scratch.trim();
   return code;
 }
