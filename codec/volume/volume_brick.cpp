@@ -151,8 +151,9 @@ void place_indices(std::span<const std::int32_t> indices, const BrickCoding& c, 
 // `coef` (resized; its storage reused).
 template <class T>
 void dequantize_brick(const BrickCoding& c, const Extent& size, std::span<const float> steps,
-                      std::span<const BlockEntry> entries, std::span<const std::span<const std::uint8_t>> codewords,
-                      int level, std::vector<T>& coef) {
+                      std::span<const BlockEntry> entries,
+                      std::span<const std::span<const std::uint8_t>> codewords, int level,
+                      std::vector<T>& coef) {
   const auto blocks = brick_blocks(c, size);
   require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(), "brick block count");
   coef.assign(size[0] * size[1] * size[2], T(0));
@@ -219,8 +220,8 @@ std::vector<double> decode_brick(const BrickCoding& c, const Extent& size, doubl
 
 template <class T>
 void decode_brick_into(const BrickCoding& c, const Extent& size, double base_step,
-                       std::span<const BlockEntry> entries, std::span<const std::span<const std::uint8_t>> codewords,
-                       std::vector<T>& out) {
+                       std::span<const BlockEntry> entries,
+                       std::span<const std::span<const std::uint8_t>> codewords, std::vector<T>& out) {
   if (c.reversible != std::is_integral_v<T>)
     throw std::invalid_argument("decode_brick_into: int32 output for reversible coding, float otherwise");
   dequantize_brick<T>(c, size, brick_steps(c, size, base_step), entries, codewords, 0, out);

@@ -84,7 +84,7 @@ std::vector<double> decode_brick(const BrickCoding& c, const Extent& size, doubl
 // other), x fastest. The encoder checks its own bricks with it without brick-sized allocations.
 template <class T>
 void decode_brick_into(const BrickCoding& c, const Extent& size, double base_step,
-                       std::span<const BlockEntry> entries, std::span<const std::span<const std::uint8_t>> codewords,
-                       std::vector<T>& out);
+                       std::span<const BlockEntry> entries,
+                       std::span<const std::span<const std::uint8_t>> codewords, std::vector<T>& out);
 
 }  // namespace pupwave

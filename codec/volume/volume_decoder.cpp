@@ -3,8 +3,8 @@
 // topology and inactive values exactly.
 #include <algorithm>
 #include <atomic>
-#include <memory>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -423,7 +423,8 @@ struct IntoScratch {
 // order), rounded to the stored type; as brick_values computes it, without a double brick.
 template <class T>
 void write_full_brick(const VolumeOutput& out, const BrickBox& box, const std::vector<T>& values,
-                      std::span<const Outlier> outliers, double bound, VoxelType type, std::vector<double>& row) {
+                      std::span<const Outlier> outliers, double bound, VoxelType type,
+                      std::vector<double>& row) {
   row.resize(box.size[0]);
   std::size_t k = 0, next = 0;
   for (std::size_t z = 0; z < box.size[2]; ++z)
@@ -444,7 +445,8 @@ void decode_full_brick(const ParsedVolumeStream& s, const BrickCoding& coding, c
   thread_local IntoScratch scratch;
   const VoxelType type = s.header.grids[b.grid].volume.type;
   const double bound = s.header.max_error;
-  const std::vector<Outlier> outliers = bound > 0.0 ? decode_outliers(b.outliers, box.count()) : std::vector<Outlier>{};
+  const std::vector<Outlier> outliers =
+      bound > 0.0 ? decode_outliers(b.outliers, box.count()) : std::vector<Outlier>{};
   if (coding.reversible) {
     decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.exact);
     write_full_brick(out, box, scratch.exact, outliers, bound, type, scratch.row);

@@ -48,7 +48,8 @@ StoredError error_of(std::span<const double> samples, std::span<const std::uint8
 
 // Block entries of a brick's chosen passes, and their codewords joined into `joined` (spans into
 // it): what the decoder reads from the chunk.
-std::vector<std::span<const std::uint8_t>> joined_codewords(const BrickCode& c, std::vector<BlockEntry>& entries,
+std::vector<std::span<const std::uint8_t>> joined_codewords(const BrickCode& c,
+                                                            std::vector<BlockEntry>& entries,
                                                             std::vector<std::uint8_t>& joined) {
   entries.clear();
   joined.clear();

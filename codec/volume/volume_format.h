@@ -74,7 +74,7 @@ struct BrickChunk {
   // The blocks' codewords in order, one per block (parsed: into the stream); the writer only
   // concatenates them, so an encoder may give a block's codeword in several pieces.
   std::vector<std::span<const std::uint8_t>> codewords;
-  std::vector<std::uint8_t> outliers;                    // volume_outliers.h encoding (may be empty)
+  std::vector<std::uint8_t> outliers;  // volume_outliers.h encoding (may be empty)
 };
 
 // Writers append one framed chunk each.

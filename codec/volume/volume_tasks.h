@@ -16,7 +16,8 @@ namespace pupwave {
 // stays small and each z-slab of the input or output is finished (and released) early, which a
 // parallel_for's range splitting (one thread from the middle on) would not give. Results never
 // depend on the order. After a task throws, the other threads take no more indices.
-inline void run_in_index_order(const Executor& ex, std::size_t count, const std::function<void(std::size_t)>& task) {
+inline void run_in_index_order(const Executor& ex, std::size_t count,
+                               const std::function<void(std::size_t)>& task) {
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
   const std::size_t threads = std::clamp<std::size_t>(ex.concurrency(), 1, std::max<std::size_t>(count, 1));
