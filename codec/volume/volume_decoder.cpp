@@ -416,6 +416,11 @@ struct IntoScratch {
   std::vector<std::int32_t> exact;  // reversible reconstruction
   std::vector<float> approximate;   // irreversible reconstruction
   std::vector<double> row;
+  // Drops buffers larger than a 64^3 brick needs (a 256^3 brick's would stay with the thread).
+  void trim() {
+    constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
+    if (exact.capacity() > kKeptVoxels || approximate.capacity() > kKeptVoxels) *this = IntoScratch{};
+  }
 };
 
 // Writes a brick decoded at full resolution (`values`, the decoder's own element type, x fastest)
@@ -454,6 +459,7 @@ void decode_full_brick(const ParsedVolumeStream& s, const BrickCoding& coding, c
     decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.approximate);
     write_full_brick(out, box, scratch.approximate, outliers, bound, type, scratch.row);
   }
+  scratch.trim();
 }
 
 // Counts the bricks of each z-slab of a dense output still to write, and reports a slab to
