@@ -51,9 +51,9 @@ load=$(cut -d' ' -f1-3 /proc/loadavg)
   echo "# Volume memory (raw input, whole process)"
   echo
   echo "Produced by \`bench/volume_memory.sh\` on $(date -u '+%Y-%m-%d %H:%M UTC') at commit $commit, $(nproc) cores,"
-  echo "load average $load at the start (shared with other jobs: times are indicative only), \`--threads 2\`. Peak RSS is /usr/bin/time's maximum resident"
-  echo "set, which counts the pages of the raw input mapped read-only once they are read, and the"
-  echo "program's libraries: \`pupwave --help\` alone peaks at $(mib "$base") MiB (the baseline). \"Extra\" is peak"
+  echo "load average $load at the start (shared with other jobs: times are indicative only),"
+  echo "\`--threads 2\`. Peak RSS is /usr/bin/time's maximum resident set, which counts the pages of"
+  echo "the raw input mapped read-only once they are read, and the program's libraries: \`pupwave --help\` alone peaks at $(mib "$base") MiB (the baseline). \"Extra\" is peak"
   echo "RSS minus that baseline; the target is 1.5x the raw volume."
   echo
   echo "| input | raw MiB | mode | peak RSS MiB | extra MiB | extra / raw | CPU s | stream MiB |"
