@@ -24,10 +24,10 @@ constexpr double kBytesPerSignificant = 0.315;
 constexpr double kBytesPerLog2Index = 0.133;
 constexpr double kBytesPerMapBit = 0.075;
 
-// One candidate step: its modelled size, the exact corrections and the error they leave.
+// One candidate step: its modelled size, its reconstruction and the exact corrections.
 struct Candidate {
   double bytes = 0.0;
-  StoredError error;  // of the reconstruction as stored, outliers corrected
+  std::vector<float> requantized;  // reconstruction as the decoder holds it (float, not stored)
   std::vector<Outlier> outliers;
   std::vector<std::uint8_t> outlier_bytes;
 };
@@ -35,13 +35,13 @@ struct Candidate {
 // Buffers reused from brick to brick by each thread: fresh multi-megabyte vectors per
 // candidate cost more in page faults than the evaluation itself.
 struct Scratch {
-  std::vector<float> requantized;
   Candidate best, trial;
-  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~1 MB (the float
-  // reconstruction and the outlier lists), not the hundreds a 256^3 brick takes.
+  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~2 MB (two float
+  // reconstructions and the outlier lists), not the hundreds a 256^3 brick takes.
   void trim() {
     constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
-    if (requantized.capacity() > kKeptVoxels) *this = Scratch{};
+    if (best.requantized.capacity() > kKeptVoxels || trial.requantized.capacity() > kKeptVoxels)
+      *this = Scratch{};
   }
 };
 
@@ -55,10 +55,10 @@ struct BrickInput {
   VoxelType type;
 };
 
-void evaluate(const BrickInput& in, double base, std::vector<float>& requantized, Candidate& c) {
+void evaluate(const BrickInput& in, double base, Candidate& c) {
   IndexStats stats;
-  requantize_brick(in.coding, in.coef, in.size, base, requantized, &stats);
-  store_and_find_outliers(in.samples, requantized, {}, in.active, in.bound, in.type, c.outliers, c.error);
+  requantize_brick(in.coding, in.coef, in.size, base, c.requantized, &stats);
+  store_and_find_outliers(in.samples, c.requantized, {}, in.active, in.bound, in.type, c.outliers, nullptr);
   c.outlier_bytes = encode_outliers(c.outliers);
   c.bytes = kBytesPerSignificant * stats.significant + kBytesPerLog2Index * stats.log2_sum +
             kBytesPerMapBit * stats.map_bits + double(c.outlier_bytes.size());
@@ -75,11 +75,11 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   Candidate& best = scratch.best;
   // Descent over the factors from the usual best: the modelled total is unimodal in practice.
   std::size_t at = kFirstFactor;
-  evaluate(in, kBoundStepFactors[at] * bound, scratch.requantized, best);
+  evaluate(in, kBoundStepFactors[at] * bound, best);
   for (const std::ptrdiff_t direction : {1, -1}) {
     bool moved = false;
     for (std::size_t next = at + direction; next < kFactorCount; next += direction) {
-      evaluate(in, kBoundStepFactors[next] * bound, scratch.requantized, scratch.trial);
+      evaluate(in, kBoundStepFactors[next] * bound, scratch.trial);
       if (scratch.trial.bytes >= best.bytes) break;
       std::swap(best, scratch.trial);
       at = next;
@@ -93,8 +93,13 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   for (const auto& b : code.coded.coded) code.passes.push_back(b.pass_count());
   code.outliers = best.outlier_bytes;
   code.outlier_count = best.outliers.size();
-  code.max_error = best.error.max;
-  code.sse = best.error.sse;
+  // The error of the chosen step only, in a second pass over its reconstruction (the same
+  // outliers again, into the trial's list).
+  StoredError error;
+  store_and_find_outliers(samples, best.requantized, {}, active, bound, grid.volume.type,
+                          scratch.trial.outliers, &error);
+  code.max_error = error.max;
+  code.sse = error.sse;
   scratch.trim();
   return code;
 }

@@ -44,12 +44,13 @@ struct StoredError {
 
 // find_outliers of a reconstruction held as float (`requantized`, as the decoder holds it before
 // widening), in one pass (no separate conversion pass): the outliers to `out`, the error of the
-// stored values (corrections applied) over the voxels `check` marks to `error`, and the stored
-// values themselves to `stored` unless it is empty (the encoder needs only the error). Same
-// result as converting with to_stored, then find_outliers.
+// stored values (corrections applied) over the voxels `check` marks to `error` unless it is null,
+// and the stored values themselves to `stored` unless it is empty (the encoder's candidate steps
+// need neither, its chosen one only the error). Same result as converting with to_stored, then
+// find_outliers.
 void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
                              std::span<double> stored, std::span<const std::uint8_t> check, double bound,
-                             VoxelType type, std::vector<Outlier>& out, StoredError& error);
+                             VoxelType type, std::vector<Outlier>& out, StoredError* error);
 
 // Applies decoded corrections to a brick's reconstruction (then rounds to the stored type).
 void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> outliers, double bound,
