@@ -8,7 +8,8 @@
 # `pupwave --help`, reported as the baseline). The u8/u16/f32 inputs at 1e-3 of the range
 # (max-error; the integer ones also lossless, their CLI default).
 # Usage: bench/volume_memory.sh [BUILD_DIR] [OLD_PUPWAVE]   (SKIP_BIG=1: no 2 GiB case)
-# OLD_PUPWAVE: another build of the CLI measured on the same inputs, for comparison.
+# OLD_PUPWAVE: another build of the CLI measured on the same inputs, for comparison (BIG_OLD=1:
+# on the 2 GiB case too).
 # Writes bench/results/volume_memory.md. Needs ~5 GiB free in $TMPDIR for the 2 GiB case.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,13 +21,14 @@ trap 'rm -rf "$work"' EXIT
 out=bench/results/volume_memory.md
 mib() { awk -v k="$1" 'BEGIN {printf "%.1f", k / 1024}'; }
 
-# Runs a command once; prints "seconds max_rss_KiB".
+# Runs a command once; prints "cpu_seconds max_rss_KiB" (user + system: wall time means little
+# on a shared machine).
 measure() {
-  /usr/bin/time -f "%e %M" -o "$work/time" "$@" >/dev/null 2>"$work/err" || {
+  /usr/bin/time -f "%U %S %M" -o "$work/time" "$@" >/dev/null 2>"$work/err" || {
     cat "$work/err" >&2
     return 1
   }
-  cat "$work/time"
+  awk '{ printf "%.2f %s\n", $1 + $2, $3 }' "$work/time"
 }
 
 "$pw" generate-volume --kind turbulence --size 256 "$work/t_f32.raw" >/dev/null
@@ -43,16 +45,18 @@ for name, code, top in (('u8', 'B', 255), ('u16', 'H', 65535)):
 EOF
 
 read -r _ base < <(measure "$pw" --help)
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo "+changes")
+load=$(cut -d' ' -f1-3 /proc/loadavg)
 {
   echo "# Volume memory (raw input, whole process)"
   echo
-  echo "Produced by \`bench/volume_memory.sh\` on $(date -u +%Y-%m-%d), $(nproc) cores (shared with other"
-  echo "jobs: times are indicative only), \`--threads 2\`. Peak RSS is /usr/bin/time's maximum resident"
-  echo "set, which counts the pages of the raw input mapped read-only once they are read, and the"
-  echo "program's libraries: \`pupwave --help\` alone peaks at $(mib "$base") MiB (the baseline). \"Extra\" is peak"
+  echo "Produced by \`bench/volume_memory.sh\` on $(date -u '+%Y-%m-%d %H:%M UTC') at commit $commit, $(nproc) cores,"
+  echo "load average $load at the start (shared with other jobs: times are indicative only),"
+  echo "\`--threads 2\`. Peak RSS is /usr/bin/time's maximum resident set, which counts the pages of"
+  echo "the raw input mapped read-only once they are read, and the program's libraries: \`pupwave --help\` alone peaks at $(mib "$base") MiB (the baseline). \"Extra\" is peak"
   echo "RSS minus that baseline; the target is 1.5x the raw volume."
   echo
-  echo "| input | raw MiB | mode | peak RSS MiB | extra MiB | extra / raw | seconds | stream MiB |"
+  echo "| input | raw MiB | mode | peak RSS MiB | extra MiB | extra / raw | CPU s | stream MiB |"
   echo "|---|---|---|---|---|---|---|---|"
 } >"$out"
 
@@ -79,15 +83,18 @@ done
   echo
   echo "Decoding to raw (the stored type, written brick by brick into one buffer of that type):"
   echo
-  echo "| stream | raw MiB | peak RSS MiB | extra MiB | extra / raw | seconds |"
+  echo "| stream | raw MiB | peak RSS MiB | extra MiB | extra / raw | CPU s |"
   echo "|---|---|---|---|---|---|"
 } >>"$out"
-for t in u8 u16 f32; do
-  "$pw" compress "$work/t_$t.raw" --dims 256,256,256 --dtype $t --max-error-rel 1e-3 --threads 2 -q "$work/d.pw"
-  read -r s k < <(measure "$pw" decompress "$work/d.pw" "$work/d.raw" --threads 2 -q)
-  raw_kib=$(($(stat -c %s "$work/t_$t.raw") / 1024))
-  awk -v l="256^3 $t" -v r="$raw_kib" -v k="$k" -v b="$base" -v s="$s" 'BEGIN {
-    printf "| %s | %.0f | %.1f | %.1f | %.2f | %.1f |\n", l, r/1024, k/1024, (k-b)/1024, (k-b)/r, s }' >>"$out"
+for bin in "$pw" ${old:+"$old"}; do
+  tag=$([[ $bin == "$pw" ]] && echo "" || echo " (old build)")
+  for t in u8 u16 f32; do  # each build decodes its own stream
+    "$bin" compress "$work/t_$t.raw" --dims 256,256,256 --dtype $t --max-error-rel 1e-3 --threads 2 -q "$work/d.pw"
+    read -r s k < <(measure "$bin" decompress "$work/d.pw" "$work/d.raw" --threads 2 -q)
+    raw_kib=$(($(stat -c %s "$work/t_$t.raw") / 1024))
+    awk -v l="256^3 $t$tag" -v r="$raw_kib" -v k="$k" -v b="$base" -v s="$s" 'BEGIN {
+      printf "| %s | %.0f | %.1f | %.1f | %.2f | %.1f |\n", l, r/1024, k/1024, (k-b)/1024, (k-b)/r, s }' >>"$out"
+  done
 done
 
 if [[ -z ${SKIP_BIG:-} ]]; then
@@ -109,9 +116,13 @@ EOF
     echo
     echo "2 GiB float volume (target: compress within 3 GiB resident):"
     echo
-    echo "| input | raw MiB | mode | peak RSS MiB | extra MiB | extra / raw | seconds | stream MiB |"
+    echo "| input | raw MiB | mode | peak RSS MiB | extra MiB | extra / raw | CPU s | stream MiB |"
     echo "|---|---|---|---|---|---|---|---|"
   } >>"$out"
   row "1024x1024x512 f32" "$work/big.raw" 1024,1024,512 f32 "max-error-rel 1e-3" --max-error-rel 1e-3
+  if [[ -n ${BIG_OLD:-} && -n $old ]]; then  # BIG_OLD=1: the old build on it too (as long again)
+    bin=$old
+    row "1024x1024x512 f32 (old build)" "$work/big.raw" 1024,1024,512 f32 "max-error-rel 1e-3" --max-error-rel 1e-3
+  fi
 fi
 cat "$out"

@@ -191,6 +191,11 @@ void run_compress_volume(const CompressOptions& opt) {
   if (is_stdio(opt.output)) write_output(opt, r.bytes);
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
+  if (r.switched_to_lossless)
+    std::fprintf(status,
+                 "pupwave: error bound %.6g on integer samples allows no error (errors are whole "
+                 "numbers); coded lossless instead\n",
+                 enc.target);
   std::fprintf(status,
                "%s: %zu bytes, %.4f bpv (bits per active voxel), max error %.6g, PSNR %.3f dB, %zu "
                "outlier(s), %.3f s (%zu grid(s))\n",
@@ -338,7 +343,8 @@ void add_compress_command(CLI::App& app) {
           ->check(positive_number());
   auto* max_error =
       cmd->add_option("--max-error", opt->max_error,
-                      "float volumes: absolute point-wise error bound E, guaranteed on every active voxel")
+                      "float volumes: absolute point-wise error bound E, guaranteed on every active voxel "
+                      "(integer volumes: E below 1 allows no error and codes lossless)")
           ->check(positive_number());
   auto* max_error_rel =
       cmd->add_option("--max-error-rel", opt->max_error_rel,

@@ -58,6 +58,13 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
   write_stdout(read_file_bytes(scratch.path()));
 }
 
+// VolumeOutput::done_slabs for an output file mapped by MappedOutput: finished planes leave
+// resident memory, so a decode holds about the slabs in flight, not the whole grid.
+void release_planes(const void* context, const VolumeOutput& out, std::size_t z0, std::size_t z1) {
+  const std::size_t plane = std::size_t(out.strides[2]) * bytes_per_voxel(out.storage);
+  static_cast<const MappedOutput*>(context)->release(z0 * plane, (z1 - z0) * plane);
+}
+
 // One box grid to raw, decoded brick by brick into a buffer of its stored type (never held as
 // double). False, having written nothing, when the grid needs decode_volumes (see
 // decode_volume_into) or the output is .vdb.
@@ -91,7 +98,10 @@ bool decompress_raw_in_place(const std::vector<std::uint8_t>& bytes, const Decom
         decode([&](const VolumeGrid& g) {
           file = std::make_unique<MappedOutput>(tmp, g.volume.count() * bytes_per_voxel(g.volume.type),
                                                 opt.output);
-          return contiguous_output(file->bytes().data(), g.volume.dims, g.volume.type);
+          VolumeOutput out = contiguous_output(file->bytes().data(), g.volume.dims, g.volume.type);
+          out.done_context = file.get();
+          out.done_slabs = release_planes;
+          return out;
         });
         if (!grid) throw NotInPlace{};  // nothing was created
         swap_to_little_endian(file->bytes(), grid->volume.type);

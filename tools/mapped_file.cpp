@@ -69,6 +69,16 @@ MappedOutput::MappedOutput(const std::filesystem::path& path, std::size_t size,
   map_ = map;
 }
 
+void MappedOutput::release(std::size_t offset, std::size_t length) const {
+  if (map_ == nullptr || offset >= size_) return;
+  const auto page = std::size_t(::sysconf(_SC_PAGESIZE));
+  const std::size_t first = (offset + page - 1) / page * page;  // whole pages only: its
+  std::size_t end = std::min(size_, offset + length);           // neighbours may be in use
+  if (end < size_) end = end / page * page;
+  // On a shared file mapping MADV_DONTNEED only unmaps: the dirty bits pass to the page cache.
+  if (end > first) ::madvise(static_cast<std::uint8_t*>(map_) + first, end - first, MADV_DONTNEED);
+}
+
 void MappedOutput::finish() {
   if (map_ != nullptr && ::munmap(map_, size_) != 0) {
     map_ = nullptr;

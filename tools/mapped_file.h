@@ -42,6 +42,10 @@ class MappedOutput {
   MappedOutput& operator=(const MappedOutput&) = delete;
 
   std::span<std::uint8_t> bytes() const { return {static_cast<std::uint8_t*>(map_), size_}; }
+  // Unmaps the whole pages of bytes [offset, offset + length) once written, so they leave this
+  // process's resident memory: they stay in the page cache, dirty, and reach the file as any
+  // other (writing them again maps them back). Thread-safe.
+  void release(std::size_t offset, std::size_t length) const;
   // Unmaps and closes the file; throws like the constructor when closing fails.
   void finish();
 

@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_decoder.h"
@@ -146,14 +147,16 @@ void place_indices(std::span<const std::int32_t> indices, const BrickCoding& c, 
     }
 }
 
-// Dequantized coefficients of every block the level needs, in the brick's in-place layout.
+// Dequantized coefficients of every block the level needs, in the brick's in-place layout, into
+// `coef` (resized; its storage reused).
 template <class T>
-std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::span<const float> steps,
-                                std::span<const BlockEntry> entries,
-                                std::span<const std::span<const std::uint8_t>> codewords, int level) {
+void dequantize_brick(const BrickCoding& c, const Extent& size, std::span<const float> steps,
+                      std::span<const BlockEntry> entries,
+                      std::span<const std::span<const std::uint8_t>> codewords, int level,
+                      std::vector<T>& coef) {
   const auto blocks = brick_blocks(c, size);
   require_stream(entries.size() == blocks.size() && codewords.size() == blocks.size(), "brick block count");
-  std::vector<T> coef(size[0] * size[1] * size[2], T(0));
+  coef.assign(size[0] * size[1] * size[2], T(0));
   std::vector<std::int32_t> indices;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const CodeBlock& b = blocks[i];
@@ -181,7 +184,6 @@ std::vector<T> dequantize_brick(const BrickCoding& c, const Extent& size, std::s
         }
       }
   }
-  return coef;
 }
 
 // The low corner (extent `part`) of an array laid out over `size`, as double times `gain`.
@@ -205,13 +207,30 @@ std::vector<double> decode_brick(const BrickCoding& c, const Extent& size, doubl
   const std::vector<float> steps = brick_steps(c, size, base_step);
   const double gain = level > 0 ? coarse_gain(*c.transform, size, level) : 1.0;
   if (c.reversible) {
-    auto coef = dequantize_brick<std::int32_t>(c, size, steps, entries, codewords, level);
+    std::vector<std::int32_t> coef;
+    dequantize_brick<std::int32_t>(c, size, steps, entries, codewords, level, coef);
     inverse(*c.transform, coef.data(), size, c.levels, level);
     return corner(coef, size, part, gain);
   }
-  auto coef = dequantize_brick<float>(c, size, steps, entries, codewords, level);
+  std::vector<float> coef;
+  dequantize_brick<float>(c, size, steps, entries, codewords, level, coef);
   inverse(*c.transform, coef.data(), size, c.levels, level);
   return corner(coef, size, part, gain);
 }
+
+template <class T>
+void decode_brick_into(const BrickCoding& c, const Extent& size, double base_step,
+                       std::span<const BlockEntry> entries,
+                       std::span<const std::span<const std::uint8_t>> codewords, std::vector<T>& out) {
+  if (c.reversible != std::is_integral_v<T>)
+    throw std::invalid_argument("decode_brick_into: int32 output for reversible coding, float otherwise");
+  dequantize_brick<T>(c, size, brick_steps(c, size, base_step), entries, codewords, 0, out);
+  inverse(*c.transform, out.data(), size, c.levels, 0);
+}
+
+template void decode_brick_into(const BrickCoding&, const Extent&, double, std::span<const BlockEntry>,
+                                std::span<const std::span<const std::uint8_t>>, std::vector<std::int32_t>&);
+template void decode_brick_into(const BrickCoding&, const Extent&, double, std::span<const BlockEntry>,
+                                std::span<const std::span<const std::uint8_t>>, std::vector<float>&);
 
 }  // namespace pupwave

@@ -79,4 +79,12 @@ std::vector<double> decode_brick(const BrickCoding& c, const Extent& size, doubl
                                  std::span<const BlockEntry> entries,
                                  std::span<const std::span<const std::uint8_t>> codewords, int level);
 
+// decode_brick at level 0 into `out` (resized, its storage reused from brick to brick), before the
+// widening to double: int32 when reversible, float otherwise (std::invalid_argument for the
+// other), x fastest. The encoder checks its own bricks with it without brick-sized allocations.
+template <class T>
+void decode_brick_into(const BrickCoding& c, const Extent& size, double base_step,
+                       std::span<const BlockEntry> entries,
+                       std::span<const std::span<const std::uint8_t>> codewords, std::vector<T>& out);
+
 }  // namespace pupwave

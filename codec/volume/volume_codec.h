@@ -28,7 +28,8 @@ enum class VolumeRateMode : std::uint8_t {
   bpv,        // best quality within `target` bits per voxel (whole file), PCRD over all bricks
   psnr,       // smallest file whose PSNR (peak = value range) reaches `target` dB (estimated)
   lossless,   // reversible integer transform, bit exact (u8/u16 volumes only)
-  max_error,  // every active voxel within `target` (absolute) of its original, guaranteed
+  max_error,  // every active voxel within `target` (absolute) of its original, guaranteed; for
+              // integer grids a target below 1 allows no error at all: coded lossless instead
 };
 
 struct VolumeEncodeOptions {
@@ -49,6 +50,9 @@ struct VolumeEncodeResult {
   double max_error = 0.0;           // largest |x - x'| over active voxels of all grids
   double psnr = 0.0;                // peak = value range of each grid's active voxels (worst grid)
   std::size_t outliers = 0;         // voxels corrected explicitly (max_error mode)
+  // max_error mode on integer grids with a bound below 1: coded lossless (the given transform
+  // when reversible, else cdf53), the only way to meet it and smaller than corrections.
+  bool switched_to_lossless = false;
 };
 
 // Compresses grids (each a Volume with its name, class, transform and metadata). Throws
@@ -67,12 +71,14 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const Vo
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
                                   const VolumeEncodeOptions& options);
 
-// Receives the stream piece by piece, in order (see encode_volumes with a writer).
+// Receives the stream piece by piece, in order (see encode_volumes with a writer), one call at a
+// time but possibly from the executor's worker threads.
 using StreamWriter = std::function<void(std::span<const std::uint8_t>)>;
 
 // The same, handing the stream to `write` piece by piece instead of returning it (result.bytes
-// stays empty): the head, then each brick's chunk as its coded form is released, so an encode
-// writing to a file never holds the stream and its coded bricks at once. A null writer: as above.
+// stays empty): the head, then each brick's chunk as soon as it and the bricks before it are
+// coded (rate modes, whose allocation needs every brick first: after all are coded), so an encode
+// writing to a file holds only the bricks in flight, never the stream. A null writer: as above.
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
                                   const VolumeEncodeOptions& options, const StreamWriter& write);
 

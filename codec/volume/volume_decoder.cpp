@@ -2,7 +2,9 @@
 // inverse transform at the requested level), apply outlier corrections, restore the sparse
 // topology and inactive values exactly.
 #include <algorithm>
+#include <atomic>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -13,6 +15,7 @@
 #include "codec/volume/volume_codec.h"
 #include "codec/volume/volume_format.h"
 #include "codec/volume/volume_outliers.h"
+#include "codec/volume/volume_tasks.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 
@@ -408,6 +411,81 @@ void restore_output_states(const VolumeOutput& out, double background, VoxelType
   require_stream(other == mask.other_values.size(), "volume stream: extra inactive values");
 }
 
+// Per-thread buffers of decode_volume_into, reused from brick to brick.
+struct IntoScratch {
+  std::vector<std::int32_t> exact;  // reversible reconstruction
+  std::vector<float> approximate;   // irreversible reconstruction
+  std::vector<double> row;
+  // Drops buffers larger than a 64^3 brick needs (a 256^3 brick's would stay with the thread).
+  void trim() {
+    constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
+    if (exact.capacity() > kKeptVoxels || approximate.capacity() > kKeptVoxels) *this = IntoScratch{};
+  }
+};
+
+// Writes a brick decoded at full resolution (`values`, the decoder's own element type, x fastest)
+// into `out` row by row: each value widened, its outlier correction applied (`outliers` in index
+// order), rounded to the stored type; as brick_values computes it, without a double brick.
+template <class T>
+void write_full_brick(const VolumeOutput& out, const BrickBox& box, const std::vector<T>& values,
+                      std::span<const Outlier> outliers, double bound, VoxelType type,
+                      std::vector<double>& row) {
+  row.resize(box.size[0]);
+  std::size_t k = 0, next = 0;
+  for (std::size_t z = 0; z < box.size[2]; ++z)
+    for (std::size_t y = 0; y < box.size[1]; ++y) {
+      for (std::size_t x = 0; x < box.size[0]; ++x, ++k) {
+        double v = double(values[k]);
+        if (next < outliers.size() && outliers[next].index == k)
+          v = to_stored(v + double(outliers[next++].k) * bound, type);
+        row[x] = to_stored(v, type);
+      }
+      out.set_row(box.offset[0], box.offset[1] + y, box.offset[2] + z, row.data(), box.size[0]);
+    }
+}
+
+// One brick of decode_volume_into at full resolution, through per-thread buffers.
+void decode_full_brick(const ParsedVolumeStream& s, const BrickCoding& coding, const BrickChunk& b,
+                       const BrickBox& box, const VolumeOutput& out) {
+  thread_local IntoScratch scratch;
+  const VoxelType type = s.header.grids[b.grid].volume.type;
+  const double bound = s.header.max_error;
+  const std::vector<Outlier> outliers =
+      bound > 0.0 ? decode_outliers(b.outliers, box.count()) : std::vector<Outlier>{};
+  if (coding.reversible) {
+    decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.exact);
+    write_full_brick(out, box, scratch.exact, outliers, bound, type, scratch.row);
+  } else {
+    decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.approximate);
+    write_full_brick(out, box, scratch.approximate, outliers, bound, type, scratch.row);
+  }
+  scratch.trim();
+}
+
+// Counts the bricks of each z-slab of a dense output still to write, and reports a slab to
+// VolumeOutput::done_slabs once its last brick is written (bricks finish in any order).
+class OutputSlabs {
+ public:
+  OutputSlabs(const VolumeOutput& out, const BoxBricks& bricks) : out_(out), log2_(bricks.log2) {
+    if (out.done_slabs == nullptr) return;
+    left_ = std::make_unique<std::atomic<std::size_t>[]>(bricks.n[2]);
+    for (std::size_t z = 0; z < bricks.n[2]; ++z)
+      left_[z].store(bricks.n[0] * bricks.n[1], std::memory_order_relaxed);
+  }
+  void done(const BrickBox& box) {
+    if (!left_) return;
+    const std::size_t z = box.offset[2] >> log2_;
+    // acq_rel: the last brick of a slab sees every other brick's writes finished before it reports.
+    if (left_[z].fetch_sub(1, std::memory_order_acq_rel) == 1)
+      out_.done_slabs(out_.done_context, out_, box.offset[2], box.offset[2] + box.size[2]);
+  }
+
+ private:
+  VolumeOutput out_;
+  int log2_;
+  std::unique_ptr<std::atomic<std::size_t>[]> left_;  // per slab; null: nothing to report
+};
+
 }  // namespace
 
 bool is_volume_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kVolumeSignature); }
@@ -496,10 +574,18 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
   const VolumeOutput out = allocate(grid);
   if (out.data == nullptr || out.dims != grid.volume.dims)
     throw std::invalid_argument("decode_volume_into: the output does not match the grid's dims");
-  ex.run(s.bricks.size(), [&](std::size_t i) {
+  // Slabs are reported only for a dense grid at full resolution, every brick of which is coded.
+  const bool report = !sparse && level == 0;
+  OutputSlabs slabs(report ? out : VolumeOutput{}, bricks[g].box);
+  run_in_index_order(ex, s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
     if (b.grid != g) return;
     const BrickBox box = bricks[g].at(b.brick);
+    if (level == 0) {
+      decode_full_brick(s, coding, b, box, out);
+      slabs.done(box);
+      return;
+    }
     const auto values = brick_values(s, coding, b, box, level);
     const Extent part = level_extent(box.size, level);
     for (std::size_t z = 0, k = 0; z < part[2]; ++z)

@@ -1,6 +1,7 @@
-// encode_volumes: validation, masks of sparse grids, bricks coded at a fixed step (step,
-// lossless) or at the step that gives the smallest brick once outliers are corrected
-// (max-error), and assembly of the stream.
+// encode_volumes: validation, planning (masks of sparse grids, the bricks to code), lossless
+// coding for integer bounds only exact values meet, and the stream's head and assembly. The brick
+// pass of the fixed-step, lossless and max-error modes is volume_encoder_bricks.cpp (the step per
+// brick for a bound: volume_encoder_bound.cpp), the rate modes' volume_encoder_rate.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -219,50 +220,6 @@ void add_jobs(VolumePlan& plan, const std::vector<VolumeView>& parts, std::uint3
   }
 }
 
-std::vector<int> all_passes(const CodedBrick& c) {
-  std::vector<int> p;
-  for (const auto& b : c.coded) p.push_back(b.pass_count());
-  return p;
-}
-
-// A brick coded at one base step with every pass (step and lossless modes).
-BrickCode code_at_step(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
-                       const std::vector<double>& samples, double base) {
-  BrickCode code;
-  code.base_step = base;
-  code.coded = code_brick(plan.coding, samples, job.box.size, base);
-  code.passes = all_passes(code.coded);
-  measure_brick(grid, job, reconstruct_brick(plan, job, code), code);
-  return code;
-}
-
-// Coded bytes of a brick (passes kept + outlier list), for sizing the assembled stream.
-std::size_t code_bytes(const BrickCode& c) {
-  std::size_t n = c.outliers.size();
-  for (std::size_t i = 0; i < c.passes.size(); ++i) n += c.coded.coded[i].size(c.passes[i]);
-  return n;
-}
-
-// Fixed step (step, lossless) or the best step for the bound (max-error), brick by brick.
-std::vector<BrickCode> code_fixed(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
-                                  const VolumeEncodeOptions& o) {
-  std::vector<BrickCode> codes(plan.jobs.size());
-  SlabRelease release(plan.jobs);  // the input's last read: each slab dropped once coded
-  plan.executor->run(plan.jobs.size(), [&](std::size_t i) {
-    const BrickJob& job = plan.jobs[i];
-    const VolumeGrid& grid = grids[job.grid];
-    std::vector<double> samples;
-    std::vector<std::uint8_t> active;
-    brick_samples(job, samples, active);
-    if (o.mode == VolumeRateMode::max_error)
-      codes[i] = code_within_bound(plan, grid, job, samples, active);
-    else
-      codes[i] = code_at_step(plan, grid, job, samples, o.mode == VolumeRateMode::step ? o.target : 1.0);
-    release.done(i);
-  });
-  return codes;
-}
-
 // Checks a caller's view of box grid `g` against the grid's description.
 void check_grid_view(const VolumeGrid& g, const VolumeView& v) {
   check_view(v);
@@ -397,17 +354,32 @@ std::vector<std::uint8_t> stream_head(const VolumePlan& plan) {
   return out;
 }
 
-void write_brick(std::vector<std::uint8_t>& out, const BrickJob& job, const BrickCode& c) {
-  BrickChunk chunk{job.grid, job.brick, c.base_step, {}, {}, c.outliers};
-  std::vector<std::vector<std::uint8_t>> words(c.passes.size());
-  for (std::size_t k = 0; k < c.passes.size(); ++k) {
-    const EncodedBlock& b = c.coded.coded[k];
-    chunk.entries.push_back(
-        {c.passes[k] > 0 ? b.planes : 0, c.passes[k], std::uint32_t(b.size(c.passes[k]))});
-    words[k] = b.codeword(c.passes[k]);
-    chunk.codewords.emplace_back(words[k]);
+// Coded bytes of a brick (passes kept + outlier list), for sizing the assembled stream.
+std::size_t code_bytes(const BrickCode& c) {
+  std::size_t n = c.outliers.size();
+  for (std::size_t i = 0; i < c.passes.size(); ++i) n += c.coded.coded[i].size(c.passes[i]);
+  return n;
+}
+
+// Whether a max-error bound can only be met exactly: every coded grid holds integers (u8, u16),
+// whose errors are integers too, and the bound is below 1. Lossless coding then meets it with a
+// smaller stream than transform coding plus a correction for nearly every voxel.
+bool only_exact(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& o) {
+  if (o.mode != VolumeRateMode::max_error || !(o.target > 0.0 && o.target < 1.0)) return false;
+  bool any = false;
+  for (const VolumeGrid& g : grids) {
+    if (g.is_opaque()) continue;  // carried verbatim
+    if (!is_integer(g.volume.type)) return false;
+    any = true;
   }
-  write_brick_chunk(out, chunk);
+  return any;
+}
+
+// Options for lossless coding in place of a bound only exact values meet: the given transform
+// when it is reversible, cdf53 otherwise.
+void code_lossless(VolumeEncodeOptions& o) {
+  o.mode = VolumeRateMode::lossless;
+  if (!make_transform(o.transform)->is_reversible()) o.transform = "cdf53";
 }
 
 // Hands the final stream to `write` piece by piece (the head, then one chunk per brick),
@@ -451,41 +423,46 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::spa
 }
 
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
-                                  const VolumeEncodeOptions& options, const StreamWriter& write) {
+                                  const VolumeEncodeOptions& given, const StreamWriter& write) {
+  VolumeEncodeOptions options = given;
+  const bool exact = only_exact(grids, options);
+  if (exact) code_lossless(options);
   VolumePlan plan = plan_volumes(grids, views, options);
-  // Bricks are the parallel tasks; each brick's own transform runs serially inside its task.
-  const bool rate = options.mode == VolumeRateMode::bpv || options.mode == VolumeRateMode::psnr;
-  std::vector<BrickCode> codes =
-      rate ? code_for_rate(grids, plan, options) : code_fixed(grids, plan, options);
   VolumeEncodeResult r;
-  double sse = 0.0;
-  const std::size_t counted = plan.voxels;
-  for (const BrickCode& c : codes) {
-    r.max_error = std::max(r.max_error, c.max_error);
-    r.outliers += c.outlier_count;
-    sse += c.sse;
-  }
-  if (write) {
-    assemble_streaming(plan, codes, [&](std::span<const std::uint8_t> piece) {
-      r.size += piece.size();
+  r.switched_to_lossless = exact;
+  const StreamWriter out = [&](std::span<const std::uint8_t> piece) {
+    r.size += piece.size();
+    if (write)
       write(piece);
-    });
-  } else {
-    std::size_t estimate = 0;  // reserved once: no doubling copies of the stream
-    for (const BrickCode& c : codes)
-      estimate += code_bytes(c) + 2 * c.passes.size() + 64;  // + index, framing
-    r.bytes.reserve(estimate);
-    assemble_streaming(plan, codes, [&](std::span<const std::uint8_t> piece) {
+    else
       r.bytes.insert(r.bytes.end(), piece.begin(), piece.end());
-    });
-    r.size = r.bytes.size();
+  };
+  // Bricks are the parallel tasks; each brick's own transform runs serially inside its task.
+  std::vector<BrickFigures> figures;
+  if (options.mode == VolumeRateMode::bpv || options.mode == VolumeRateMode::psnr) {
+    std::vector<BrickCode> codes = code_for_rate(grids, plan, options);  // PCRD needs every brick
+    for (const BrickCode& c : codes) figures.push_back({c.max_error, c.sse, c.outlier_count});
+    if (!write) {
+      std::size_t estimate = 0;  // reserved once: no doubling copies of the stream
+      for (const BrickCode& c : codes)
+        estimate += code_bytes(c) + 2 * c.passes.size() + 64;  // + index, framing
+      r.bytes.reserve(estimate);
+    }
+    assemble_streaming(plan, codes, out);
+  } else {
+    out(stream_head(plan));
+    figures = code_and_write(grids, plan, options, out);
+  }
+  double sse = 0.0;
+  for (const BrickFigures& f : figures) {
+    r.max_error = std::max(r.max_error, f.max_error);
+    r.outliers += f.outliers;
+    sse += f.sse;
   }
   r.bpv = double(r.size) * 8.0 / double(std::max<std::size_t>(plan.voxels, 1));
-  const double mse = counted > 0 ? sse / double(counted) : 0.0;
+  const double mse = plan.voxels > 0 ? sse / double(plan.voxels) : 0.0;
   r.psnr =
       mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
-  if (plan.header.max_error > 0.0 && r.max_error > plan.header.max_error)
-    throw EncodeError("internal error: error bound exceeded after correction");  // never expected
   return r;
 }
 

@@ -24,10 +24,10 @@ constexpr double kBytesPerSignificant = 0.315;
 constexpr double kBytesPerLog2Index = 0.133;
 constexpr double kBytesPerMapBit = 0.075;
 
-// One candidate step: its modelled size and the exact reconstruction and corrections.
+// One candidate step: its modelled size, its reconstruction and the exact corrections.
 struct Candidate {
   double bytes = 0.0;
-  std::vector<double> stored;  // reconstruction as stored, outliers corrected
+  std::vector<float> requantized;  // reconstruction as the decoder holds it (float, not stored)
   std::vector<Outlier> outliers;
   std::vector<std::uint8_t> outlier_bytes;
 };
@@ -35,13 +35,13 @@ struct Candidate {
 // Buffers reused from brick to brick by each thread: fresh multi-megabyte vectors per
 // candidate cost more in page faults than the evaluation itself.
 struct Scratch {
-  std::vector<float> requantized;
   Candidate best, trial;
-  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~5 MB, not the
-  // hundreds a 256^3 brick takes.
+  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~2 MB (two float
+  // reconstructions and the outlier lists), not the hundreds a 256^3 brick takes.
   void trim() {
     constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
-    if (requantized.capacity() > kKeptVoxels) *this = Scratch{};
+    if (best.requantized.capacity() > kKeptVoxels || trial.requantized.capacity() > kKeptVoxels)
+      *this = Scratch{};
   }
 };
 
@@ -55,28 +55,13 @@ struct BrickInput {
   VoxelType type;
 };
 
-void evaluate(const BrickInput& in, double base, std::vector<float>& requantized, Candidate& c) {
+void evaluate(const BrickInput& in, double base, Candidate& c) {
   IndexStats stats;
-  requantize_brick(in.coding, in.coef, in.size, base, requantized, &stats);
-  c.stored.resize(requantized.size());
-  store_and_find_outliers(in.samples, requantized, c.stored, in.active, in.bound, in.type, c.outliers);
+  requantize_brick(in.coding, in.coef, in.size, base, c.requantized, &stats);
+  store_and_find_outliers(in.samples, c.requantized, {}, in.active, in.bound, in.type, c.outliers, nullptr);
   c.outlier_bytes = encode_outliers(c.outliers);
   c.bytes = kBytesPerSignificant * stats.significant + kBytesPerLog2Index * stats.log2_sum +
             kBytesPerMapBit * stats.map_bits + double(c.outlier_bytes.size());
-}
-
-// Largest and squared error over the voxels that count.
-void measure(std::span<const double> samples, std::span<const std::uint8_t> active,
-             std::span<const double> stored, BrickCode& code) {
-  double max_error = 0.0, sse = 0.0;  // locals: through `code` every voxel would store both
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    if (!active.empty() && active[i] == 0) continue;
-    const double e = std::abs(samples[i] - stored[i]);
-    max_error = std::max(max_error, e);
-    sse += e * e;
-  }
-  code.max_error = max_error;
-  code.sse = sse;
 }
 
 }  // namespace
@@ -90,11 +75,11 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   Candidate& best = scratch.best;
   // Descent over the factors from the usual best: the modelled total is unimodal in practice.
   std::size_t at = kFirstFactor;
-  evaluate(in, kBoundStepFactors[at] * bound, scratch.requantized, best);
+  evaluate(in, kBoundStepFactors[at] * bound, best);
   for (const std::ptrdiff_t direction : {1, -1}) {
     bool moved = false;
     for (std::size_t next = at + direction; next < kFactorCount; next += direction) {
-      evaluate(in, kBoundStepFactors[next] * bound, scratch.requantized, scratch.trial);
+      evaluate(in, kBoundStepFactors[next] * bound, scratch.trial);
       if (scratch.trial.bytes >= best.bytes) break;
       std::swap(best, scratch.trial);
       at = next;
@@ -108,7 +93,13 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   for (const auto& b : code.coded.coded) code.passes.push_back(b.pass_count());
   code.outliers = best.outlier_bytes;
   code.outlier_count = best.outliers.size();
-  measure(samples, active, best.stored, code);
+  // The error of the chosen step only, in a second pass over its reconstruction (the same
+  // outliers again, into the trial's list).
+  StoredError error;
+  store_and_find_outliers(samples, best.requantized, {}, active, bound, grid.volume.type,
+                          scratch.trial.outliers, &error);
+  code.max_error = error.max;
+  code.sse = error.sse;
   scratch.trim();
   return code;
 }

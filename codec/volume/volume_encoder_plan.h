@@ -88,6 +88,23 @@ void measure_brick(const VolumeGrid& grid, const BrickJob& job, std::vector<doub
 // The complete stream.
 std::vector<std::uint8_t> assemble_volumes(const VolumePlan& plan, const std::vector<BrickCode>& codes);
 
+// Appends a brick's BRIK chunk (its chosen passes and outliers) to out.
+void write_brick(std::vector<std::uint8_t>& out, const BrickJob& job, const BrickCode& code);
+
+// What the result needs of a coded brick once its chunk is written.
+struct BrickFigures {
+  double max_error = 0.0;
+  double sse = 0.0;
+  std::size_t outliers = 0;
+};
+
+// Fixed step, lossless or max-error coding of every brick, each brick's chunk handed to `write`
+// (after the head the caller wrote) in stream order as soon as the bricks before it are written:
+// only the bricks in flight are held. `write` runs on worker threads, one call at a time.
+// Returns each brick's figures, in brick order.
+std::vector<BrickFigures> code_and_write(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
+                                         const VolumeEncodeOptions& options, const StreamWriter& write);
+
 // Rate-controlled coding (bpv, psnr): PCRD over every code-block of every brick.
 std::vector<BrickCode> code_for_rate(const std::vector<VolumeGrid>& grids, VolumePlan& plan,
                                      const VolumeEncodeOptions& options);

@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cmath>
+#include <stdexcept>
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
@@ -135,6 +136,10 @@ void write_brick_chunk(std::vector<std::uint8_t>& out, const BrickChunk& b) {
   const auto index = encode_index(b.entries);
   w.u32(std::uint32_t(index.size()));
   w.bytes(index);
+  std::size_t lengths = 0, pieces = 0;
+  for (const BlockEntry& e : b.entries) lengths += e.length;
+  for (const auto& cw : b.codewords) pieces += cw.size();
+  if (lengths != pieces) throw std::logic_error("write_brick_chunk: codeword bytes differ from the entries'");
   for (const auto& cw : b.codewords) w.bytes(cw);
   w.u32(std::uint32_t(b.outliers.size()));
   w.bytes(b.outliers);

@@ -72,8 +72,10 @@ struct BrickChunk {
   std::uint32_t brick = 0;  // index into brick_boxes(dims, brick edge), of each block in turn
   double base_step = 1.0;
   std::vector<BlockEntry> entries;
-  std::vector<std::span<const std::uint8_t>> codewords;  // one per block (into the stream or owner)
-  std::vector<std::uint8_t> outliers;                    // volume_outliers.h encoding (may be empty)
+  // The blocks' codewords in order, one per block (parsed: into the stream); the writer only
+  // concatenates them, so an encoder may give a block's codeword in several pieces.
+  std::vector<std::span<const std::uint8_t>> codewords;
+  std::vector<std::uint8_t> outliers;  // volume_outliers.h encoding (may be empty)
 };
 
 // Writers append one framed chunk each.

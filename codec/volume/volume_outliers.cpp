@@ -51,33 +51,59 @@ double correct(std::size_t i, double original, double value, double bound, Voxel
   return fixed;
 }
 
+// kStore: also write every stored value; kMeasure: also sum the error (its serial chain of
+// additions costs ~8% of a u16 encode when run for every candidate step, so only on request).
+template <VoxelType kType, bool kStore, bool kMeasure>
+void store_and_find(std::span<const double> original, std::span<const float> requantized,
+                    std::span<double> stored, std::span<const std::uint8_t> check, double bound,
+                    std::vector<Outlier>& out, StoredError* error) {
+  double max_error = 0.0, sse = 0.0;  // locals: through `error` every voxel would store both
+  for (std::size_t i = 0; i < original.size(); ++i) {
+    double value = to_stored(double(requantized[i]), kType);
+    if (!check.empty() && check[i] == 0) {
+      if constexpr (kStore) stored[i] = value;
+      continue;
+    }
+    if (!(std::abs(original[i] - value) <= bound)) value = correct(i, original[i], value, bound, kType, out);
+    if constexpr (kStore) stored[i] = value;
+    if constexpr (kMeasure) {
+      const double e = std::abs(original[i] - value);
+      max_error = std::max(max_error, e);
+      sse += e * e;
+    }
+  }
+  if constexpr (kMeasure) *error = {max_error, sse};
+}
+
 template <VoxelType kType>
 void store_and_find(std::span<const double> original, std::span<const float> requantized,
                     std::span<double> stored, std::span<const std::uint8_t> check, double bound,
-                    std::vector<Outlier>& out) {
-  for (std::size_t i = 0; i < original.size(); ++i) {
-    const double value = to_stored(double(requantized[i]), kType);
-    stored[i] = value;
-    if (std::abs(original[i] - value) <= bound || (!check.empty() && check[i] == 0)) continue;
-    stored[i] = correct(i, original[i], value, bound, kType, out);
-  }
+                    std::vector<Outlier>& out, StoredError* error) {
+  if (!stored.empty() && error != nullptr)
+    store_and_find<kType, true, true>(original, requantized, stored, check, bound, out, error);
+  else if (!stored.empty())
+    store_and_find<kType, true, false>(original, requantized, stored, check, bound, out, error);
+  else if (error != nullptr)
+    store_and_find<kType, false, true>(original, requantized, stored, check, bound, out, error);
+  else
+    store_and_find<kType, false, false>(original, requantized, stored, check, bound, out, error);
 }
 
 }  // namespace
 
 void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
                              std::span<double> stored, std::span<const std::uint8_t> check, double bound,
-                             VoxelType type, std::vector<Outlier>& out) {
+                             VoxelType type, std::vector<Outlier>& out, StoredError* error) {
   out.clear();
   switch (type) {  // one loop per type, so that to_stored's switch leaves the loop
     case VoxelType::u8:
-      return store_and_find<VoxelType::u8>(original, requantized, stored, check, bound, out);
+      return store_and_find<VoxelType::u8>(original, requantized, stored, check, bound, out, error);
     case VoxelType::u16:
-      return store_and_find<VoxelType::u16>(original, requantized, stored, check, bound, out);
+      return store_and_find<VoxelType::u16>(original, requantized, stored, check, bound, out, error);
     case VoxelType::f32:
-      return store_and_find<VoxelType::f32>(original, requantized, stored, check, bound, out);
+      return store_and_find<VoxelType::f32>(original, requantized, stored, check, bound, out, error);
     case VoxelType::f64:
-      return store_and_find<VoxelType::f64>(original, requantized, stored, check, bound, out);
+      return store_and_find<VoxelType::f64>(original, requantized, stored, check, bound, out, error);
   }
 }
 

@@ -36,13 +36,21 @@ inline double to_stored(double value, VoxelType type) {
 std::vector<Outlier> find_outliers(std::span<const double> original, std::span<double> reconstruction,
                                    std::span<const std::uint8_t> check, double bound, VoxelType type);
 
+// Largest and squared error of a brick's stored values over the voxels that count.
+struct StoredError {
+  double max = 0.0;
+  double sse = 0.0;
+};
+
 // find_outliers of a reconstruction held as float (`requantized`, as the decoder holds it before
-// widening): writes its stored values, corrections applied, to `stored` and the outliers to `out`
-// in one pass (no separate conversion pass). Same result as converting with to_stored, then
+// widening), in one pass (no separate conversion pass): the outliers to `out`, the error of the
+// stored values (corrections applied) over the voxels `check` marks to `error` unless it is null,
+// and the stored values themselves to `stored` unless it is empty (the encoder's candidate steps
+// need neither, its chosen one only the error). Same result as converting with to_stored, then
 // find_outliers.
 void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
                              std::span<double> stored, std::span<const std::uint8_t> check, double bound,
-                             VoxelType type, std::vector<Outlier>& out);
+                             VoxelType type, std::vector<Outlier>& out, StoredError* error);
 
 // Applies decoded corrections to a brick's reconstruction (then rounds to the stored type).
 void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> outliers, double bound,

@@ -107,6 +107,12 @@ struct VolumeOutput {
   VolumeStrides strides{0, 0, 0};
   VoxelType storage = VoxelType::f32;
   std::uint8_t* active = nullptr;
+  // Optional, for an output mapped from a file: called (with done_context) for planes [z0, z1)
+  // once the decoder has written every voxel of them (dense grids, full resolution), so their
+  // pages can leave resident memory. Called from worker threads (bricks run in parallel), so it
+  // must be thread-safe. Null: nothing is reported.
+  void (*done_slabs)(const void* context, const VolumeOutput& out, std::size_t z0, std::size_t z1) = nullptr;
+  const void* done_context = nullptr;
 
   std::ptrdiff_t offset(std::size_t x, std::size_t y, std::size_t z) const {
     return std::ptrdiff_t(x) * strides[0] + std::ptrdiff_t(y) * strides[1] + std::ptrdiff_t(z) * strides[2];

@@ -5,10 +5,12 @@
 // which is not built with the sanitizers, whose allocators this would bypass).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <new>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,44 @@ TEST(VolumeMemory, EncodingFromAU8ViewHoldsNoWholeVolumeCopy) {
   // bricks and the stream (~1.7 MB here) stay well below a u16 copy, a quarter of that.
   EXPECT_LT(peak, 2 * voxels.size()) << "peak live heap bytes " << peak << " for " << voxels.size()
                                      << " u8 voxels";
+}
+
+// Given a writer, the encoder hands each brick's chunk on as soon as the bricks before it are
+// written: it holds the bricks in flight (per thread a brick's samples and transform, a few
+// chunks waiting), never the coded volume (which the old encoder kept until all bricks were
+// coded). The field here is noisy, so the stream (most of the u8 voxels' size) dwarfs a brick.
+TEST(VolumeMemory, EncodingToAWriterHoldsOnlyTheBricksInFlight) {
+  auto voxels = smooth_u8(kEdge);
+  std::uint32_t seed = 12345;
+  for (auto& v : voxels) {
+    seed = seed * 1664525u + 1013904223u;
+    v = std::uint8_t(std::min(255u, v + (seed >> 26)));  // + 0..63
+  }
+  const pupwave::VolumeView view =
+      pupwave::contiguous_view(voxels.data(), {kEdge, kEdge, kEdge}, pupwave::VoxelType::u8);
+  const pupwave::VolumeView views[] = {view};
+  for (const auto mode : {pupwave::VolumeRateMode::lossless, pupwave::VolumeRateMode::max_error}) {
+    pupwave::VolumeEncodeOptions o;
+    o.mode = mode;
+    o.target = 1.0;
+    o.transform = mode == pupwave::VolumeRateMode::lossless ? "cdf53" : "cdf97";
+    o.brick = 32;
+    const auto pool = pupwave::make_pool_executor(2);
+    o.executor = pool.get();
+    std::size_t stream = 0;
+    pupwave::encode_volumes({pupwave::describe_view(view, "u8")}, views, o,
+                            [&](std::span<const std::uint8_t> piece) { stream += piece.size(); });  // warm-up
+    stream = 0;
+    const std::size_t peak = peak_during([&] {
+      pupwave::encode_volumes({pupwave::describe_view(view, "u8")}, views, o,
+                              [&](std::span<const std::uint8_t> piece) { stream += piece.size(); });
+    });
+    const std::string name = mode == pupwave::VolumeRateMode::lossless ? "lossless" : "max_error";
+    ::testing::Test::RecordProperty("peak_live_heap_bytes_" + name, std::to_string(peak));
+    ::testing::Test::RecordProperty("stream_bytes_" + name, std::to_string(stream));
+    EXPECT_GT(stream, voxels.size() / 2);
+    EXPECT_LT(peak, stream / 2) << "peak live heap bytes " << peak << " for a stream of " << stream;
+  }
 }
 
 TEST(VolumeMemory, PublicApiEncodesAU8ArrayInPlace) {

@@ -4,6 +4,7 @@
 // plain per-voxel code they replace gives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -117,8 +118,34 @@ TEST(VolumePipeline, StoreAndFindOutliersEqualsConvertThenFind) {
       const std::vector<Outlier> want_outliers = find_outliers(original, want, mask, 2.0, type);
       std::vector<double> got(n);
       std::vector<Outlier> got_outliers{{7, 7}};  // cleared first
-      store_and_find_outliers(original, requantized, got, mask, 2.0, type, got_outliers);
+      StoredError error;
+      store_and_find_outliers(original, requantized, got, mask, 2.0, type, got_outliers, &error);
       ASSERT_GT(want_outliers.size(), 100u);
+      // The error of the stored values over the voxels that count, summed in voxel order.
+      double want_max = 0.0, want_sse = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (masked && check[i] == 0) continue;
+        const double e = std::abs(original[i] - want[i]);
+        want_max = std::max(want_max, e);
+        want_sse += e * e;
+      }
+      EXPECT_GT(want_max, 0.0);
+      EXPECT_LE(want_max, 2.0);
+      EXPECT_EQ(error.max, want_max) << to_string(type);
+      EXPECT_EQ(error.sse, want_sse) << to_string(type);
+      // Without the stored values (the encoder's candidates): the same outliers and error.
+      std::vector<Outlier> bare_outliers;
+      StoredError bare;
+      store_and_find_outliers(original, requantized, {}, mask, 2.0, type, bare_outliers, &bare);
+      ASSERT_EQ(bare_outliers.size(), want_outliers.size());
+      EXPECT_EQ(bare.max, error.max);
+      EXPECT_EQ(bare.sse, error.sse);
+      // Nor the error (the encoder's candidate steps): the same outliers.
+      std::vector<Outlier> only_outliers;
+      store_and_find_outliers(original, requantized, {}, mask, 2.0, type, only_outliers, nullptr);
+      ASSERT_EQ(only_outliers.size(), want_outliers.size());
+      for (std::size_t k = 0; k < only_outliers.size(); ++k)
+        EXPECT_EQ(only_outliers[k].k, want_outliers[k].k);
       ASSERT_EQ(got_outliers.size(), want_outliers.size()) << to_string(type);
       for (std::size_t k = 0; k < got_outliers.size(); ++k) {
         EXPECT_EQ(got_outliers[k].index, want_outliers[k].index);

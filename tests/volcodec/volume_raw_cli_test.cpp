@@ -1,13 +1,16 @@
 // Raw volumes through the CLI in their own type: a u8 file (mapped read-only, encoded from a
 // view) comes back byte for byte, to a file and to stdout (decoded into a u8 buffer); the stream
 // is written to the output file chunk by chunk, yet a failed encode leaves no output and never
-// clobbers an existing file.
+// clobbers an existing file. A u8 bound below 1 codes lossless and says so; decoding to a file
+// (its slabs unmapped once written) gives the bytes decoding to stdout does.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "cli/run_cli.h"
 #include "tools/atomic_file.h"
@@ -49,6 +52,60 @@ TEST_F(VolumeRawCli, U8RawRoundTripsByteForByte) {
                              path("stdout.raw") + "'");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(cli::read_file_bytes(path("stdout.raw")), original);
+}
+
+// An integer volume's errors are whole numbers: a bound below 1 allows none, and the CLI codes
+// the lossless stream (smaller than transform coding plus a correction for most voxels) and says
+// so; --max-error-rel 1e-3 of a u8 range (0.255) is such a bound.
+TEST_F(VolumeRawCli, U8BoundBelowOneCodesLosslessAndSaysSo) {
+  const Volume v = test::smooth_volume({37, 21, 11}, VoxelType::u8, 255.0);
+  cli::write_raw_volume(v, path("in.raw"));
+  const std::vector<std::string> raw = {"--dims", "37,21,11", "--dtype", "u8", "--brick", "16"};
+  const auto compress = [&](const std::string& out, std::vector<std::string> flags) {
+    std::vector<std::string> args = {"compress", path("in.raw"), path(out)};
+    args.insert(args.end(), raw.begin(), raw.end());
+    args.insert(args.end(), flags.begin(), flags.end());
+    return run_cli(args);
+  };
+  auto r = compress("lossless.pw", {"--lossless"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("coded lossless instead"), std::string::npos) << r.output;
+  for (const std::vector<std::string>& flags : {std::vector<std::string>{"--max-error", "0.3"},
+                                                std::vector<std::string>{"--max-error-rel", "1e-3"}}) {
+    r = compress("bound.pw", flags);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("allows no error"), std::string::npos) << flags[0] << r.output;
+    EXPECT_NE(r.output.find("coded lossless instead"), std::string::npos) << flags[0] << r.output;
+    EXPECT_EQ(cli::read_file_bytes(path("bound.pw")), cli::read_file_bytes(path("lossless.pw"))) << flags[0];
+  }
+  r = compress("two.pw", {"--max-error", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("coded lossless instead"), std::string::npos) << r.output;
+  ASSERT_EQ(run_cli({"decompress", path("two.pw"), path("two.raw")}).exit_code, 0);
+  EXPECT_LE(test::worst_error(v, cli::read_raw_volume(path("two.raw"), v.dims, VoxelType::u8)), 2.0);
+}
+
+// Decoding to a raw file unmaps each z-slab of the output once written (whole pages: planes of
+// 64x64 u8 voxels are 4 KiB, slabs of --brick 8 are 8 planes): the file must hold what the
+// decode to stdout (into memory, nothing unmapped) gives, byte for byte.
+TEST_F(VolumeRawCli, DecodeToFileReleasingSlabsEqualsDecodeToStdout) {
+  for (const char* type : {"u8", "f32"}) {
+    const VoxelType t = std::string(type) == "u8" ? VoxelType::u8 : VoxelType::f32;
+    const Volume v = test::smooth_volume({64, 64, 37}, t, 255.0);
+    cli::write_raw_volume(v, path("in.raw"));
+    auto r = run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "64,64,37", "--dtype", type,
+                      "--brick", "8", "--max-error", "0.5"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    r = run_cli({"decompress", path("v.pw"), path("out.raw"), "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    r = test::run_shell_output(std::string(PUPWAVE_CLI) + " decompress '" + path("v.pw") + "' - -q > '" +
+                               path("stdout.raw") + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto file = cli::read_file_bytes(path("out.raw"));
+    EXPECT_EQ(file.size(), v.count() * (t == VoxelType::u8 ? 1u : 4u)) << type;
+    EXPECT_EQ(file, cli::read_file_bytes(path("stdout.raw"))) << type;
+    if (t == VoxelType::u8) EXPECT_EQ(file, cli::read_file_bytes(path("in.raw")));  // 0.5: lossless
+  }
 }
 
 TEST_F(VolumeRawCli, FailedEncodeLeavesTheOutputUntouched) {
