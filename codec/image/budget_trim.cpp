@@ -8,8 +8,9 @@ namespace pupwave {
 namespace {
 
 // The bound is raised each time the blocks held grow by this share of the budget past it:
-// the held bytes stay within about 1 + 1/kCheckShare budgets, at a few bound searches per image.
-constexpr double kCheckShare = 8.0;
+// the held bytes stay within about 1 + 1/kCheckShare budgets (and the hull points a cut
+// keeps past the bound), at a few bound searches per image.
+constexpr double kCheckShare = 16.0;
 // ... and by at least this many bytes (small images would search at nearly every block).
 constexpr std::size_t kMinCheckBytes = std::size_t(64) << 10;
 

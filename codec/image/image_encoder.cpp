@@ -34,8 +34,9 @@ namespace pupwave {
 namespace {
 
 // Most codeword bytes a trial encode against a byte limit holds (code_every_pass): the
-// lossless trial of a 32768^2 image at 1 bpp held 128 MiB before it overflowed.
-constexpr std::size_t kMaxTrialBytes = std::size_t(16) << 20;
+// lossless trial of a 32768^2 image at 1 bpp held 128 MiB before it overflowed. Above it, a
+// trial that fits after all is coded twice.
+constexpr std::size_t kMaxTrialBytes = std::size_t(64) << 20;
 // Finest base step tried when a target needs more precision than the first guess.
 constexpr int kMaxStepRefinements = 4;
 // PSNR targets are met from above within this margin (dB) when possible.
@@ -75,6 +76,13 @@ double guess_margin(const ImagePlan& plan) { return plan.header.channels >= 3 ? 
 // finer indices would overflow the block coder without improving the result.
 constexpr double kFinestBaseStep = 1.0 / 131072.0;
 
+// Returns the pages of freed memory to the system (glibc's malloc_trim; elsewhere nothing).
+void return_freed_pages() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 // Hands the pages of many small freed blocks (codewords copied into a stream) back to the
 // system every kTrimBytes: the allocator keeps them otherwise, and the copy and its source
 // would both stay resident (glibc's malloc_trim; elsewhere nothing is done).
@@ -83,9 +91,7 @@ class FreedMemory {
   void add(std::size_t bytes) {
     if ((pending_ += bytes) < kTrimBytes) return;
     pending_ = 0;
-#ifdef __GLIBC__
-    malloc_trim(0);
-#endif
+    return_freed_pages();
   }
 
  private:
@@ -208,7 +214,11 @@ std::optional<std::vector<std::uint8_t>> code_every_pass(
         words[i] = coded.codeword(n);
         words[i].shrink_to_fit();  // codeword() leaves up to twice the capacity it needs
       });
-  if (over) return std::nullopt;
+  if (over) {
+    words.clear();
+    return_freed_pages();  // the many small codewords would stay resident through the lossy encode
+    return std::nullopt;
+  }
   if (dropped) {
     words.clear();
     return code_every_pass(plan);
@@ -502,6 +512,9 @@ EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp
     passes = allocate_by_slope(mixed.hulls, true, fits);
   release_coefficients(plan);
   fill_budget(plan, mixed, passes, budget);
+  // The hulls are done with: freed now, the pages they share with the blocks go back to the
+  // system as build_final frees the blocks (a 32768^2 image's hulls hold about 60 MiB).
+  std::vector<std::vector<HullPoint>>().swap(mixed.hulls);
   auto bytes = build_final(plan, mixed, passes);
   mixed = CodedImage{};  // free the coded blocks before the PSNR check decodes the stream
   return make_encode_result(image, plan, std::move(bytes), base);
