@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
@@ -25,6 +26,23 @@ void write_chunk(std::vector<std::uint8_t>& out, const ChunkTag& tag, std::span<
   w.u32(std::uint32_t(payload.size()));
   w.bytes(payload);
   w.u32(crc32(std::span<const std::uint8_t>(out).subspan(start)));
+}
+
+std::size_t begin_chunk(std::vector<std::uint8_t>& out, const ChunkTag& tag, std::size_t size) {
+  if (size > std::numeric_limits<std::uint32_t>::max())
+    throw EncodeError("chunk " + std::string(tag, 4) + " exceeds 4 GiB");
+  const std::size_t start = out.size();
+  ByteWriter w(out);
+  w.bytes({reinterpret_cast<const std::uint8_t*>(tag), 4});
+  w.u32(std::uint32_t(size));
+  return start;
+}
+
+void end_chunk(std::vector<std::uint8_t>& out, std::size_t start) {
+  std::uint32_t size = 0;
+  for (int k = 0; k < 4; ++k) size |= std::uint32_t(out[start + 4 + std::size_t(k)]) << (8 * k);
+  if (out.size() != start + 8 + size) throw std::logic_error("end_chunk: the payload is not the size begun");
+  ByteWriter(out).u32(crc32(std::span<const std::uint8_t>(out).subspan(start)));
 }
 
 bool has_signature(std::span<const std::uint8_t> bytes, const ChunkTag& magic) {

@@ -35,6 +35,12 @@ void write_signature(std::vector<std::uint8_t>& out, const ChunkTag& magic, std:
 // Appends one framed chunk. Throws EncodeError for a payload of 4 GiB or more.
 void write_chunk(std::vector<std::uint8_t>& out, const ChunkTag& tag, std::span<const std::uint8_t> payload);
 
+// One framed chunk written in place, for payloads too large to hold twice: begin_chunk
+// appends the tag and length, the caller then appends exactly `size` payload bytes, and
+// end_chunk (given begin_chunk's result) appends the CRC. Throws EncodeError as write_chunk.
+std::size_t begin_chunk(std::vector<std::uint8_t>& out, const ChunkTag& tag, std::size_t size);
+void end_chunk(std::vector<std::uint8_t>& out, std::size_t start);
+
 // True when bytes start with `magic` (the version and chunks are not looked at).
 bool has_signature(std::span<const std::uint8_t> bytes, const ChunkTag& magic);
 

@@ -158,13 +158,14 @@ const char* to_string(EntropyCoder coder) {
   return "unknown";
 }
 
-std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
-                                          const std::vector<std::vector<std::uint8_t>>& resolution_data) {
+namespace {
+
+// The signature and every chunk before the DATA payloads, in a buffer sized for the whole
+// stream (grown by doubling, the last reallocation would hold up to three times the stream).
+std::vector<std::uint8_t> container_head(const StreamHeader& header, std::span<const BlockEntry> index,
+                                         std::size_t data_bytes) {
   const auto coded = encode_index(index);
-  std::size_t data_bytes = 0;
-  for (const auto& data : resolution_data) data_bytes += data.size();
   std::vector<std::uint8_t> out;
-  // Sized once: grown by doubling, the last reallocation holds up to three times the stream.
   out.reserve(container_size(header, coded.size(), data_bytes));
   write_signature(out, kSignature, kStreamVersion);
   write_chunk(out, "HEAD", header_payload(header));
@@ -176,7 +177,31 @@ std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<
   iw.u32(std::uint32_t(index.size()));
   iw.bytes(coded);
   write_chunk(out, "INDX", index_payload);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
+                                          const std::vector<std::vector<std::uint8_t>>& resolution_data) {
+  std::size_t data_bytes = 0;
+  for (const auto& data : resolution_data) data_bytes += data.size();
+  auto out = container_head(header, index, data_bytes);
   for (const auto& data : resolution_data) write_chunk(out, "DATA", data);
+  return out;
+}
+
+std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
+                                          std::span<const std::size_t> resolution_sizes,
+                                          const PayloadWriter& append) {
+  std::size_t data_bytes = 0;
+  for (std::size_t size : resolution_sizes) data_bytes += size;
+  auto out = container_head(header, index, data_bytes);
+  for (std::size_t r = 0; r < resolution_sizes.size(); ++r) {
+    const std::size_t start = begin_chunk(out, "DATA", resolution_sizes[r]);
+    append(r, out);
+    end_chunk(out, start);
+  }
   return out;
 }
 

@@ -6,6 +6,7 @@
 // The parser treats its input as hostile: every field and length is validated before use.
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -71,6 +72,16 @@ struct StreamHeader {
 // Assembles a file: header, index of all blocks, and one data payload per resolution.
 std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
                                           const std::vector<std::vector<std::uint8_t>>& resolution_data);
+
+// Appends resolution r's DATA payload to the stream being written.
+using PayloadWriter = std::function<void(std::size_t r, std::vector<std::uint8_t>& out)>;
+
+// write_container with each payload appended in place by `append` (resolution_sizes[r] bytes
+// for resolution r; a different count throws std::logic_error), so a large stream's payloads
+// are never held beside it.
+std::vector<std::uint8_t> write_container(const StreamHeader& header, std::span<const BlockEntry> index,
+                                          std::span<const std::size_t> resolution_sizes,
+                                          const PayloadWriter& append);
 
 // Size in bytes write_container would produce for these parts (without building it).
 std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, std::size_t data_bytes);

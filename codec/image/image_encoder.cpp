@@ -17,6 +17,7 @@
 #include "codec/entropy/block_contexts.h"
 #include "codec/entropy/block_encoder.h"
 #include "codec/error.h"
+#include "codec/image/budget_trim.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_encoder_ht.h"
 #include "codec/image/image_plan.h"
@@ -33,6 +34,10 @@
 namespace pupwave {
 namespace {
 
+// Most codeword bytes a trial encode against a byte limit holds (code_every_pass): the
+// lossless trial of a 32768^2 image at 1 bpp held 128 MiB before it overflowed. Above it, a
+// trial that fits after all is coded twice.
+constexpr std::size_t kMaxTrialBytes = std::size_t(64) << 20;
 // Finest base step tried when a target needs more precision than the first guess.
 constexpr int kMaxStepRefinements = 4;
 // PSNR targets are met from above within this margin (dB) when possible.
@@ -72,6 +77,13 @@ double guess_margin(const ImagePlan& plan) { return plan.header.channels >= 3 ? 
 // finer indices would overflow the block coder without improving the result.
 constexpr double kFinestBaseStep = 1.0 / 131072.0;
 
+// Returns the pages of freed memory to the system (glibc's malloc_trim; elsewhere nothing).
+void return_freed_pages() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 // Hands the pages of many small freed blocks (codewords copied into a stream) back to the
 // system every kTrimBytes: the allocator keeps them otherwise, and the copy and its source
 // would both stay resident (glibc's malloc_trim; elsewhere nothing is done).
@@ -80,9 +92,7 @@ class FreedMemory {
   void add(std::size_t bytes) {
     if ((pending_ += bytes) < kTrimBytes) return;
     pending_ = 0;
-#ifdef __GLIBC__
-    malloc_trim(0);
-#endif
+    return_freed_pages();
   }
 
  private:
@@ -90,11 +100,12 @@ class FreedMemory {
   std::size_t pending_ = 0;
 };
 
-// All blocks coded with every pass; the PCRD inputs.
+// All blocks coded with every pass (or those a byte budget can keep: BudgetTrim); the PCRD inputs.
 struct CodedImage {
   std::vector<KeptBlock> blocks;
   std::vector<std::vector<HullPoint>> hulls;
   double initial_distortion = 0.0;  // index units^2, nothing coded
+  std::size_t every_pass_size = 0;  // bytes of the stream with every pass of every block
 };
 
 // Whether component c is coded from a strip-wise transform (image_strip_encoder.h) rather
@@ -146,34 +157,49 @@ void quantize_blocks(ImagePlan& plan, bool keep, const std::function<bool()>& st
   if (!keep) release_coefficients(plan);
 }
 
-// Codes every block with every pass and its rate-distortion hull (quantize_blocks).
-CodedImage code_blocks(ImagePlan& plan, bool keep = false) {
+// Codes every block with every pass and its rate-distortion hull (quantize_blocks). With a
+// byte `budget` (a single family cut by one slope threshold), holds only the passes PCRD can
+// choose for it (budget_trim.h).
+CodedImage code_blocks(ImagePlan& plan, bool keep = false, std::optional<double> budget = std::nullopt) {
   CodedImage out;
   out.blocks.resize(plan.blocks.size());
   out.hulls.resize(plan.blocks.size());
+  std::vector<BlockEntry> every(plan.blocks.size());
+  std::optional<BudgetTrim> trim;
+  if (budget) trim.emplace(out.blocks, out.hulls, *budget);
   quantize_blocks(
       plan, keep, [] { return false; },
       [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
         const CodeBlock& b = plan.blocks[i];
         EncodedBlock coded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-        out.hulls[i] = rd_hull(coded);
+        const int n = coded.pass_count();
+        every[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(coded.size(n))};
+        auto hull = rd_hull(coded);
+        if (trim) return trim->add(i, std::move(coded), std::move(hull));
+        out.hulls[i] = std::move(hull);
         out.hulls[i].shrink_to_fit();
         out.blocks[i] = KeptBlock(std::move(coded));
       });
   for (const auto& b : out.blocks) out.initial_distortion += b.initial_distortion;
+  std::size_t data = 0;
+  for (const auto& e : every) data += e.length;
+  out.every_pass_size = container_size(plan.header, encode_index(every).size(), data);
   return out;
 }
 
 // The stream with every pass of every block (step and lossless encodes), or nullopt once the
 // codewords exceed `byte_limit` bytes. Only each block's whole codeword is kept, not its
 // truncation points and hull (those take more memory than the codewords: 0.6 GB for a
-// 32768^2 image).
+// 32768^2 image). Against a limit (a trial, mostly one that overflows: the lossless stream
+// against a lossy budget), codewords are kept only up to kMaxTrialBytes and then just counted,
+// and a trial that fits after all is coded again.
 std::optional<std::vector<std::uint8_t>> code_every_pass(
     ImagePlan& plan, std::size_t byte_limit = std::numeric_limits<std::size_t>::max()) {
+  const bool trial = byte_limit != std::numeric_limits<std::size_t>::max();
   std::vector<BlockEntry> entries(plan.blocks.size());
   std::vector<std::vector<std::uint8_t>> words(plan.blocks.size());
   std::atomic<std::size_t> total{0};
-  std::atomic<bool> over{false};
+  std::atomic<bool> over{false}, dropped{false};
   quantize_blocks(
       plan, false, [&] { return over.load(std::memory_order_relaxed); },
       [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
@@ -182,24 +208,34 @@ std::optional<std::vector<std::uint8_t>> code_every_pass(
             encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
         const int n = coded.pass_count();
         entries[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(coded.size(n))};
+        const std::size_t sum = total.fetch_add(coded.size(n)) + coded.size(n);
+        if (sum > byte_limit) over = true;
+        if (trial && sum > kMaxTrialBytes) dropped = true;
+        if (dropped) return;
         words[i] = coded.codeword(n);
         words[i].shrink_to_fit();  // codeword() leaves up to twice the capacity it needs
-        if (total.fetch_add(words[i].size()) + words[i].size() > byte_limit) over = true;
       });
-  if (over) return std::nullopt;
-  std::vector<std::vector<std::uint8_t>> data(std::size_t(plan.header.levels) + 1);
-  std::vector<std::size_t> sizes(data.size(), 0);
+  if (over) {
+    words.clear();
+    return_freed_pages();  // the many small codewords would stay resident through the lossy encode
+    return std::nullopt;
+  }
+  if (dropped) {
+    words.clear();
+    return code_every_pass(plan);
+  }
+  std::vector<std::size_t> sizes(std::size_t(plan.header.levels) + 1, 0);
   for (std::size_t i = 0; i < words.size(); ++i)
     sizes[std::size_t(plan.blocks[i].resolution)] += words[i].size();
-  for (std::size_t r = 0; r < data.size(); ++r) data[r].reserve(sizes[r]);
   FreedMemory freed;
-  for (std::size_t i = 0; i < words.size(); ++i) {
-    auto& d = data[std::size_t(plan.blocks[i].resolution)];
-    d.insert(d.end(), words[i].begin(), words[i].end());
-    freed.add(words[i].size());
-    std::vector<std::uint8_t>().swap(words[i]);
-  }
-  return write_container(plan.header, entries, data);
+  return write_container(plan.header, entries, sizes, [&](std::size_t r, std::vector<std::uint8_t>& out) {
+    for (std::size_t i = 0; i < words.size(); ++i) {
+      if (std::size_t(plan.blocks[i].resolution) != r) continue;
+      out.insert(out.end(), words[i].begin(), words[i].end());
+      freed.add(words[i].size());
+      std::vector<std::uint8_t>().swap(words[i]);
+    }
+  });
 }
 
 // Magnitudes of component c for the rate model (rate_guess.h), gathered block by block from
@@ -236,33 +272,31 @@ std::size_t stream_size(const ImagePlan& plan, const CodedImage& coded, const st
 double remaining_distortion(const CodedImage& coded, const std::vector<int>& passes) {
   double removed = 0.0;
   for (std::size_t i = 0; i < passes.size(); ++i)
-    for (int n = 0; n < passes[i]; ++n) removed += coded.blocks[i].distortion_drop[std::size_t(n)];
+    for (int n = 0; n < passes[i]; ++n) removed += coded.blocks[i].distortion_drop(n);
   return coded.initial_distortion - removed;
 }
 
-// The stream of `coded` cut at `passes`. Each block's codeword goes straight into its
-// resolution's payload (sized first, so it is never reallocated); `release` frees each block's
-// coded data once copied when `coded` is not const, for the last build of an encode (the
-// coded blocks and the stream are then not both held whole).
+// The stream of `coded` cut at `passes`. Each block's codeword goes straight into the stream
+// (sized first, so it is never reallocated); when `coded` is not const, for the last build of
+// an encode, each block's coded data is freed once copied (the coded blocks and the stream are
+// then not both held whole).
 template <class Coded>
 std::vector<std::uint8_t> build_stream(const ImagePlan& plan, Coded& coded, const std::vector<int>& passes) {
   const auto entries = entries_for(coded, passes);
-  std::vector<std::vector<std::uint8_t>> data(std::size_t(plan.header.levels) + 1);
-  std::vector<std::size_t> sizes(data.size(), 0);
+  std::vector<std::size_t> sizes(std::size_t(plan.header.levels) + 1, 0);
   for (std::size_t i = 0; i < passes.size(); ++i)
     sizes[std::size_t(plan.blocks[i].resolution)] += entries[i].length;
-  for (std::size_t r = 0; r < data.size(); ++r) data[r].reserve(sizes[r]);
   FreedMemory freed;
-  for (std::size_t i = 0; i < passes.size(); ++i) {
-    const auto word = coded.blocks[i].codeword(passes[i]);
-    auto& d = data[std::size_t(plan.blocks[i].resolution)];
-    d.insert(d.end(), word.begin(), word.end());
-    if constexpr (!std::is_const_v<Coded>) {
-      freed.add(coded.blocks[i].committed.size());
-      coded.blocks[i] = KeptBlock{};
+  return write_container(plan.header, entries, sizes, [&](std::size_t r, std::vector<std::uint8_t>& out) {
+    for (std::size_t i = 0; i < passes.size(); ++i) {
+      if (std::size_t(plan.blocks[i].resolution) != r) continue;
+      coded.blocks[i].append_codeword(passes[i], out);
+      if constexpr (!std::is_const_v<Coded>) {
+        freed.add(coded.blocks[i].bytes_held());
+        coded.blocks[i] = KeptBlock{};
+      }
     }
-  }
-  return write_container(plan.header, entries, data);
+  });
 }
 
 std::vector<std::uint8_t> build(const ImagePlan& plan, const CodedImage& coded,
@@ -274,12 +308,6 @@ std::vector<std::uint8_t> build(const ImagePlan& plan, const CodedImage& coded,
 std::vector<std::uint8_t> build_final(const ImagePlan& plan, CodedImage& coded,
                                       const std::vector<int>& passes) {
   return build_stream(plan, coded, passes);
-}
-
-std::vector<int> all_passes(const CodedImage& coded) {
-  std::vector<int> passes;
-  for (const auto& b : coded.blocks) passes.push_back(b.pass_count());
-  return passes;
 }
 
 // Bisection leaves a little of the budget unused where the next hull points of blocks are
@@ -441,8 +469,8 @@ bool pull_isolated_coefficients(const ImagePlan& plan, CodedImage& coded, const 
 Family code_family(ImagePlan& plan, double base, double budget, bool keep) {
   for (int round = 0;; ++round, base /= 4.0) {
     set_base_step(plan, base);
-    CodedImage coded = code_blocks(plan, keep);
-    const bool fits_all = double(stream_size(plan, coded, all_passes(coded))) <= 0.95 * budget;
+    CodedImage coded = code_blocks(plan, keep, keep ? std::nullopt : std::optional<double>(budget));
+    const bool fits_all = double(coded.every_pass_size) <= 0.95 * budget;
     if (fits_all && round < kMaxStepRefinements) continue;
     return Family{base, std::move(coded)};
   }
@@ -473,7 +501,8 @@ EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp
     families.push_back(
         Family{families[0].base * std::exp2(-double(f) / kSizeFamilies), code_blocks(plan, true)});
   }
-  const double lambda = mixed_threshold(plan, families, budget);
+  // One family needs no choosing (and its hulls may be cut: BudgetTrim).
+  const double lambda = families.size() > 1 ? mixed_threshold(plan, families, budget) : 0.0;
   base = families[0].base;  // the base step reported: family 0's (bands may use finer ones)
   std::vector<double> scale;
   CodedImage mixed = mix_families(plan, families, choose_families(plan, families, lambda), scale);
@@ -484,6 +513,9 @@ EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp
     passes = allocate_by_slope(mixed.hulls, true, fits);
   release_coefficients(plan);
   fill_budget(plan, mixed, passes, budget);
+  // The hulls are done with: freed now, the pages they share with the blocks go back to the
+  // system as build_final frees the blocks (a 32768^2 image's hulls hold about 60 MiB).
+  std::vector<std::vector<HullPoint>>().swap(mixed.hulls);
   auto bytes = build_final(plan, mixed, passes);
   mixed = CodedImage{};  // free the coded blocks before the PSNR check decodes the stream
   return make_encode_result(image, plan, std::move(bytes), base);

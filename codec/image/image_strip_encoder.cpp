@@ -11,18 +11,15 @@
 namespace pupwave {
 namespace {
 
-// Rows of input read, and of coefficients (interleaved) produced per level, at a time: the
-// column analysis of a window costs its 2 * reach overlap rows once per chunk.
+// Rows of coefficients (interleaved) produced per level at a time: the column analysis of a
+// window costs its 2 * reach overlap rows once per chunk.
 constexpr std::size_t kChunk = 64;
+// Most rows read, or handed from a level to the next or to a band, at a time: every receiver
+// holds what it needs plus one delivery, so small deliveries keep the buffers near their
+// least (a whole chunk at a time held 3.7 MB more for a 4096-wide image).
+constexpr std::size_t kPiece = 16;
 // Columns per column-analysis task (a window of them stays in cache while lifted).
 constexpr std::size_t kColumnChunk = 128;
-
-// A code-block whose rows are complete, waiting to be handed to the sink.
-template <class T>
-struct ReadyBlock {
-  std::size_t block;
-  std::vector<T> values;
-};
 
 // Takes rows top to bottom: `count` rows of the receiver's width, row i at rows + i * stride.
 template <class T>
@@ -32,14 +29,14 @@ class RowSink {
   virtual void add(const T* rows, std::size_t stride, std::size_t count) = 0;
 };
 
-// One subband of the component: keeps its rows until a block row is complete, then copies its
-// blocks out to `ready` and drops those rows.
+// One subband of the component: keeps its rows until a block row is complete, then hands its
+// blocks to the sink (as tasks, each copying its block out) and drops those rows.
 template <class T>
 class BandBlocks final : public RowSink<T> {
  public:
   BandBlocks(const ImagePlan& plan, const std::vector<std::size_t>& blocks, const Subband& band,
-             std::vector<ReadyBlock<T>>& ready)
-      : plan_(plan), ready_(ready), x0_(band.offset[0]), y0_(band.offset[1]), width_(band.size[0]) {
+             const BlockSink<T>& sink)
+      : plan_(plan), sink_(sink), x0_(band.offset[0]), y0_(band.offset[1]), width_(band.size[0]) {
     for (std::size_t i : blocks) {  // partition order: block rows top to bottom, x fastest
       const CodeBlock& b = plan.blocks[i];
       if (block_rows_.empty() || block_rows_.back().y0 != b.offset[1] - y0_)
@@ -49,7 +46,7 @@ class BandBlocks final : public RowSink<T> {
     // The most rows held: a block row less one, and the rows one delivery adds.
     std::size_t tallest = 0;
     for (const auto& r : block_rows_) tallest = std::max(tallest, r.y1 - r.y0);
-    data_.reserve((tallest + kChunk / 2 + 1) * width_);
+    data_.reserve((tallest + kPiece) * width_);
   }
 
   void add(const T* rows, std::size_t stride, std::size_t count) override {
@@ -68,21 +65,25 @@ class BandBlocks final : public RowSink<T> {
     std::vector<std::size_t> blocks;
   };
 
+  // Coded as soon as complete rather than gathered per strip: a strip of a wide image
+  // completes block rows of several bands and levels at once (a copy of each held 3 MB for
+  // a 4096-wide image).
   void emit_row(const BlockRow& br) {
-    for (std::size_t i : br.blocks) {
+    plan_.executor->run(br.blocks.size(), [&](std::size_t k) {
+      const std::size_t i = br.blocks[k];
       const CodeBlock& b = plan_.blocks[i];
-      ReadyBlock<T> r{i, std::vector<T>(b.count())};
+      std::vector<T> values(b.count());
       for (std::size_t y = 0; y < b.size[1]; ++y)
         std::copy_n(data_.data() + (br.y0 + y - lo_) * width_ + (b.offset[0] - x0_), b.size[0],
-                    r.values.data() + y * b.size[0]);
-      ready_.push_back(std::move(r));
-    }
+                    values.data() + y * b.size[0]);
+      sink_(i, values);
+    });
     data_.erase(data_.begin(), data_.begin() + std::ptrdiff_t((br.y1 - lo_) * width_));
     lo_ = br.y1;
   }
 
   const ImagePlan& plan_;
-  std::vector<ReadyBlock<T>>& ready_;
+  const BlockSink<T>& sink_;
   std::size_t x0_, y0_, width_;
   std::vector<BlockRow> block_rows_;
   std::size_t next_ = 0;  // first block row not emitted yet
@@ -104,7 +105,7 @@ class LevelAnalysis final : public RowSink<T> {
       : t_(t), reach_(reach), width_(region[0]), height_(region[1]), out_(std::move(out)), ex_(ex) {
     // The most rows held: a window (a chunk and its reach on both sides) less one row, and the
     // rows one delivery adds (so the buffer is never reallocated to twice that).
-    data_.reserve(std::min(height_, 2 * kChunk + 2 * reach_ + 2) * width_);
+    data_.reserve(std::min(height_, kChunk + 2 * reach_ + 2 + kPiece) * width_);
   }
 
   void add(const T* rows, std::size_t stride, std::size_t count) override {
@@ -165,8 +166,11 @@ class LevelAnalysis final : public RowSink<T> {
   void deliver(const T* rows, std::size_t count, bool coarse, std::size_t wc) {
     RowSink<T>* low = out_[coarse ? 0 : 2];
     RowSink<T>* high = out_[coarse ? 1 : 3];
-    if (low) low->add(rows, width_, count);
-    if (high) high->add(rows + wc, width_, count);
+    for (std::size_t r = 0; r < count; r += kPiece) {
+      const std::size_t n = std::min(kPiece, count - r);
+      if (low) low->add(rows + r * width_, width_, n);
+      if (high) high->add(rows + r * width_ + wc, width_, n);
+    }
   }
 
   const Transform1D& t_;
@@ -201,13 +205,12 @@ void stream_component(const ImagePlan& plan, std::size_t c, const BlockSink<T>& 
   if (plan.strip_reach == 0) throw std::logic_error("stream_component: the plan's transform is not local");
   const StreamHeader& h = plan.header;
   const Executor& ex = *plan.executor;
-  std::vector<ReadyBlock<T>> ready;
   std::vector<std::vector<std::size_t>> by_band(plan.bands.size());
   for (std::size_t i = 0; i < plan.blocks.size(); ++i)
     if (plan.blocks[i].component == c) by_band[plan.blocks[i].band].push_back(i);
   std::vector<std::unique_ptr<BandBlocks<T>>> bands(plan.bands.size());
   for (std::size_t b = 0; b < plan.bands.size(); ++b)
-    bands[b] = std::make_unique<BandBlocks<T>>(plan, by_band[b], plan.bands[b], ready);
+    bands[b] = std::make_unique<BandBlocks<T>>(plan, by_band[b], plan.bands[b], sink);
   // Levels from the coarsest up, each feeding the next coarser one.
   std::vector<std::unique_ptr<LevelAnalysis<T>>> levels;
   RowSink<T>* top = bands[0].get();
@@ -220,14 +223,15 @@ void stream_component(const ImagePlan& plan, std::size_t c, const BlockSink<T>& 
     top = levels.back().get();
   }
   const std::size_t width = h.dims[0], height = h.dims[1];
-  std::vector<T> rows(kChunk * width);
-  for (std::size_t y0 = 0; y0 < height; y0 += kChunk) {
-    const std::size_t y1 = std::min(height, y0 + kChunk);
+  std::vector<T> rows(kPiece * width);
+  for (std::size_t y0 = 0; y0 < height; y0 += kPiece) {
+    const std::size_t y1 = std::min(height, y0 + kPiece);
     component_rows<T>(plan, c, y0, y1, rows.data());
-    if (plan.source.drop_rows) plan.source.drop_rows(plan.source.drop_context, plan.source, y0, y1);
+    // With the rows before too: the kernel may map pages again while mapping those after them
+    // (ext4's large folios; 4 MB of a 16 MB PGM stayed mapped when only [y0, y1) was dropped).
+    if (plan.source.drop_rows)
+      plan.source.drop_rows(plan.source.drop_context, plan.source, y0 > kChunk ? y0 - kChunk : 0, y1);
     top->add(rows.data(), width, y1 - y0);
-    ex.run(ready.size(), [&](std::size_t k) { sink(ready[k].block, ready[k].values); });
-    ready.clear();
     if (stop()) return;
   }
   for (const auto& b : bands)

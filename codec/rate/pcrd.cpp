@@ -52,4 +52,43 @@ std::vector<int> passes_at_slope(const std::vector<std::vector<HullPoint>>& hull
   return passes;
 }
 
+double bytes_at_slope(const std::vector<std::vector<HullPoint>>& hulls, double lambda) {
+  double bytes = 0.0;
+  for (const auto& hull : hulls) {
+    std::size_t b = 0;
+    for (const HullPoint& p : hull) {
+      if (p.slope < lambda) break;
+      b = p.bytes;
+    }
+    bytes += double(b);
+  }
+  return bytes;
+}
+
+double overflow_slope(const std::vector<std::vector<HullPoint>>& hulls, double budget, double floor) {
+  if (!(bytes_at_slope(hulls, floor) > budget)) return floor;
+  double lo = floor, hi = 0.0, least = std::numeric_limits<double>::infinity();
+  for (const auto& hull : hulls)
+    for (const HullPoint& p : hull)
+      if (std::isfinite(p.slope)) {
+        hi = std::max(hi, p.slope * 2.0);
+        least = std::min(least, p.slope);
+      }
+  if (!(hi > 0.0)) return floor;  // only free points: they hold no bytes
+  if (lo <= 0.0) lo = least;      // every point has slope >= least: the same bytes as at floor
+  // Bisection on log lambda, keeping lo a threshold that is verified to overflow; the bound
+  // only needs to be valid, so a coarse precision will do.
+  for (int iter = 0; iter < 40 && hi / lo > 1.0 + 1e-4; ++iter) {
+    const double mid = std::sqrt(lo * hi);
+    (bytes_at_slope(hulls, mid) > budget ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+std::size_t points_to_keep(const std::vector<HullPoint>& hull, double bound) {
+  std::size_t n = 0;
+  while (n < hull.size() && hull[n].slope >= bound) ++n;
+  return std::min(hull.size(), n + 1);
+}
+
 }  // namespace pupwave

@@ -31,6 +31,21 @@ int passes_at_slope(const std::vector<HullPoint>& hull, double lambda);
 // Per-block passes at one threshold.
 std::vector<int> passes_at_slope(const std::vector<std::vector<HullPoint>>& hulls, double lambda);
 
+// Bytes of all blocks cut at threshold lambda (the sizes of their passes_at_slope points).
+double bytes_at_slope(const std::vector<std::vector<HullPoint>>& hulls, double lambda);
+
+// A lower bound on PCRD's threshold for a byte budget, from the blocks coded so far: a
+// threshold (at least `floor`, which must itself be a bound) at which these blocks alone
+// hold more than `budget` bytes. Blocks coded later only add bytes, so no threshold at or
+// below it fits the budget; returns `floor` when the blocks so far do not exceed it.
+double overflow_slope(const std::vector<std::vector<HullPoint>>& hulls, double budget, double floor);
+
+// Hull points a size-target PCRD can still use once its threshold is known to be above
+// `bound`: those with slope >= bound, and the first one below (the next truncation point
+// fill_budget may add). Cutting a hull to them changes no passes_at_slope result that fits
+// the budget, and makes every one that does not still not fit.
+std::size_t points_to_keep(const std::vector<HullPoint>& hull, double bound);
+
 // The slope threshold where `accept(passes_at_slope(hulls, lambda))` changes, by bisection
 // on log lambda. accept must be monotone in lambda: with `accept_high` (a size budget) it
 // holds for large lambda and the smallest accepted lambda is returned (most bytes that fit);
