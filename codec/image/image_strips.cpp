@@ -9,6 +9,7 @@
 #include "codec/error.h"
 #include "codec/image/image_components.h"
 #include "transforms/reach.h"
+#include "transforms/scratch.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -76,7 +77,7 @@ class BandRows {
   std::size_t x0_, y0_, width_;
   std::vector<BlockRow> block_rows_;
   std::size_t next_ = 0;  // first block row not decoded yet
-  std::vector<T> data_;   // band rows [lo_, hi_)
+  RowBuffer<T> data_;     // band rows [lo_, hi_) (every row decoded before it is read)
   std::size_t lo_ = 0, hi_ = 0;
 };
 
@@ -150,14 +151,13 @@ class LevelRows {
       const std::size_t chunks = (width_ + kColumnChunk - 1) / kColumnChunk;
       ex_.run(chunks, [&](std::size_t k) {
         const std::size_t x0 = k * kColumnChunk, nb = std::min(kColumnChunk, width_ - x0);
-        std::vector<T> g(n * nb);
+        T* g = thread_rows<T>(n * nb);  // every row is written below
         for (std::size_t i = 0; i < n; ++i) {
           const bool detail = i >= c1 - c0;
-          copy_layout_row(c0 + (detail ? i - (c1 - c0) : i), detail, x0, nb, g.data() + i * nb);
+          copy_layout_row(c0 + (detail ? i - (c1 - c0) : i), detail, x0, nb, g + i * nb);
         }
-        t_.synthesize_columns(std::span<T>(g.data(), g.size()), nb);
-        for (std::size_t p = p0; p < p1; ++p)
-          std::copy_n(g.data() + (p - w0) * nb, nb, out + (p - p0) * width_ + x0);
+        t_.synthesize_columns(std::span<T>(g, n * nb), nb);
+        for (std::size_t p = p0; p < p1; ++p) std::copy_n(g + (p - w0) * nb, nb, out + (p - p0) * width_ + x0);
       });
     } else {
       child_->ensure(0, 1);
@@ -173,7 +173,7 @@ class LevelRows {
   std::unique_ptr<LevelRows> child_;  // level l + 1; null at the coarsest level
   Bands bands_;                       // [0]: the coarse band (coarsest level only), [1..3]: details of l + 1
   const Executor& ex_;
-  std::vector<T> data_;  // rows [lo_, hi_)
+  RowBuffer<T> data_;  // rows [lo_, hi_) (every row produced before it is read)
   std::size_t lo_ = 0, hi_ = 0;
 };
 
