@@ -154,10 +154,11 @@ class LevelRows {
   void copy_layout_row(std::size_t r, bool detail, std::size_t x0, std::size_t n, T* out) const {
     const std::size_t wc = child_->width();
     const T* left = detail ? bands_[2]->row(r) : child_->row(r);
-    for (std::size_t x = x0; x < x0 + n && x < wc; ++x) out[x - x0] = left[x];
+    if (x0 < wc) std::copy_n(left + x0, std::min(x0 + n, wc) - x0, out);  // two plain copies: memcpy
     if (x0 + n <= wc) return;
     const T* right = bands_[detail ? 3 : 1]->row(r);
-    for (std::size_t x = std::max(x0, wc); x < x0 + n; ++x) out[x - x0] = right[x - wc];
+    const std::size_t from = std::max(x0, wc);
+    std::copy_n(right + (from - wc), x0 + n - from, out + (from - x0));
   }
 
   void produce(std::size_t p0, std::size_t p1) {
