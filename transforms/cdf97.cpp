@@ -18,7 +18,7 @@ constexpr lifting::Taps kPredict2{kGamma, 0}, kUpdate2{kDelta, -1};
 template <class T>
 void analyze97(std::span<T> line) {
   const std::size_t n = line.size();
-  if (n < 2) return;  // JPEG 2000: a single (even) sample passes unchanged
+  if (n < 2) return;                           // JPEG 2000: a single (even) sample passes unchanged
   lifting::split(line, thread_scratch<T>(n));  // n: the vectorized split
   const auto e = line.first((n + 1) / 2);
   const auto o = line.subspan((n + 1) / 2);

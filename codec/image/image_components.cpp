@@ -125,10 +125,12 @@ void ict_rows_from_bytes(const ImageView& image, std::size_t c, std::size_t y0, 
   const double *tr = table.data(), *tg = tr + 256, *tb = tg + 256;
   for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
     for (std::size_t y = a; y < b; ++y) {
-      const auto* p = static_cast<const std::uint8_t*>(image.data) + std::ptrdiff_t(y0 + y) * image.row_stride;
+      const auto* p =
+          static_cast<const std::uint8_t*>(image.data) + std::ptrdiff_t(y0 + y) * image.row_stride;
       float* dst = out + y * w;
       for (std::size_t x = 0; x < w; ++x)
-        dst[x] = float(tr[byte_at(p, image, 0, x)] + tg[byte_at(p, image, 1, x)] + tb[byte_at(p, image, 2, x)]);
+        dst[x] =
+            float(tr[byte_at(p, image, 0, x)] + tg[byte_at(p, image, 1, x)] + tb[byte_at(p, image, 2, x)]);
     }
   });
 }
@@ -139,7 +141,8 @@ void rct_rows_from_bytes(const ImageView& image, std::size_t c, std::size_t y0, 
   const std::size_t w = image.width;
   for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
     for (std::size_t y = a; y < b; ++y) {
-      const auto* p = static_cast<const std::uint8_t*>(image.data) + std::ptrdiff_t(y0 + y) * image.row_stride;
+      const auto* p =
+          static_cast<const std::uint8_t*>(image.data) + std::ptrdiff_t(y0 + y) * image.row_stride;
       std::int32_t* dst = out + y * w;
       for (std::size_t x = 0; x < w; ++x) {
         const std::int32_t rgb[3] = {std::int32_t(byte_at(p, image, 0, x)) - shift,
@@ -183,7 +186,8 @@ void integer_component_rows(const ImageView& image, ColourTransform colour, std:
   const std::size_t w = image.width;
   const auto shift = std::int32_t(level_shift(image.type));
   const std::size_t used = colour == ColourTransform::rct && c < 3 ? 3 : 1;
-  if (used == 3 && image.storage == StorageType::u8) return rct_rows_from_bytes(image, c, y0, y1, shift, out, ex);
+  if (used == 3 && image.storage == StorageType::u8)
+    return rct_rows_from_bytes(image, c, y0, y1, shift, out, ex);
   for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
     std::vector<float> rows(used * w);
     for (std::size_t y = a; y < b; ++y) {

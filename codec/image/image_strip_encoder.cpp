@@ -152,7 +152,8 @@ class LevelAnalysis final : public RowSink<T> {
     ex_.run(chunks, [&](std::size_t k) {
       const std::size_t x0 = k * kColumnChunk, nb = std::min(kColumnChunk, width_ - x0);
       T* g = thread_rows<T>(n * nb);  // every row is written below
-      for (std::size_t i = 0; i < n; ++i) std::copy_n(data_.data() + (w0 + i - lo_) * width_ + x0, nb, g + i * nb);
+      for (std::size_t i = 0; i < n; ++i)
+        std::copy_n(data_.data() + (w0 + i - lo_) * width_ + x0, nb, g + i * nb);
       t_.analyze_columns(std::span<T>(g, n * nb), nb);
       for (std::size_t j = c0; j < c1; ++j)
         std::copy_n(g + (j - w0 / 2) * nb, nb, coarse_.data() + (j - c0) * width_ + x0);
@@ -174,10 +175,10 @@ class LevelAnalysis final : public RowSink<T> {
   std::size_t reach_, width_, height_;
   std::vector<RowSink<T>*> out_;
   const Executor& ex_;
-  RowBuffer<T> data_;            // row-analysed input rows [lo_, hi_)
+  RowBuffer<T> data_;             // row-analysed input rows [lo_, hi_)
   RowBuffer<T> coarse_, detail_;  // the coefficient rows of one produce()
-  std::size_t lo_ = 0, hi_ = 0;  // input rows held
-  std::size_t p_ = 0;            // next coefficient (interleaved row) to produce
+  std::size_t lo_ = 0, hi_ = 0;   // input rows held
+  std::size_t p_ = 0;             // next coefficient (interleaved row) to produce
 };
 
 // Index of the band of `level` with `orientation` in plan.bands, or npos.

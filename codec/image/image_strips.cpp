@@ -137,7 +137,7 @@ class LevelRows {
   // Makes rows [a, b) readable and frees those above a; a never decreases between calls.
   void ensure(std::size_t a, std::size_t b) {
     if (!child_) return bands_[0]->ensure(a, b);  // the coarsest level is the coarse band
-    if (a > rows_.end()) rows_.restart(a);       // nothing cached is needed again
+    if (a > rows_.end()) rows_.restart(a);        // nothing cached is needed again
     rows_.drop_before(a);
     while (rows_.end() < b) {
       const std::size_t p0 = rows_.end(), end = std::min(height_, std::max(b, p0 + kLevelChunk));
@@ -183,7 +183,8 @@ class LevelRows {
           copy_layout_row(c0 + (detail ? i - (c1 - c0) : i), detail, x0, nb, g + i * nb);
         }
         t_.synthesize_columns(std::span<T>(g, n * nb), nb);
-        for (std::size_t p = p0; p < p1; ++p) std::copy_n(g + (p - w0) * nb, nb, out + (p - p0) * width_ + x0);
+        for (std::size_t p = p0; p < p1; ++p)
+          std::copy_n(g + (p - w0) * nb, nb, out + (p - p0) * width_ + x0);
       });
     } else {
       child_->ensure(0, 1);
@@ -317,13 +318,13 @@ Image ImageStripDecoder::next(std::size_t rows) {
       inverse_rct(p[0].data(), p[1].data(), p[2].data(), strip.plane_size());
       for (std::size_t c = 0; c < 3; ++c) std::copy_n(p[c].data(), strip.plane_size(), strip.plane(c));
     }
-    finish_image_in_place(strip, ColourTransform::none, serial_executor());
+    finish_image_in_place(strip, ColourTransform::none, *st.ex);  // in parallel: tasks own their samples
     return strip;
   }
   copy_rows(st.float_rows, y0, y1, strip);
   if (st.gain != 1.0)  // dividing by exactly 1 would change no value
     for (float& v : strip.samples) v = float(double(v) / st.gain);
-  finish_image_in_place(strip, h.colour, serial_executor());
+  finish_image_in_place(strip, h.colour, *st.ex);  // in parallel (5% of decode CPU was serial here)
   return strip;
 }
 

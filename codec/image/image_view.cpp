@@ -38,7 +38,8 @@ void copy_row(const ImageView& v, std::ptrdiff_t first, float* out) {
   if (v.pixel_stride == 1) return copy_row_strided<T>(v.data, first, v.width, 1, out);  // vectorizes
   if constexpr (std::is_same_v<T, std::uint8_t>) {
     const auto* p = static_cast<const std::uint8_t*>(v.data) + first;
-    for (std::size_t x = 0; x < v.width; ++x) out[x] = kByteFloats.value[p[std::ptrdiff_t(x) * v.pixel_stride]];
+    for (std::size_t x = 0; x < v.width; ++x)
+      out[x] = kByteFloats.value[p[std::ptrdiff_t(x) * v.pixel_stride]];
     return;
   }
   copy_row_strided<T>(v.data, first, v.width, v.pixel_stride, out);
