@@ -146,8 +146,8 @@ class LevelAnalysis final : public RowSink<T> {
     }
     const std::size_t w0 = window_start(p_), w1 = window_end(p1), n = w1 - w0;
     const std::size_t c0 = p_ / 2, c1 = (p1 + 1) / 2, d1 = p1 / 2, nc = coarse_size(n);
-    coarse_.resize((c1 - c0) * width_);  // reused: every row is written below
-    detail_.resize((d1 > c0 ? d1 - c0 : 0) * width_);
+    // Not zeroed: every row is written below. Freed after delivery, so levels do not hold them.
+    RowBuffer<T> coarse((c1 - c0) * width_), detail((d1 > c0 ? d1 - c0 : 0) * width_);
     const std::size_t chunks = (width_ + kColumnChunk - 1) / kColumnChunk;
     ex_.run(chunks, [&](std::size_t k) {
       const std::size_t x0 = k * kColumnChunk, nb = std::min(kColumnChunk, width_ - x0);
@@ -156,12 +156,12 @@ class LevelAnalysis final : public RowSink<T> {
         std::copy_n(data_.data() + (w0 + i - lo_) * width_ + x0, nb, g + i * nb);
       t_.analyze_columns(std::span<T>(g, n * nb), nb);
       for (std::size_t j = c0; j < c1; ++j)
-        std::copy_n(g + (j - w0 / 2) * nb, nb, coarse_.data() + (j - c0) * width_ + x0);
+        std::copy_n(g + (j - w0 / 2) * nb, nb, coarse.data() + (j - c0) * width_ + x0);
       for (std::size_t j = c0; j < d1; ++j)
-        std::copy_n(g + (nc + j - w0 / 2) * nb, nb, detail_.data() + (j - c0) * width_ + x0);
+        std::copy_n(g + (nc + j - w0 / 2) * nb, nb, detail.data() + (j - c0) * width_ + x0);
     });
-    deliver(coarse_.data(), c1 - c0, true, wc);
-    if (d1 > c0) deliver(detail_.data(), d1 - c0, false, wc);
+    deliver(coarse.data(), c1 - c0, true, wc);
+    if (d1 > c0) deliver(detail.data(), d1 - c0, false, wc);
   }
 
   void deliver(const T* rows, std::size_t count, bool coarse, std::size_t wc) {
@@ -175,10 +175,9 @@ class LevelAnalysis final : public RowSink<T> {
   std::size_t reach_, width_, height_;
   std::vector<RowSink<T>*> out_;
   const Executor& ex_;
-  RowBuffer<T> data_;             // row-analysed input rows [lo_, hi_)
-  RowBuffer<T> coarse_, detail_;  // the coefficient rows of one produce()
-  std::size_t lo_ = 0, hi_ = 0;   // input rows held
-  std::size_t p_ = 0;             // next coefficient (interleaved row) to produce
+  RowBuffer<T> data_;            // row-analysed input rows [lo_, hi_)
+  std::size_t lo_ = 0, hi_ = 0;  // input rows held
+  std::size_t p_ = 0;            // next coefficient (interleaved row) to produce
 };
 
 // Index of the band of `level` with `orientation` in plan.bands, or npos.
