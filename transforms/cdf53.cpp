@@ -21,7 +21,7 @@ template <class T>
 void analyze53(std::span<T> line) {
   const std::size_t n = line.size();
   if (n < 2) return;
-  lifting::split(line, thread_scratch<T>(n / 2));
+  lifting::split(line, thread_scratch<T>(n));  // n: the vectorized split
   const auto e = line.first((n + 1) / 2);
   const auto o = line.subspan((n + 1) / 2);
   const auto w = lifting::whole_sample_symmetric_wires(n);
@@ -48,7 +48,7 @@ void synthesize53(std::span<T> line) {
     lifting::undo_update<T>(o, w.odd, e, kUpdate);
     lifting::undo_predict<T>(e, w.even, o, kPredict);
   }
-  lifting::merge(line, thread_scratch<T>(n / 2));
+  lifting::merge(line, thread_scratch<T>(n));  // n: the vectorized merge
 }
 
 // analyze53 / synthesize53 on every column of a block of rows (lifting_columns.h).

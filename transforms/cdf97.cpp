@@ -18,8 +18,8 @@ constexpr lifting::Taps kPredict2{kGamma, 0}, kUpdate2{kDelta, -1};
 template <class T>
 void analyze97(std::span<T> line) {
   const std::size_t n = line.size();
-  if (n < 2) return;  // JPEG 2000: a single (even) sample passes unchanged
-  lifting::split(line, thread_scratch<T>(n / 2));
+  if (n < 2) return;                           // JPEG 2000: a single (even) sample passes unchanged
+  lifting::split(line, thread_scratch<T>(n));  // n: the vectorized split
   const auto e = line.first((n + 1) / 2);
   const auto o = line.subspan((n + 1) / 2);
   const auto w = lifting::whole_sample_symmetric_wires(n);
@@ -44,10 +44,15 @@ void synthesize97(std::span<T> line) {
   lifting::undo_predict<T>(e, w.even, o, kPredict2);
   lifting::undo_update<T>(o, w.odd, e, kUpdate1);
   lifting::undo_predict<T>(e, w.even, o, kPredict1);
-  lifting::merge(line, thread_scratch<T>(n / 2));
+  lifting::merge(line, thread_scratch<T>(n));  // n: the vectorized merge
 }
 
-// analyze97 / synthesize97 on every column of a block of rows (lifting_columns.h).
+// analyze97 / synthesize97 on every column of a block of rows (lifting_columns.h), with the
+// four lifting steps and the scaling pipelined down the block: step s on row k runs as soon
+// as the rows it reads are final for step s - 1, so each row is lifted while it is still in
+// L1 (one pass over the block instead of six). Every sample gets the same operations as from
+// the step-by-step form, so the results are the same to the bit. Rows read beyond a wire's end
+// are reflected onto rows at most as far along, which are already done.
 template <class T>
 void analyze97_columns(std::span<T> block, std::size_t width) {
   namespace col = lifting::columns;
@@ -58,12 +63,18 @@ void analyze97_columns(std::span<T> block, std::size_t width) {
   T* o = e + (n + 1) / 2 * width;
   const std::size_t ne = (n + 1) / 2, no = n / 2;
   const auto w = lifting::whole_sample_symmetric_wires(n);
-  col::apply<T>(e, ne, w.even, o, no, kPredict1, T(1), width);
-  col::apply<T>(o, no, w.odd, e, ne, kUpdate1, T(1), width);
-  col::apply<T>(e, ne, w.even, o, no, kPredict2, T(1), width);
-  col::apply<T>(o, no, w.odd, e, ne, kUpdate2, T(1), width);
-  col::undo_scale(e, ne * width, C::K);
-  col::scale(o, no * width, C::K);
+  const T one(1);
+  for (std::size_t k = 0; k <= ne + 1; ++k) {
+    const auto i = std::ptrdiff_t(k);
+    if (k < no) col::apply_row<T>(e, ne, w.even, o, no, i, kPredict1, one, width);  // reads e[k], e[k+1]
+    if (k < ne) col::apply_row<T>(o, no, w.odd, e, ne, i, kUpdate1, one, width);    // o[k-1], o[k]
+    if (k >= 1 && k - 1 < no) col::apply_row<T>(e, ne, w.even, o, no, i - 1, kPredict2, one, width);
+    if (k >= 1 && k - 1 < ne) {
+      col::apply_row<T>(o, no, w.odd, e, ne, i - 1, kUpdate2, one, width);  // e[k-1] is final
+      col::undo_scale(e + (k - 1) * width, width, C::K);
+    }
+    if (k >= 2 && k - 2 < no) col::scale(o + (k - 2) * width, width, C::K);  // read for the last time above
+  }
 }
 
 template <class T>
@@ -75,12 +86,18 @@ void synthesize97_columns(std::span<T> block, std::size_t width) {
   T* o = e + (n + 1) / 2 * width;
   const std::size_t ne = (n + 1) / 2, no = n / 2;
   const auto w = lifting::whole_sample_symmetric_wires(n);
-  col::undo_scale(o, no * width, C::K);
-  col::scale(e, ne * width, C::K);
-  col::apply<T>(o, no, w.odd, e, ne, kUpdate2, T(-1), width);
-  col::apply<T>(e, ne, w.even, o, no, kPredict2, T(-1), width);
-  col::apply<T>(o, no, w.odd, e, ne, kUpdate1, T(-1), width);
-  col::apply<T>(e, ne, w.even, o, no, kPredict1, T(-1), width);
+  const T minus(-1);
+  for (std::size_t k = 0; k <= ne + 1; ++k) {
+    const auto i = std::ptrdiff_t(k);
+    if (k < no) col::undo_scale(o + k * width, width, C::K);
+    if (k < ne) {
+      col::scale(e + k * width, width, C::K);
+      col::apply_row<T>(o, no, w.odd, e, ne, i, kUpdate2, minus, width);  // reads o[k-1], o[k]
+    }
+    if (k >= 1 && k - 1 < no) col::apply_row<T>(e, ne, w.even, o, no, i - 1, kPredict2, minus, width);
+    if (k >= 1 && k - 1 < ne) col::apply_row<T>(o, no, w.odd, e, ne, i - 1, kUpdate1, minus, width);
+    if (k >= 2 && k - 2 < no) col::apply_row<T>(e, ne, w.even, o, no, i - 2, kPredict1, minus, width);
+  }
   col::merge(block.data(), n, width, thread_scratch<T>(n / 2 * width).data());
 }
 

@@ -122,23 +122,54 @@ void apply(std::span<const T> source, Boundary b, std::span<T> target, const Tap
 
 }  // namespace detail
 
+namespace detail {
+
+// split and merge through a scratch copy of the whole line: reading (or writing) the two wires
+// interleaved from a separate buffer has no overlap, so the compiler vectorizes both loops.
+template <class T>
+void split_copy(T* __restrict line, T* __restrict copy, std::size_t n) {
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  std::copy_n(line, n, copy);
+  for (std::size_t j = 0; j < no; ++j) {
+    line[j] = copy[2 * j];
+    line[ne + j] = copy[2 * j + 1];
+  }
+  if (ne > no) line[no] = copy[n - 1];
+}
+
+template <class T>
+void merge_copy(T* __restrict line, T* __restrict copy, std::size_t n) {
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  std::copy_n(line, n, copy);
+  for (std::size_t j = 0; j < no; ++j) {
+    line[2 * j] = copy[j];
+    line[2 * j + 1] = copy[ne + j];
+  }
+  if (ne > no) line[n - 1] = copy[no];
+}
+
+}  // namespace detail
+
 // Reorders an interleaved line x[0..n) into [even wire | odd wire] in place.
-// scratch: at least floor(n/2) samples, used to hold the odd wire while compacting.
+// scratch: at least floor(n/2) samples, used to hold the odd wire while compacting; with at
+// least n samples (not overlapping the line) the faster whole-line copy is used.
 template <class T>
 void split(std::span<T> line, std::span<T> scratch) {
   const std::size_t n = line.size(), ne = (n + 1) / 2, no = n / 2;
   if (scratch.size() < no) throw std::invalid_argument("lifting::split: scratch too small");
+  if (scratch.size() >= n) return detail::split_copy(line.data(), scratch.data(), n);
   for (std::size_t j = 0; j < no; ++j) scratch[j] = line[2 * j + 1];
   for (std::size_t j = 1; j < ne; ++j) line[j] = line[2 * j];
   for (std::size_t j = 0; j < no; ++j) line[ne + j] = scratch[j];
 }
 
 // Inverse of split: [even wire | odd wire] back to the interleaved line, in place.
-// scratch: at least floor(n/2) samples.
+// scratch: at least floor(n/2) samples (at least n: the faster whole-line copy).
 template <class T>
 void merge(std::span<T> line, std::span<T> scratch) {
   const std::size_t n = line.size(), ne = (n + 1) / 2, no = n / 2;
   if (scratch.size() < no) throw std::invalid_argument("lifting::merge: scratch too small");
+  if (scratch.size() >= n) return detail::merge_copy(line.data(), scratch.data(), n);
   for (std::size_t j = 0; j < no; ++j) scratch[j] = line[ne + j];
   for (std::size_t j = ne; j-- > 1;) line[2 * j] = line[j];
   for (std::size_t j = 0; j < no; ++j) line[2 * j + 1] = scratch[j];

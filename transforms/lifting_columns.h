@@ -44,52 +44,59 @@ void merge(T* block, std::size_t n, std::size_t width, T* scratch) {
   for (std::size_t j = 0; j < no; ++j) copy_row(block + (2 * j + 1) * width, scratch + j * width, width);
 }
 
+// Row i of lifting::detail::apply per column: target row i += sign * filtered source rows
+// [0, ms) (mt: rows of the target wire). One row at a time lets a transform run its steps
+// pipelined down the block (each row lifted while the rows it reads are still in cache).
+template <class T>
+void apply_row(const T* source, std::size_t ms, Boundary b, T* target, std::size_t mt, std::ptrdiff_t i,
+               const Taps& f, T sign, std::size_t width) {
+  const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
+  const auto sm = static_cast<std::ptrdiff_t>(ms), tm = static_cast<std::ptrdiff_t>(mt);
+  const std::ptrdiff_t lo = std::min(tm, std::max<std::ptrdiff_t>(0, -f.offset));
+  const std::ptrdiff_t hi = std::max(lo, std::min(tm, sm - nk - f.offset + 1));
+  T* t = target + std::size_t(i) * width;
+  const bool interior = i >= lo && i < hi;
+  if (nk == 2 && interior) {  // the two-tap interior form of detail::apply
+    const T a0 = sign * static_cast<T>(f.taps[0]), a1 = sign * static_cast<T>(f.taps[1]);
+    const T* s0 = source + std::size_t(i + f.offset) * width;
+    const T* s1 = s0 + width;
+    for (std::size_t c = 0; c < width; ++c) t[c] += a0 * s0[c] + a1 * s1[c];
+    return;
+  }
+  // The general form (interior of longer filters, and boundary_sum near the ends).
+  if (nk > 8) {  // long filters: one column at a time, as the 1-D code does
+    for (std::size_t c = 0; c < width; ++c) {
+      T s = 0;
+      for (std::ptrdiff_t k = 0; k < nk; ++k) {
+        const std::ptrdiff_t j = i + f.offset + k;
+        const std::size_t jj = interior ? std::size_t(j) : reflect_index(j, ms, b);
+        s += static_cast<T>(f.taps[std::size_t(k)]) * source[jj * width + c];
+      }
+      t[c] += sign * s;
+    }
+    return;
+  }
+  const T* rows[8];
+  T taps[8];
+  for (std::ptrdiff_t k = 0; k < nk; ++k) {
+    const std::ptrdiff_t j = i + f.offset + k;
+    rows[k] = source + (interior ? std::size_t(j) : reflect_index(j, ms, b)) * width;
+    taps[k] = static_cast<T>(f.taps[std::size_t(k)]);
+  }
+  for (std::size_t c = 0; c < width; ++c) {
+    T s = 0;
+    for (std::ptrdiff_t k = 0; k < nk; ++k) s += taps[k] * rows[k][c];
+    t[c] += sign * s;
+  }
+}
+
 // lifting::detail::apply per column: target rows [0, mt) += sign * filtered source rows [0, ms).
 template <class T>
 void apply(const T* source, std::size_t ms, Boundary b, T* target, std::size_t mt, const Taps& f, T sign,
            std::size_t width) {
   if (ms == 0 || mt == 0 || f.taps.empty()) return;
-  const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
-  const auto sm = static_cast<std::ptrdiff_t>(ms), tm = static_cast<std::ptrdiff_t>(mt);
-  const std::ptrdiff_t lo = std::min(tm, std::max<std::ptrdiff_t>(0, -f.offset));
-  const std::ptrdiff_t hi = std::max(lo, std::min(tm, sm - nk - f.offset + 1));
-  for (std::ptrdiff_t i = 0; i < tm; ++i) {
-    T* t = target + std::size_t(i) * width;
-    if (nk == 2 && i >= lo && i < hi) {  // the two-tap interior form of detail::apply
-      const T a0 = sign * static_cast<T>(f.taps[0]), a1 = sign * static_cast<T>(f.taps[1]);
-      const T* s0 = source + std::size_t(i + f.offset) * width;
-      const T* s1 = s0 + width;
-      for (std::size_t c = 0; c < width; ++c) t[c] += a0 * s0[c] + a1 * s1[c];
-      continue;
-    }
-    // The general form (interior of longer filters, and boundary_sum near the ends).
-    const bool interior = i >= lo && i < hi;
-    const T* rows[8];
-    T taps[8];
-    const std::ptrdiff_t nr = std::min<std::ptrdiff_t>(nk, 8);
-    if (nk > 8) {  // long filters: one column at a time, as the 1-D code does
-      for (std::size_t c = 0; c < width; ++c) {
-        T s = 0;
-        for (std::ptrdiff_t k = 0; k < nk; ++k) {
-          const std::ptrdiff_t j = i + f.offset + k;
-          const std::size_t jj = interior ? std::size_t(j) : reflect_index(j, ms, b);
-          s += static_cast<T>(f.taps[std::size_t(k)]) * source[jj * width + c];
-        }
-        t[c] += sign * s;
-      }
-      continue;
-    }
-    for (std::ptrdiff_t k = 0; k < nr; ++k) {
-      const std::ptrdiff_t j = i + f.offset + k;
-      rows[k] = source + (interior ? std::size_t(j) : reflect_index(j, ms, b)) * width;
-      taps[k] = static_cast<T>(f.taps[std::size_t(k)]);
-    }
-    for (std::size_t c = 0; c < width; ++c) {
-      T s = 0;
-      for (std::ptrdiff_t k = 0; k < nr; ++k) s += taps[k] * rows[k][c];
-      t[c] += sign * s;
-    }
-  }
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(mt); ++i)
+    apply_row(source, ms, b, target, mt, i, f, sign, width);
 }
 
 template <class T>

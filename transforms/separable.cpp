@@ -1,6 +1,7 @@
 #include "transforms/separable.h"
 
 #include "transforms/lifting_columns.h"
+#include "transforms/scratch.h"
 
 #include <algorithm>
 #include <functional>
@@ -67,20 +68,18 @@ void pass_strided(const Transform1D& t, T* data, const Extent& dims, const Exten
   const std::size_t len = r[static_cast<std::size_t>(axis)];
   const std::size_t blocks = (r[0] + kColumnBlock - 1) / kColumnBlock;
   parallel_chunks(ex, blocks * others, r[0] * r[1] * r[2], [&](std::size_t b, std::size_t e) {
-    std::vector<T> buf(kColumnBlock * len);
+    T* buf = thread_rows<T>(kColumnBlock * len);  // every row is copied in before it is read
     for (std::size_t k = b; k < e; ++k) {
       const std::size_t x0 = (k % blocks) * kColumnBlock;
       const std::size_t nb = std::min(kColumnBlock, r[0] - x0);
       T* base = data + (k / blocks) * other_stride + x0;
-      for (std::size_t i = 0; i < len; ++i)
-        lifting::columns::copy_row(buf.data() + i * nb, base + i * stride, nb);
-      const std::span<T> block(buf.data(), len * nb);
+      for (std::size_t i = 0; i < len; ++i) lifting::columns::copy_row(buf + i * nb, base + i * stride, nb);
+      const std::span<T> block(buf, len * nb);
       if (analysis)
         t.analyze_columns(block, nb);
       else
         t.synthesize_columns(block, nb);
-      for (std::size_t i = 0; i < len; ++i)
-        lifting::columns::copy_row(base + i * stride, buf.data() + i * nb, nb);
+      for (std::size_t i = 0; i < len; ++i) lifting::columns::copy_row(base + i * stride, buf + i * nb, nb);
     }
   });
 }

@@ -42,11 +42,15 @@ void forward_ict(const float rgb[3], std::size_t c, float* out) {
     *out = float(0.5 * R - 0.418688 * G - 0.081312 * B);
 }
 
-void forward_ict_row(const float* const rgb[3], float shift, std::size_t c, float* out, std::size_t n) {
-  // x - y is x + (-y) exactly, so these sums are forward_ict's expressions term by term.
+std::array<double, 3> forward_ict_weights(std::size_t c) {
+  // x - y is x + (-y) exactly, so sums with these are forward_ict's expressions term by term.
   static constexpr double kRows[3][3] = {
       {0.299, 0.587, 0.114}, {-0.168736, -0.331264, 0.5}, {0.5, -0.418688, -0.081312}};
-  const double a = kRows[c][0], b = kRows[c][1], d = kRows[c][2];
+  return {kRows[c][0], kRows[c][1], kRows[c][2]};
+}
+
+void forward_ict_row(const float* const rgb[3], float shift, std::size_t c, float* out, std::size_t n) {
+  const auto [a, b, d] = forward_ict_weights(c);
   const float *r = rgb[0], *g = rgb[1], *bl = rgb[2];
   for (std::size_t i = 0; i < n; ++i) {
     const double R = r[i] - shift, G = g[i] - shift, B = bl[i] - shift;

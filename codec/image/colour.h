@@ -21,6 +21,8 @@ void forward_ict(const float rgb[3], std::size_t c, float* out);
 // Component c of the ICT of n pixels whose samples are rgb[k][i] - shift, exactly as above,
 // in one loop the compiler vectorizes (the encoder's colour conversion, row by row).
 void forward_ict_row(const float* const rgb[3], float shift, std::size_t c, float* out, std::size_t n);
+// The weights of R, G and B in component c of the ICT, as forward_ict_row multiplies them.
+std::array<double, 3> forward_ict_weights(std::size_t c);
 
 // R, G, B -> Yr, Ur, Vr (integer, bit-exactly invertible) and back.
 void forward_rct(std::int32_t* r, std::int32_t* g, std::int32_t* b, std::size_t n);

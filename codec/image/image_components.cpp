@@ -104,6 +104,58 @@ void for_row_chunks(const Executor& ex, std::size_t width, std::size_t height,
 
 }  // namespace
 
+namespace {
+
+// Sample k of pixel x in the row starting at p (channel k at k * channel_stride elements).
+inline std::uint8_t byte_at(const std::uint8_t* p, const ImageView& v, std::size_t k, std::size_t x) {
+  return p[std::ptrdiff_t(k) * v.channel_stride + std::ptrdiff_t(x) * v.pixel_stride];
+}
+
+// Component c of the ICT of rows [y0, y1) of 8-bit samples (a mapped PPM), without converting
+// the three channels to float rows first: each byte value's product with its channel weight is
+// tabulated (the double forward_ict_row forms), so a pixel costs three look-ups and the same
+// two additions in the same order, and the result is forward_ict_row's to the bit.
+void ict_rows_from_bytes(const ImageView& image, std::size_t c, std::size_t y0, std::size_t y1, float shift,
+                         float* out, const Executor& ex) {
+  const std::size_t w = image.width;
+  const auto weight = forward_ict_weights(c);
+  std::vector<double> table(3 * 256);
+  for (std::size_t k = 0; k < 3; ++k)
+    for (int v = 0; v < 256; ++v) table[k * 256 + std::size_t(v)] = weight[k] * double(float(v) - shift);
+  const double *tr = table.data(), *tg = tr + 256, *tb = tg + 256;
+  for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
+    for (std::size_t y = a; y < b; ++y) {
+      const auto* p =
+          static_cast<const std::uint8_t*>(image.data) + std::ptrdiff_t(y0 + y) * image.row_stride;
+      float* dst = out + y * w;
+      for (std::size_t x = 0; x < w; ++x)
+        dst[x] =
+            float(tr[byte_at(p, image, 0, x)] + tg[byte_at(p, image, 1, x)] + tb[byte_at(p, image, 2, x)]);
+    }
+  });
+}
+
+// Component c of the RCT of rows [y0, y1) of 8-bit samples, in integers from the bytes.
+void rct_rows_from_bytes(const ImageView& image, std::size_t c, std::size_t y0, std::size_t y1,
+                         std::int32_t shift, std::int32_t* out, const Executor& ex) {
+  const std::size_t w = image.width;
+  for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
+    for (std::size_t y = a; y < b; ++y) {
+      const auto* p =
+          static_cast<const std::uint8_t*>(image.data) + std::ptrdiff_t(y0 + y) * image.row_stride;
+      std::int32_t* dst = out + y * w;
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::int32_t rgb[3] = {std::int32_t(byte_at(p, image, 0, x)) - shift,
+                                     std::int32_t(byte_at(p, image, 1, x)) - shift,
+                                     std::int32_t(byte_at(p, image, 2, x)) - shift};
+        forward_rct(rgb, c, dst + x);
+      }
+    }
+  });
+}
+
+}  // namespace
+
 void float_component_rows(const ImageView& image, ColourTransform colour, std::size_t c, std::size_t y0,
                           std::size_t y1, float* out, const Executor& ex) {
   const std::size_t w = image.width;
@@ -118,6 +170,7 @@ void float_component_rows(const ImageView& image, ColourTransform colour, std::s
     });
     return;
   }
+  if (image.storage == StorageType::u8) return ict_rows_from_bytes(image, c, y0, y1, shift, out, ex);
   for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
     std::vector<float> rows(3 * w);
     for (std::size_t y = a; y < b; ++y) {
@@ -133,6 +186,8 @@ void integer_component_rows(const ImageView& image, ColourTransform colour, std:
   const std::size_t w = image.width;
   const auto shift = std::int32_t(level_shift(image.type));
   const std::size_t used = colour == ColourTransform::rct && c < 3 ? 3 : 1;
+  if (used == 3 && image.storage == StorageType::u8)
+    return rct_rows_from_bytes(image, c, y0, y1, shift, out, ex);
   for_row_chunks(ex, w, y1 - y0, [&](std::size_t a, std::size_t b) {
     std::vector<float> rows(used * w);
     for (std::size_t y = a; y < b; ++y) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "codec/image/image_components.h"
+#include "transforms/scratch.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -72,7 +73,7 @@ class BandBlocks final : public RowSink<T> {
     plan_.executor->run(br.blocks.size(), [&](std::size_t k) {
       const std::size_t i = br.blocks[k];
       const CodeBlock& b = plan_.blocks[i];
-      std::vector<T> values(b.count());
+      RowBuffer<T> values(b.count());  // every sample copied in before it is read
       for (std::size_t y = 0; y < b.size[1]; ++y)
         std::copy_n(data_.data() + (br.y0 + y - lo_) * width_ + (b.offset[0] - x0_), b.size[0],
                     values.data() + y * b.size[0]);
@@ -87,7 +88,7 @@ class BandBlocks final : public RowSink<T> {
   std::size_t x0_, y0_, width_;
   std::vector<BlockRow> block_rows_;
   std::size_t next_ = 0;  // first block row not emitted yet
-  std::vector<T> data_;   // band rows [lo_, hi_)
+  RowBuffer<T> data_;     // band rows [lo_, hi_)
   std::size_t lo_ = 0, hi_ = 0;
 };
 
@@ -146,18 +147,19 @@ class LevelAnalysis final : public RowSink<T> {
     }
     const std::size_t w0 = window_start(p_), w1 = window_end(p1), n = w1 - w0;
     const std::size_t c0 = p_ / 2, c1 = (p1 + 1) / 2, d1 = p1 / 2, nc = coarse_size(n);
-    std::vector<T> coarse((c1 - c0) * width_), detail((d1 > c0 ? d1 - c0 : 0) * width_);
+    // Not zeroed: every row is written below. Freed after delivery, so levels do not hold them.
+    RowBuffer<T> coarse((c1 - c0) * width_), detail((d1 > c0 ? d1 - c0 : 0) * width_);
     const std::size_t chunks = (width_ + kColumnChunk - 1) / kColumnChunk;
     ex_.run(chunks, [&](std::size_t k) {
       const std::size_t x0 = k * kColumnChunk, nb = std::min(kColumnChunk, width_ - x0);
-      std::vector<T> g(n * nb);
+      T* g = thread_rows<T>(n * nb);  // every row is written below
       for (std::size_t i = 0; i < n; ++i)
-        std::copy_n(data_.data() + (w0 + i - lo_) * width_ + x0, nb, &g[i * nb]);
-      t_.analyze_columns(std::span<T>(g.data(), g.size()), nb);
+        std::copy_n(data_.data() + (w0 + i - lo_) * width_ + x0, nb, g + i * nb);
+      t_.analyze_columns(std::span<T>(g, n * nb), nb);
       for (std::size_t j = c0; j < c1; ++j)
-        std::copy_n(&g[(j - w0 / 2) * nb], nb, coarse.data() + (j - c0) * width_ + x0);
+        std::copy_n(g + (j - w0 / 2) * nb, nb, coarse.data() + (j - c0) * width_ + x0);
       for (std::size_t j = c0; j < d1; ++j)
-        std::copy_n(&g[(nc + j - w0 / 2) * nb], nb, detail.data() + (j - c0) * width_ + x0);
+        std::copy_n(g + (nc + j - w0 / 2) * nb, nb, detail.data() + (j - c0) * width_ + x0);
     });
     deliver(coarse.data(), c1 - c0, true, wc);
     if (d1 > c0) deliver(detail.data(), d1 - c0, false, wc);
@@ -177,7 +179,7 @@ class LevelAnalysis final : public RowSink<T> {
   std::size_t reach_, width_, height_;
   std::vector<RowSink<T>*> out_;
   const Executor& ex_;
-  std::vector<T> data_;          // row-analysed input rows [lo_, hi_)
+  RowBuffer<T> data_;            // row-analysed input rows [lo_, hi_)
   std::size_t lo_ = 0, hi_ = 0;  // input rows held
   std::size_t p_ = 0;            // next coefficient (interleaved row) to produce
 };

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace pupwave {
 namespace {
@@ -15,10 +16,33 @@ T load(const void* base, std::ptrdiff_t index) {
   return v;
 }
 
+// One row of samples `stride` elements apart.
+template <class T>
+void copy_row_strided(const void* data, std::ptrdiff_t first, std::size_t width, std::ptrdiff_t stride,
+                      float* out) {
+  for (std::size_t x = 0; x < width; ++x) out[x] = float(load<T>(data, first + std::ptrdiff_t(x) * stride));
+}
+
+// Every byte value as float: a table look-up per sample is cheaper than the integer-to-float
+// conversion (which GCC's SSE2 code for interleaved strides assembles through the stack).
+struct ByteFloats {
+  float value[256];
+  constexpr ByteFloats() : value() {
+    for (int i = 0; i < 256; ++i) value[i] = float(i);
+  }
+};
+constexpr ByteFloats kByteFloats;
+
 template <class T>
 void copy_row(const ImageView& v, std::ptrdiff_t first, float* out) {
-  for (std::size_t x = 0; x < v.width; ++x)
-    out[x] = float(load<T>(v.data, first + std::ptrdiff_t(x) * v.pixel_stride));
+  if (v.pixel_stride == 1) return copy_row_strided<T>(v.data, first, v.width, 1, out);  // vectorizes
+  if constexpr (std::is_same_v<T, std::uint8_t>) {
+    const auto* p = static_cast<const std::uint8_t*>(v.data) + first;
+    for (std::size_t x = 0; x < v.width; ++x)
+      out[x] = kByteFloats.value[p[std::ptrdiff_t(x) * v.pixel_stride]];
+    return;
+  }
+  copy_row_strided<T>(v.data, first, v.width, v.pixel_stride, out);
 }
 
 bool storage_holds(StorageType storage, SampleType type) {

@@ -21,6 +21,22 @@ TEST(Lifting, SplitMergeRoundTrip) {
   }
 }
 
+// A scratch of the whole line selects the vectorized split/merge (through a copy of the line):
+// it must reorder exactly as the compacting form with half a line of scratch does.
+TEST(Lifting, SplitMergeWithWholeLineScratchMatchHalfScratch) {
+  for (std::size_t n = 1; n <= 41; ++n) {
+    std::vector<float> a(n), b(n), half(n / 2), whole(n);
+    for (std::size_t i = 0; i < n; ++i) a[i] = b[i] = static_cast<float>(i) * 1.5f - 7.0f;
+    split<float>(a, half);
+    split<float>(b, whole);
+    EXPECT_EQ(a, b) << "split n=" << n;
+    for (std::size_t i = 0; i < n; ++i) a[i] = b[i] = static_cast<float>(3 * i % 11) - 4.0f;
+    merge<float>(a, half);
+    merge<float>(b, whole);
+    EXPECT_EQ(a, b) << "merge n=" << n;
+  }
+}
+
 // Reflection by the wire rules must agree with whole-sample symmetric extension of the
 // interleaved line, element by element, far beyond the ends.
 TEST(Lifting, WireRulesMatchWholeSampleSymmetricLine) {
