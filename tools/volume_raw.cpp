@@ -12,13 +12,20 @@ namespace pupwave::cli {
 namespace fs = std::filesystem;
 namespace {
 
-// VolumeView::drop_slabs for a view of a mapped raw file: unmaps planes [z0, z1) (the encoder's
-// passes read the input slab by slab; pages read stay resident until dropped).
-void drop_planes(const void* context, const VolumeView& v, std::size_t z0, std::size_t z1) {
+// VolumeView::drop_rows for a view of a mapped raw file: unmaps rows [y0, y1) of planes [z0, z1)
+// (the encoder's passes read the input by rows of bricks; pages read stay resident until
+// dropped). Whole pages around the rows go: a neighbour row still reading faults them back in.
+void drop_rows(const void* context, const VolumeView& v, std::size_t z0, std::size_t z1, std::size_t y0,
+               std::size_t y1) {
   const auto* file = static_cast<const MappedFile*>(context);
-  const std::size_t plane = std::size_t(v.strides[2]) * bytes_per_voxel(v.storage);
+  const std::size_t voxel = bytes_per_voxel(v.storage);
+  const std::size_t plane = std::size_t(v.strides[2]) * voxel, row = std::size_t(v.strides[1]) * voxel;
   const std::size_t start = std::size_t(static_cast<const std::uint8_t*>(v.data) - file->bytes().data());
-  file->drop(start + z0 * plane, (z1 - z0) * plane);
+  if (y0 == 0 && y1 == v.dims[1]) {  // whole planes: one call
+    file->drop(start + z0 * plane, (z1 - z0) * plane);
+    return;
+  }
+  for (std::size_t z = z0; z < z1; ++z) file->drop(start + z * plane + y0 * row, (y1 - y0) * row);
 }
 
 // Reverses the bytes of every `width`-byte element (raw files are little endian).
@@ -43,7 +50,7 @@ MappedRawVolume::MappedRawVolume(const fs::path& path, const Extent& dims, Voxel
     data = swapped_.data();
   }
   view_ = contiguous_view(data, dims, type);
-  if (file_) view_.drop_context = &*file_, view_.drop_slabs = drop_planes;
+  if (file_) view_.drop_context = &*file_, view_.drop_rows = drop_rows;
 }
 
 void write_raw_bytes(std::vector<std::uint8_t> bytes, VoxelType type, const fs::path& path) {

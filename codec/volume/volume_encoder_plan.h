@@ -50,9 +50,9 @@ struct BrickCode {
   double sse = 0.0;        // squared error over the same voxels
 };
 
-// Drops (VolumeView::drop) each z-slab of bricks of a view once every brick of the slab has been
-// read in a brick pass, so a mapped input does not stay resident until the end. Bricks run in
-// parallel and finish in any order: one atomic count of bricks left per slab.
+// Drops (VolumeView::drop) the rows of each row of bricks of a view (same y and z) once every brick
+// of it has been read in a brick pass, so a mapped input does not stay resident until the end.
+// Bricks run in parallel and finish in any order: one atomic count of bricks left per row.
 class SlabRelease {
  public:
   explicit SlabRelease(const std::vector<BrickJob>& jobs);
@@ -61,8 +61,8 @@ class SlabRelease {
 
  private:
   const std::vector<BrickJob>& jobs_;
-  std::vector<std::size_t> slab_;                     // per job, its slab (empty: no view drops)
-  std::unique_ptr<std::atomic<std::size_t>[]> left_;  // per slab, bricks not yet done
+  std::vector<std::size_t> slab_;                     // per job, its brick row (empty: no drops)
+  std::unique_ptr<std::atomic<std::size_t>[]> left_;  // per brick row, bricks not yet done
 };
 
 // `views[g]` (when its data is set) holds the values of box grid g; see encode_volumes.

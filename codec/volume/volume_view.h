@@ -31,11 +31,12 @@ struct VolumeView {
   VoxelType storage = VoxelType::f32;
   const std::uint8_t* active = nullptr;
   double background = 0.0;
-  // Optional, for views of a file mapped read-only: called (with drop_context) for planes
-  // [z0, z1) that the encoder will not read again in the current pass, so their pages leave
-  // resident memory (read again, they come back from the page cache). Null: nothing is dropped.
-  // Called from worker threads (bricks run in parallel), so it must be thread-safe.
-  void (*drop_slabs)(const void* context, const VolumeView& view, std::size_t z0, std::size_t z1) = nullptr;
+  // Optional, for views of a file mapped read-only: called (with drop_context) for rows [y0, y1)
+  // of planes [z0, z1) that the encoder will not read again in the current pass, so their pages
+  // leave resident memory (read again, they come back from the page cache). Null: nothing is
+  // dropped. Called from worker threads (bricks run in parallel), so it must be thread-safe.
+  void (*drop_rows)(const void* context, const VolumeView& view, std::size_t z0, std::size_t z1,
+                    std::size_t y0, std::size_t y1) = nullptr;
   const void* drop_context = nullptr;
 
   std::size_t count() const { return dims[0] * dims[1] * dims[2]; }
@@ -43,9 +44,10 @@ struct VolumeView {
   std::ptrdiff_t offset(std::size_t x, std::size_t y, std::size_t z) const {
     return std::ptrdiff_t(x) * strides[0] + std::ptrdiff_t(y) * strides[1] + std::ptrdiff_t(z) * strides[2];
   }
-  // Calls drop_slabs for planes [z0, z1) when it is set.
-  void drop(std::size_t z0, std::size_t z1) const {
-    if (drop_slabs != nullptr && z1 > z0) drop_slabs(drop_context, *this, z0, z1);
+  // Calls drop_rows for rows [y0, y1) of planes [z0, z1) (all rows: whole planes) when it is set.
+  void drop(std::size_t z0, std::size_t z1) const { drop(z0, z1, 0, dims[1]); }
+  void drop(std::size_t z0, std::size_t z1, std::size_t y0, std::size_t y1) const {
+    if (drop_rows != nullptr && z1 > z0 && y1 > y0) drop_rows(drop_context, *this, z0, z1, y0, y1);
   }
   // Voxel (x, y, z) as double (exact for every type).
   double at(std::size_t x, std::size_t y, std::size_t z) const;

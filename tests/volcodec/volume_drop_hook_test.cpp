@@ -1,6 +1,7 @@
-// VolumeView's drop hook (how the CLI unmaps a raw input's pages once read): every plane is
-// dropped exactly once per pass over the input (summarize_values, then the brick pass, whose
-// bricks finish in any order on a pool), and the stream is the same as without the hook.
+// VolumeView's drop hook (how the CLI unmaps a raw input's pages once read): every row of every
+// plane is dropped exactly once per pass over the input (summarize_values by whole planes, then
+// the brick pass by rows of bricks, which finish in any order on a pool), and the stream is the
+// same as without the hook.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -15,18 +16,28 @@
 namespace pupwave {
 namespace {
 
-// How many times each plane z was dropped (calls come from worker threads).
+// How many times each row y of each plane z was dropped, at z * rows + y (calls come from
+// worker threads).
 struct Drops {
   std::mutex mutex;
   std::vector<int> times;
+  std::size_t rows = 0;
   bool out_of_range = false;
 };
 
-void record(const void* context, const VolumeView& v, std::size_t z0, std::size_t z1) {
+void record(const void* context, const VolumeView& v, std::size_t z0, std::size_t z1, std::size_t y0,
+            std::size_t y1) {
   auto* drops = static_cast<Drops*>(const_cast<void*>(context));
   std::lock_guard<std::mutex> lock(drops->mutex);
-  if (z0 >= z1 || z1 > v.dims[2]) drops->out_of_range = true;
-  for (std::size_t z = z0; z < z1 && z < drops->times.size(); ++z) ++drops->times[z];
+  if (z0 >= z1 || z1 > v.dims[2] || y0 >= y1 || y1 > v.dims[1]) drops->out_of_range = true;
+  for (std::size_t z = z0; z < z1 && z < v.dims[2]; ++z)
+    for (std::size_t y = y0; y < y1 && y < v.dims[1]; ++y) ++drops->times[z * drops->rows + y];
+}
+
+// Every row of every plane dropped `passes` times.
+void expect_every_row(const Drops& drops, int passes) {
+  for (std::size_t i = 0; i < drops.times.size(); ++i)
+    EXPECT_EQ(drops.times[i], passes) << "plane " << i / drops.rows << " row " << i % drops.rows;
 }
 
 template <class T>
@@ -49,13 +60,14 @@ std::vector<std::uint8_t> encode(const VolumeView& view, const VolumeEncodeOptio
   return encode_volumes({describe_view(view, "v")}, views, o).bytes;
 }
 
-// Encodes with and without the hook; each plane must be dropped `passes` times (-1: the same
-// number of times as plane 0, at least 3).
+// Encodes with and without the hook; each row of each plane must be dropped `passes` times (-1:
+// the same number of times as row 0 of plane 0, at least 3).
 void check_drops(const VolumeView& plain, const VolumeEncodeOptions& o, int passes) {
   Drops drops;
-  drops.times.assign(plain.dims[2], 0);
+  drops.rows = plain.dims[1];
+  drops.times.assign(plain.dims[2] * drops.rows, 0);
   VolumeView hooked = plain;
-  hooked.drop_slabs = record;
+  hooked.drop_rows = record;
   hooked.drop_context = &drops;
   EXPECT_EQ(encode(hooked, o), encode(plain, o));
   EXPECT_FALSE(drops.out_of_range);
@@ -63,7 +75,7 @@ void check_drops(const VolumeView& plain, const VolumeEncodeOptions& o, int pass
     passes = drops.times[0];
     EXPECT_GE(passes, 3);
   }
-  for (std::size_t z = 0; z < drops.times.size(); ++z) EXPECT_EQ(drops.times[z], passes) << "plane " << z;
+  expect_every_row(drops, passes);
 }
 
 const Extent kDims{37, 29, 45};
@@ -71,13 +83,14 @@ const Extent kDims{37, 29, 45};
 TEST(VolumeDropHook, SummarizeDropsEveryPlaneOnce) {
   const auto data = stored<float>(test::smooth_volume(kDims, VoxelType::f32, 10.0));
   Drops drops;
-  drops.times.assign(kDims[2], 0);
+  drops.rows = kDims[1];
+  drops.times.assign(kDims[2] * drops.rows, 0);
   VolumeView view = contiguous_view(data.data(), kDims, VoxelType::f32);
-  view.drop_slabs = record;
+  view.drop_rows = record;
   view.drop_context = &drops;
   summarize_values(view);
   EXPECT_FALSE(drops.out_of_range);
-  for (std::size_t z = 0; z < kDims[2]; ++z) EXPECT_EQ(drops.times[z], 1) << "plane " << z;
+  expect_every_row(drops, 1);
 }
 
 TEST(VolumeDropHook, MaxErrorAndStepDropEachPlaneOncePerPassSameStream) {
@@ -99,7 +112,7 @@ TEST(VolumeDropHook, LosslessU16DropsEachPlaneTwiceSameStream) {
 }
 
 // Rate modes read the bricks in several passes (code, then measure the chosen passes): each
-// plane is dropped once in each of them, so the same number of times, at least three.
+// row is dropped once in each of them, so the same number of times, at least three.
 TEST(VolumeDropHook, RateModeDropsEveryPlaneOncePerPassSameStream) {
   const auto data = stored<float>(test::smooth_volume(kDims, VoxelType::f32, 10.0));
   const VolumeView view = contiguous_view(data.data(), kDims, VoxelType::f32);
