@@ -1,7 +1,7 @@
 // Hostile headers with valid checksums (issue 22's table and kin): each runs the release CLI
-// under a 1 GiB address-space limit and a few seconds of wall clock, and must end with a clear
-// error or a correct small output. Before the decoder bounds these took up to 10 GiB and
-// minutes (docs/bitstream.md, Decoder bounds).
+// under a 1 GiB address-space limit and a few seconds of CPU time (a 60 s wall-clock guard), and must end
+// with a clear error or a correct small output. Before the decoder bounds these took up to 10 GiB and minutes
+// (docs/bitstream.md, Decoder bounds).
 #include <gtest/gtest.h>
 #include <zstd.h>
 
@@ -110,7 +110,7 @@ void expect_refused(const testing::ChildResult& r, const std::string& message) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("pupwave: error:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
-  EXPECT_LT(r.seconds, 5.0);
+  EXPECT_LT(r.cpu_seconds, 5.0);
 }
 
 TEST(HostileHeader, HugeEmptyImageIsRefusedByTheDecodeLimit) {
@@ -125,7 +125,7 @@ TEST(HostileHeader, HugeEmptyImageIsRefusedByTheDecodeLimit) {
   const auto info = run_cli_bounded({"info", scratch("huge.pw")});
   EXPECT_EQ(info.exit_code, 0) << info.output;
   EXPECT_NE(info.output.find("65536 x 32768"), std::string::npos) << info.output;
-  EXPECT_LT(info.seconds, 5.0);
+  EXPECT_LT(info.cpu_seconds, 5.0);
   // --max-pixels raises the limit; a lower one refuses a smaller image.
   save(scratch("small.pw"), empty_image_stream(300, 200, 3));
   expect_refused(
@@ -142,7 +142,7 @@ TEST(HostileHeader, ReducedLevelDecodeAllocatesOnlyItsLevel) {
   const auto r = run_cli_bounded(
       {"decompress", scratch("big.pw"), scratch("big5.pgm"), "--level", "5", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_LT(r.seconds, 5.0);
+  EXPECT_LT(r.cpu_seconds, 5.0);
   std::ifstream in(scratch("big5.pgm"), std::ios::binary);
   std::string magic, w, h;
   in >> magic >> w >> h;
@@ -270,7 +270,7 @@ TEST(HostileHeader, OneActiveVoxelInTheCornerOfAHugeSparseBox) {
   const auto r =
       run_cli_bounded({"decompress", scratch("corner.pw"), scratch("corner.vdb"), "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_LT(r.seconds, 5.0);
+  EXPECT_LT(r.cpu_seconds, 5.0);
   EXPECT_LT(r.max_rss_kb, 200 * 1024);
   ::testing::Test::RecordProperty(
       "corner_vdb", std::to_string(r.seconds) + " s, " + std::to_string(r.max_rss_kb) + " KiB resident");
@@ -322,7 +322,7 @@ TEST(HostileHeader, InfoDescribesAStreamWithoutDesigningItsBank) {
   const auto r = run_cli_bounded({"info", scratch("custom.pw")});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find(spec), std::string::npos) << r.output;
-  EXPECT_LT(r.seconds, 1.0);  // a decode designs the bank: about 1.5 s of CPU here
+  EXPECT_LT(r.cpu_seconds, 1.0);  // a decode designs the bank: about 1.5 s of CPU here
 }
 
 TEST(HostileHeader, NonAffineGridTransformIsRefusedBeforeWriting) {
