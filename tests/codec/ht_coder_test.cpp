@@ -12,12 +12,14 @@
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "test_images.h"
+#include "thread_independence.h"
 #include "transforms/executor.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
 namespace {
 
+using testing::expect_thread_independent;
 using testing::synthetic_image;
 
 // Laplacian-like indices of scale `scale` with a share `zeros` of forced zeros.
@@ -167,15 +169,8 @@ TEST(HtCoder, LosslessIsBitExact) {
 
 TEST(HtCoder, OutputDoesNotDependOnThreadCount) {
   const Image img = synthetic_image(300, 200, 3, SampleType::u8, 7);
-  for (RateMode mode : {RateMode::bpp, RateMode::psnr}) {
-    EncodeOptions o = ht_options(mode, mode == RateMode::bpp ? 1.0 : 36.0);
-    o.executor = &serial_executor();
-    const auto serial = encode_image(img, o).bytes;
-    const auto four = make_pool_executor(4);
-    o.executor = four.get();
-    EXPECT_EQ(encode_image(img, o).bytes, serial);
-    EXPECT_EQ(decode_image(serial, 0, serial_executor()).samples, decode_image(serial, 0, *four).samples);
-  }
+  for (RateMode mode : {RateMode::bpp, RateMode::psnr})
+    expect_thread_independent(img, ht_options(mode, mode == RateMode::bpp ? 1.0 : 36.0));
 }
 
 TEST(HtCoder, ReducedLevelsDecodeFromAPrefix) {

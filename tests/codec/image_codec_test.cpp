@@ -11,11 +11,13 @@
 #include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"
 #include "test_images.h"
+#include "thread_independence.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
 namespace {
 
+using testing::expect_thread_independent;
 using testing::synthetic_image;
 
 double psnr_of(const Image& a, const Image& b) { return compare_images(a, b).overall.psnr; }
@@ -166,13 +168,7 @@ TEST(ImageCodec, ReducedResolutionDecodingReadsOnlyWhatItNeeds) {
 
 TEST(ImageCodec, OutputDoesNotDependOnThreadCount) {
   const Image img = synthetic_image(300, 200, 3, SampleType::u8, 7);
-  EncodeOptions o = options(RateMode::bpp, 1.0);
-  o.executor = &serial_executor();
-  const auto one = encode_image(img, o).bytes;
-  const auto four = make_pool_executor(4);
-  o.executor = four.get();
-  EXPECT_EQ(encode_image(img, o).bytes, one);
-  EXPECT_EQ(decode_image(one, 0, serial_executor()).samples, decode_image(one, 0, *four).samples);
+  expect_thread_independent(img, options(RateMode::bpp, 1.0));
 }
 
 TEST(ImageCodec, OtherTransformsRoundTrip) {
