@@ -88,30 +88,48 @@ EncodedBlock code_one(const BrickCoding& c, std::span<const T> coef, const Exten
 
 }  // namespace
 
-CodedBrick code_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size,
-                      double base_step) {
+template <class S>
+CodedBrick code_brick(const BrickCoding& c, std::span<const S> samples, const Extent& size, double base_step,
+                      BrickWork& work) {
+  if (!c.reversible) {
+    analyze_brick(c, samples, size, work.real);
+    return code_coefficients(c, work.real, size, base_step);
+  }
   CodedBrick out;
   out.blocks = brick_blocks(c, size);
-  const std::vector<float> steps = brick_steps(c, size, base_step);
   out.coded.reserve(out.blocks.size());
-  if (c.reversible) {
-    std::vector<std::int32_t> coef(samples.begin(), samples.end());  // integer samples (checked)
-    forward(*c.transform, coef.data(), size, c.levels);
-    for (std::int32_t v : coef)
-      if (v >= (1 << 24) || v <= -(1 << 24)) throw EncodeError("reversible coefficient out of range");
-    for (const CodeBlock& b : out.blocks)
-      out.coded.push_back(code_one(c, std::span<const std::int32_t>(coef), size, b, 1.0f));
-  } else {
-    return code_coefficients(c, analyze_brick(c, samples, size), size, base_step);
-  }
+  std::vector<std::int32_t>& coef = work.integer;
+  coef.resize(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) coef[i] = std::int32_t(samples[i]);  // integers (checked)
+  forward(*c.transform, coef.data(), size, c.levels);
+  for (std::int32_t v : coef)
+    if (v >= (1 << 24) || v <= -(1 << 24)) throw EncodeError("reversible coefficient out of range");
+  for (const CodeBlock& b : out.blocks)
+    out.coded.push_back(code_one(c, std::span<const std::int32_t>(coef), size, b, 1.0f));
   return out;
 }
 
-std::vector<float> analyze_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size) {
-  std::vector<float> coef(samples.begin(), samples.end());
+template <class S>
+void analyze_brick(const BrickCoding& c, std::span<const S> samples, const Extent& size,
+                   std::vector<float>& coef) {
+  coef.resize(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) coef[i] = float(samples[i]);
   forward(*c.transform, coef.data(), size, c.levels);
-  return coef;
 }
+
+template CodedBrick code_brick(const BrickCoding&, std::span<const std::uint8_t>, const Extent&, double,
+                               BrickWork&);
+template CodedBrick code_brick(const BrickCoding&, std::span<const std::uint16_t>, const Extent&, double,
+                               BrickWork&);
+template CodedBrick code_brick(const BrickCoding&, std::span<const float>, const Extent&, double, BrickWork&);
+template CodedBrick code_brick(const BrickCoding&, std::span<const double>, const Extent&, double,
+                               BrickWork&);
+template void analyze_brick(const BrickCoding&, std::span<const std::uint8_t>, const Extent&,
+                            std::vector<float>&);
+template void analyze_brick(const BrickCoding&, std::span<const std::uint16_t>, const Extent&,
+                            std::vector<float>&);
+template void analyze_brick(const BrickCoding&, std::span<const float>, const Extent&, std::vector<float>&);
+template void analyze_brick(const BrickCoding&, std::span<const double>, const Extent&, std::vector<float>&);
 
 CodedBrick code_coefficients(const BrickCoding& c, std::span<const float> coef, const Extent& size,
                              double base_step) {

@@ -47,14 +47,38 @@ struct CodedBrick {
   std::vector<EncodedBlock> coded;
 };
 
-// Forward-transforms a brick's samples (float, or int32 when reversible, given as double)
-// and codes every code-block at `base_step`.
-CodedBrick code_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size,
-                      double base_step);
+// Coefficient buffers reused from brick to brick: code_brick transforms a brick in one of them,
+// and the encoder's check of its coding decodes into the same one (decode_brick_into) once the
+// blocks are coded, so a worker holds one brick-sized coefficient array, not two.
+struct BrickWork {
+  std::vector<std::int32_t> integer;  // reversible coding
+  std::vector<float> real;            // irreversible coding
+};
+
+// Forward-transforms a brick's samples (integers when reversible) and codes every code-block at
+// `base_step`, the coefficients in `work`. S: std::uint8_t, std::uint16_t, float or double (the
+// input's own type, as gather_box gives it; the transform runs in int32 or float either way).
+template <class S>
+CodedBrick code_brick(const BrickCoding& c, std::span<const S> samples, const Extent& size, double base_step,
+                      BrickWork& work);
+inline CodedBrick code_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size,
+                             double base_step) {
+  BrickWork work;
+  return code_brick<double>(c, samples, size, base_step, work);
+}
 
 // Irreversible coding in two steps, so that one forward transform serves several base steps:
-// the float coefficients of a brick (in-place layout), then their code at one base step.
-std::vector<float> analyze_brick(const BrickCoding& c, std::span<const double> samples, const Extent& size);
+// the float coefficients of a brick (in-place layout, into `coef`, resized), then their code at
+// one base step.
+template <class S>
+void analyze_brick(const BrickCoding& c, std::span<const S> samples, const Extent& size,
+                   std::vector<float>& coef);
+inline std::vector<float> analyze_brick(const BrickCoding& c, std::span<const double> samples,
+                                        const Extent& size) {
+  std::vector<float> coef;
+  analyze_brick<double>(c, samples, size, coef);
+  return coef;
+}
 CodedBrick code_coefficients(const BrickCoding& c, std::span<const float> coef, const Extent& size,
                              double base_step);
 

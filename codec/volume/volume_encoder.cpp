@@ -307,10 +307,6 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const Vo
   return plan;
 }
 
-void brick_samples(const BrickJob& job, std::vector<double>& samples, std::vector<std::uint8_t>& active) {
-  gather_box(job.view, job.box.offset, job.box.size, samples, active);
-}
-
 std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& job, const BrickCode& code) {
   std::vector<BlockEntry> entries(code.passes.size());
   std::vector<std::vector<std::uint8_t>> words(code.passes.size());

@@ -35,27 +35,31 @@ struct Candidate {
 // Buffers reused from brick to brick by each thread: fresh multi-megabyte vectors per
 // candidate cost more in page faults than the evaluation itself.
 struct Scratch {
+  std::vector<float> coef;  // the brick's transform
   Candidate best, trial;
   // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~2 MB (two float
   // reconstructions and the outlier lists), not the hundreds a 256^3 brick takes.
   void trim() {
     constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
-    if (best.requantized.capacity() > kKeptVoxels || trial.requantized.capacity() > kKeptVoxels)
+    if (coef.capacity() > kKeptVoxels || best.requantized.capacity() > kKeptVoxels ||
+        trial.requantized.capacity() > kKeptVoxels)
       *this = Scratch{};
   }
 };
 
+template <class S>
 struct BrickInput {
   const BrickCoding& coding;
   std::span<const float> coef;
   const Extent& size;
-  std::span<const double> samples;
+  std::span<const S> samples;
   std::span<const std::uint8_t> active;
   double bound;
   VoxelType type;
 };
 
-void evaluate(const BrickInput& in, double base, Candidate& c) {
+template <class S>
+void evaluate(const BrickInput<S>& in, double base, Candidate& c) {
   IndexStats stats;
   requantize_brick(in.coding, in.coef, in.size, base, c.requantized, &stats);
   store_and_find_outliers(in.samples, c.requantized, {}, in.active, in.bound, in.type, c.outliers, nullptr);
@@ -66,12 +70,14 @@ void evaluate(const BrickInput& in, double base, Candidate& c) {
 
 }  // namespace
 
+template <class S>
 BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
-                            std::span<const double> samples, std::span<const std::uint8_t> active) {
+                            std::span<const S> samples, std::span<const std::uint8_t> active) {
   const double bound = plan.header.max_error;
-  const std::vector<float> coef = analyze_brick(plan.coding, samples, job.box.size);
-  const BrickInput in{plan.coding, coef, job.box.size, samples, active, bound, grid.volume.type};
   thread_local Scratch scratch;
+  std::vector<float>& coef = scratch.coef;
+  analyze_brick(plan.coding, samples, job.box.size, coef);
+  const BrickInput<S> in{plan.coding, coef, job.box.size, samples, active, bound, grid.volume.type};
   Candidate& best = scratch.best;
   // Descent over the factors from the usual best: the modelled total is unimodal in practice.
   std::size_t at = kFirstFactor;
@@ -103,5 +109,14 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   scratch.trim();
   return code;
 }
+
+template BrickCode code_within_bound(const VolumePlan&, const VolumeGrid&, const BrickJob&,
+                                     std::span<const std::uint8_t>, std::span<const std::uint8_t>);
+template BrickCode code_within_bound(const VolumePlan&, const VolumeGrid&, const BrickJob&,
+                                     std::span<const std::uint16_t>, std::span<const std::uint8_t>);
+template BrickCode code_within_bound(const VolumePlan&, const VolumeGrid&, const BrickJob&,
+                                     std::span<const float>, std::span<const std::uint8_t>);
+template BrickCode code_within_bound(const VolumePlan&, const VolumeGrid&, const BrickJob&,
+                                     std::span<const double>, std::span<const std::uint8_t>);
 
 }  // namespace pupwave

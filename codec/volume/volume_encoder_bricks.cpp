@@ -16,30 +16,33 @@
 namespace pupwave {
 namespace {
 
-// Per-thread buffers reused from brick to brick (its samples and the check of its coding): fresh
-// brick-sized vectors per brick cost page faults and leave glibc arenas holding several.
+// Per-thread buffers reused from brick to brick (its samples, as the input's own type, and the
+// check of its coding): fresh brick-sized vectors per brick cost page faults and leave glibc
+// arenas holding several.
+template <class S>
 struct BrickScratch {
-  std::vector<double> samples;
+  std::vector<S> samples;
   std::vector<std::uint8_t> active;
-  std::vector<std::int32_t> exact;   // reversible reconstruction
-  std::vector<float> approximate;    // irreversible reconstruction
+  BrickWork work;                    // the transform, then the reconstruction that checks it
   std::vector<std::uint8_t> joined;  // the brick's codewords, one after the other
   // Drops buffers larger than a 64^3 brick needs (a 256^3 brick's would stay with the thread).
   void trim() {
     constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
-    if (samples.capacity() > kKeptVoxels) *this = BrickScratch{};
+    if (samples.capacity() > kKeptVoxels || work.integer.capacity() > kKeptVoxels ||
+        work.real.capacity() > kKeptVoxels)
+      *this = BrickScratch{};
   }
 };
 
 // Error of a reconstruction (rounded to the stored type) against the samples, over the voxels
 // that count, in voxel order (as measure_brick sums it).
-template <class T>
-StoredError error_of(std::span<const double> samples, std::span<const std::uint8_t> active,
+template <class S, class T>
+StoredError error_of(std::span<const S> samples, std::span<const std::uint8_t> active,
                      const std::vector<T>& reconstruction, VoxelType type) {
   double max_error = 0.0, sse = 0.0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     if (!active.empty() && active[i] == 0) continue;
-    const double e = std::abs(samples[i] - to_stored(double(reconstruction[i]), type));
+    const double e = std::abs(double(samples[i]) - to_stored(double(reconstruction[i]), type));
     max_error = std::max(max_error, e);
     sse += e * e;
   }
@@ -72,27 +75,56 @@ std::vector<std::span<const std::uint8_t>> joined_codewords(const BrickCode& c,
 }
 
 // A brick coded at one base step with every pass (step and lossless modes), checked by decoding
-// it as the decoder will.
-BrickCode code_at_step(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job, BrickScratch& s,
-                       double base) {
+// it as the decoder will (into the coefficient buffer the coding is done with).
+template <class S>
+BrickCode code_at_step(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
+                       BrickScratch<S>& s, double base) {
   BrickCode code;
   code.base_step = base;
-  code.coded = code_brick(plan.coding, s.samples, job.box.size, base);
+  const std::span<const S> samples(s.samples);
+  code.coded = code_brick(plan.coding, samples, job.box.size, base, s.work);
   for (const auto& b : code.coded.coded) code.passes.push_back(b.pass_count());
   std::vector<BlockEntry> entries;
   const auto spans = joined_codewords(code, entries, s.joined);
   const VoxelType type = grid.volume.type;
   StoredError e;
   if (plan.coding.reversible) {
-    decode_brick_into(plan.coding, job.box.size, base, entries, spans, s.exact);
-    e = error_of(s.samples, s.active, s.exact, type);
+    decode_brick_into(plan.coding, job.box.size, base, entries, spans, s.work.integer);
+    e = error_of(samples, s.active, s.work.integer, type);
   } else {
-    decode_brick_into(plan.coding, job.box.size, base, entries, spans, s.approximate);
-    e = error_of(s.samples, s.active, s.approximate, type);
+    decode_brick_into(plan.coding, job.box.size, base, entries, spans, s.work.real);
+    e = error_of(samples, s.active, s.work.real, type);
   }
   code.max_error = e.max;
   code.sse = e.sse;
   return code;
+}
+
+// A job's brick coded as the options say, its samples gathered as S (the type of the view's
+// storage, so a u8 brick is held in a quarter of a MiB, not two as double).
+template <class S>
+BrickCode code_job(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
+                   const VolumeEncodeOptions& o) {
+  thread_local BrickScratch<S> scratch;
+  brick_samples(job, scratch.samples, scratch.active);
+  BrickCode code;
+  if (o.mode == VolumeRateMode::max_error)
+    code = code_within_bound(plan, grid, job, std::span<const S>(scratch.samples), scratch.active);
+  else
+    code = code_at_step(plan, grid, job, scratch, o.mode == VolumeRateMode::step ? o.target : 1.0);
+  scratch.trim();
+  return code;
+}
+
+BrickCode code_job(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
+                   const VolumeEncodeOptions& o) {
+  switch (job.view.storage) {
+    case VoxelType::u8: return code_job<std::uint8_t>(plan, grid, job, o);
+    case VoxelType::u16: return code_job<std::uint16_t>(plan, grid, job, o);
+    case VoxelType::f32: return code_job<float>(plan, grid, job, o);
+    case VoxelType::f64: break;
+  }
+  return code_job<double>(plan, grid, job, o);
 }
 
 // Hands chunks to the writer in stream order while bricks finish in any order: a chunk waits
@@ -145,15 +177,8 @@ std::vector<BrickFigures> code_and_write(const std::vector<VolumeGrid>& grids, c
   run_in_index_order(*plan.executor, plan.jobs.size(), [&](std::size_t i) {
     const BrickJob& job = plan.jobs[i];
     const VolumeGrid& grid = grids[job.grid];
-    thread_local BrickScratch scratch;
-    brick_samples(job, scratch.samples, scratch.active);
-    BrickCode code;
-    if (o.mode == VolumeRateMode::max_error)
-      code = code_within_bound(plan, grid, job, scratch.samples, scratch.active);
-    else
-      code = code_at_step(plan, grid, job, scratch, o.mode == VolumeRateMode::step ? o.target : 1.0);
+    BrickCode code = code_job(plan, grid, job, o);
     release.done(i);
-    scratch.trim();
     if (bound > 0.0 && code.max_error > bound)  // never expected: no chunk past the bound is written
       throw EncodeError("internal error: error bound exceeded after correction");
     figures[i] = {code.max_error, code.sse, code.outlier_count};

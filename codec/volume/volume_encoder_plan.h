@@ -70,13 +70,18 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const Vo
                         const VolumeEncodeOptions& options);
 
 // Samples of a job's brick (x fastest) and the flags of voxels that count (empty: all),
-// gathered from its view: the only place the encoder reads voxel values after planning.
-void brick_samples(const BrickJob& job, std::vector<double>& samples, std::vector<std::uint8_t>& active);
+// gathered from its view: the only place the encoder reads voxel values after planning. S as
+// gather_box takes it (the brick pass uses the view's storage type, see code_and_write).
+template <class S>
+void brick_samples(const BrickJob& job, std::vector<S>& samples, std::vector<std::uint8_t>& active) {
+  gather_box(job.view, job.box.offset, job.box.size, samples, active);
+}
 
 // Max-error coding of a brick (its samples and voxels that count, as brick_samples gives them):
 // every pass of every block at the step chosen for the bound, and the corrections that hold it.
+template <class S>
 BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, const BrickJob& job,
-                            std::span<const double> samples, std::span<const std::uint8_t> active);
+                            std::span<const S> samples, std::span<const std::uint8_t> active);
 
 // Reconstructs a brick from its chosen passes (exactly as the decoder will, before outliers).
 std::vector<double> reconstruct_brick(const VolumePlan& plan, const BrickJob& job, const BrickCode& code);

@@ -53,10 +53,10 @@ double correct(std::size_t i, double original, double value, double bound, Voxel
 
 // kStore: also write every stored value; kMeasure: also sum the error (its serial chain of
 // additions costs ~8% of a u16 encode when run for every candidate step, so only on request).
-template <VoxelType kType, bool kStore, bool kMeasure>
-void store_and_find(std::span<const double> original, std::span<const float> requantized,
-                    std::span<double> stored, std::span<const std::uint8_t> check, double bound,
-                    std::vector<Outlier>& out, StoredError* error) {
+template <VoxelType kType, bool kStore, bool kMeasure, class S>
+void store_and_find(std::span<const S> original, std::span<const float> requantized, std::span<double> stored,
+                    std::span<const std::uint8_t> check, double bound, std::vector<Outlier>& out,
+                    StoredError* error) {
   double max_error = 0.0, sse = 0.0;  // locals: through `error` every voxel would store both
   for (std::size_t i = 0; i < original.size(); ++i) {
     double value = to_stored(double(requantized[i]), kType);
@@ -64,10 +64,11 @@ void store_and_find(std::span<const double> original, std::span<const float> req
       if constexpr (kStore) stored[i] = value;
       continue;
     }
-    if (!(std::abs(original[i] - value) <= bound)) value = correct(i, original[i], value, bound, kType, out);
+    const double o = double(original[i]);
+    if (!(std::abs(o - value) <= bound)) value = correct(i, o, value, bound, kType, out);
     if constexpr (kStore) stored[i] = value;
     if constexpr (kMeasure) {
-      const double e = std::abs(original[i] - value);
+      const double e = std::abs(o - value);
       max_error = std::max(max_error, e);
       sse += e * e;
     }
@@ -75,10 +76,10 @@ void store_and_find(std::span<const double> original, std::span<const float> req
   if constexpr (kMeasure) *error = {max_error, sse};
 }
 
-template <VoxelType kType>
-void store_and_find(std::span<const double> original, std::span<const float> requantized,
-                    std::span<double> stored, std::span<const std::uint8_t> check, double bound,
-                    std::vector<Outlier>& out, StoredError* error) {
+template <VoxelType kType, class S>
+void store_and_find(std::span<const S> original, std::span<const float> requantized, std::span<double> stored,
+                    std::span<const std::uint8_t> check, double bound, std::vector<Outlier>& out,
+                    StoredError* error) {
   if (!stored.empty() && error != nullptr)
     store_and_find<kType, true, true>(original, requantized, stored, check, bound, out, error);
   else if (!stored.empty())
@@ -91,7 +92,8 @@ void store_and_find(std::span<const double> original, std::span<const float> req
 
 }  // namespace
 
-void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
+template <class S>
+void store_and_find_outliers(std::span<const S> original, std::span<const float> requantized,
                              std::span<double> stored, std::span<const std::uint8_t> check, double bound,
                              VoxelType type, std::vector<Outlier>& out, StoredError* error) {
   out.clear();
@@ -106,6 +108,19 @@ void store_and_find_outliers(std::span<const double> original, std::span<const f
       return store_and_find<VoxelType::f64>(original, requantized, stored, check, bound, out, error);
   }
 }
+
+template void store_and_find_outliers(std::span<const std::uint8_t>, std::span<const float>,
+                                      std::span<double>, std::span<const std::uint8_t>, double, VoxelType,
+                                      std::vector<Outlier>&, StoredError*);
+template void store_and_find_outliers(std::span<const std::uint16_t>, std::span<const float>,
+                                      std::span<double>, std::span<const std::uint8_t>, double, VoxelType,
+                                      std::vector<Outlier>&, StoredError*);
+template void store_and_find_outliers(std::span<const float>, std::span<const float>, std::span<double>,
+                                      std::span<const std::uint8_t>, double, VoxelType, std::vector<Outlier>&,
+                                      StoredError*);
+template void store_and_find_outliers(std::span<const double>, std::span<const float>, std::span<double>,
+                                      std::span<const std::uint8_t>, double, VoxelType, std::vector<Outlier>&,
+                                      StoredError*);
 
 std::vector<Outlier> find_outliers(std::span<const double> original, std::span<double> reconstruction,
                                    std::span<const std::uint8_t> check, double bound, VoxelType type) {

@@ -47,10 +47,18 @@ struct StoredError {
 // stored values (corrections applied) over the voxels `check` marks to `error` unless it is null,
 // and the stored values themselves to `stored` unless it is empty (the encoder's candidate steps
 // need neither, its chosen one only the error). Same result as converting with to_stored, then
-// find_outliers.
-void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
+// find_outliers. S: the originals' type (std::uint8_t, std::uint16_t, float or double; see
+// gather_box), compared as double.
+template <class S>
+void store_and_find_outliers(std::span<const S> original, std::span<const float> requantized,
                              std::span<double> stored, std::span<const std::uint8_t> check, double bound,
                              VoxelType type, std::vector<Outlier>& out, StoredError* error);
+inline void store_and_find_outliers(std::span<const double> original, std::span<const float> requantized,
+                                    std::span<double> stored, std::span<const std::uint8_t> check,
+                                    double bound, VoxelType type, std::vector<Outlier>& out,
+                                    StoredError* error) {
+  store_and_find_outliers<double>(original, requantized, stored, check, bound, type, out, error);
+}
 
 // Applies decoded corrections to a brick's reconstruction (then rounds to the stored type).
 void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> outliers, double bound,

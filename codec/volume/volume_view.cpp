@@ -101,14 +101,44 @@ void check_view(const VolumeView& view) {
       throw std::invalid_argument("volume view: zero stride along axis " + std::to_string(a));
 }
 
-void gather_box(const VolumeView& view, const Extent& offset, const Extent& size,
-                std::vector<double>& samples, std::vector<std::uint8_t>& active) {
+template <class S>
+bool sample_type_holds(VoxelType storage) {
+  return with_storage(storage, [](auto t) {
+    using T = decltype(t);
+    if constexpr (std::is_same_v<S, double> || std::is_same_v<S, T>) return true;
+    // float holds every u8 and u16 (24-bit significand); u16 holds every u8.
+    return std::is_same_v<S, float> ? std::is_integral_v<T>
+                                    : std::is_same_v<S, std::uint16_t> && sizeof(T) == 1;
+  });
+}
+
+template <class S>
+void gather_box(const VolumeView& view, const Extent& offset, const Extent& size, std::vector<S>& samples,
+                std::vector<std::uint8_t>& active) {
+  if (!sample_type_holds<S>(view.storage))
+    throw std::invalid_argument("gather_box: samples cannot hold " + to_string(view.storage) + " elements");
   samples.resize(size[0] * size[1] * size[2]);
   active.clear();
-  std::size_t k = 0;
-  for (std::size_t z = 0; z < size[2]; ++z)
-    for (std::size_t y = 0; y < size[1]; ++y, k += size[0])
-      view.read_row(offset[0], offset[1] + y, offset[2] + z, size[0], samples.data() + k);
+  with_storage(view.storage, [&](auto t) {
+    using T = decltype(t);
+    // Only the pairs sample_type_holds accepts are instantiated (no narrowing conversion).
+    if constexpr (std::is_same_v<S, double> || std::is_same_v<S, T> ||
+                  (std::is_same_v<S, float> && std::is_integral_v<T>) ||
+                  (std::is_same_v<S, std::uint16_t> && sizeof(T) == 1)) {
+      std::size_t k = 0;
+      for (std::size_t z = 0; z < size[2]; ++z)
+        for (std::size_t y = 0; y < size[1]; ++y, k += size[0]) {
+          const T* row =
+              static_cast<const T*>(view.data) + view.offset(offset[0], offset[1] + y, offset[2] + z);
+          S* out = samples.data() + k;
+          if (view.strides[0] == 1) {
+            for (std::size_t x = 0; x < size[0]; ++x) out[x] = S(row[x]);
+          } else {
+            for (std::size_t x = 0; x < size[0]; ++x) out[x] = S(row[std::ptrdiff_t(x) * view.strides[0]]);
+          }
+        }
+    }
+  });
   if (view.active == nullptr) return;
   active.reserve(samples.size());
   for (std::size_t z = 0; z < size[2]; ++z)
@@ -116,6 +146,19 @@ void gather_box(const VolumeView& view, const Extent& offset, const Extent& size
       for (std::size_t x = 0; x < size[0]; ++x)
         active.push_back(view.active[view.offset(offset[0] + x, offset[1] + y, offset[2] + z)]);
 }
+
+template bool sample_type_holds<std::uint8_t>(VoxelType);
+template bool sample_type_holds<std::uint16_t>(VoxelType);
+template bool sample_type_holds<float>(VoxelType);
+template bool sample_type_holds<double>(VoxelType);
+template void gather_box(const VolumeView&, const Extent&, const Extent&, std::vector<std::uint8_t>&,
+                         std::vector<std::uint8_t>&);
+template void gather_box(const VolumeView&, const Extent&, const Extent&, std::vector<std::uint16_t>&,
+                         std::vector<std::uint8_t>&);
+template void gather_box(const VolumeView&, const Extent&, const Extent&, std::vector<float>&,
+                         std::vector<std::uint8_t>&);
+template void gather_box(const VolumeView&, const Extent&, const Extent&, std::vector<double>&,
+                         std::vector<std::uint8_t>&);
 
 namespace {
 

@@ -71,10 +71,18 @@ VolumeView sub_view(const VolumeView& view, const Extent& offset, const Extent& 
 // for u16), zero strides along an axis longer than one voxel.
 void check_view(const VolumeView& view);
 
-// The voxels of box [offset, offset + size) of a view, x fastest, as double (`samples`), and the
+// The voxels of box [offset, offset + size) of a view, x fastest, as S (`samples`), and the
 // mask bytes of the box (`active`, left empty for a dense view). The encoder's only read path.
-void gather_box(const VolumeView& view, const Extent& offset, const Extent& size,
-                std::vector<double>& samples, std::vector<std::uint8_t>& active);
+// S is std::uint8_t, std::uint16_t, float or double and must hold every element of the view's
+// storage exactly (sample_type_holds; std::invalid_argument otherwise): the encoder gathers a
+// brick as its storage type, not as double, so a worker holds a u8 brick in a quarter of a MiB.
+template <class S>
+void gather_box(const VolumeView& view, const Extent& offset, const Extent& size, std::vector<S>& samples,
+                std::vector<std::uint8_t>& active);
+
+// Whether every element of `storage` is exactly an S (the S gather_box accepts for it).
+template <class S>
+bool sample_type_holds(VoxelType storage);
 
 // Calls f(value, active) for every voxel, row by row (values as double).
 template <class F>

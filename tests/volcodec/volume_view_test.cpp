@@ -4,6 +4,7 @@
 // the stored type with the values decode_volumes gives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -105,6 +106,68 @@ TEST(VolumeView, U8SubBoxGivesTheStreamOfItsContiguousCopy) {
 
 TEST(VolumeView, U16SubBoxGivesTheStreamOfItsContiguousCopy) {
   check_integer_round_trip<std::uint16_t>(VoxelType::u16, 4000.0);
+}
+
+// The encoder gathers a brick as the view's storage type (u8, u16, float; issue 17's memory
+// target), not as double: lossless, fixed-step and max-error coding give the stream of the
+// double path (a Volume, held as double), also for integer voxels in a wider storage.
+template <class T>
+void check_storage_gives_the_double_stream(VoxelType type, double scale) {
+  const Volume v = test::smooth_volume({21, 17, 9}, type, scale);
+  const bool integer = type != VoxelType::f32;
+  std::vector<VolumeEncodeOptions> modes = {options(VolumeRateMode::max_error, 0.01 * scale, "cdf97"),
+                                            options(VolumeRateMode::step, 0.02 * scale, "cdf97")};
+  if (integer) modes.push_back(options(VolumeRateMode::lossless, 0, "cdf53"));
+  const auto inside = embed<T>(v, {40, 30, 20}, {3, 5, 2});
+  for (const auto& o : modes)
+    EXPECT_EQ(encode_view(inside.view, o), encode_copy(v, o))
+        << to_string(type) << " in " << to_string(storage_of<T>()) << ", mode " << int(o.mode);
+}
+
+TEST(VolumeView, EveryStorageTypeGivesTheStreamOfTheDoublePath) {
+  check_storage_gives_the_double_stream<std::uint8_t>(VoxelType::u8, 255.0);
+  check_storage_gives_the_double_stream<std::uint16_t>(VoxelType::u8, 255.0);
+  check_storage_gives_the_double_stream<float>(VoxelType::u8, 255.0);
+  check_storage_gives_the_double_stream<std::uint16_t>(VoxelType::u16, 4000.0);
+  check_storage_gives_the_double_stream<float>(VoxelType::u16, 4000.0);
+  check_storage_gives_the_double_stream<float>(VoxelType::f32, 50.0);
+}
+
+// gather_box gives a box's voxels in any type that holds the storage exactly, and refuses a
+// narrower one rather than round.
+TEST(VolumeView, GatherBoxHoldsTheStorageExactlyAndRefusesNarrowing) {
+  std::vector<std::uint16_t> data(6 * 5 * 4);
+  for (std::size_t i = 0; i < data.size(); ++i) data[i] = std::uint16_t((i * 7919u) % 65536u);
+  const VolumeView view =
+      sub_view(contiguous_view(data.data(), {6, 5, 4}, VoxelType::u16), {1, 1, 1}, {4, 3, 2});
+  std::vector<double> wide;
+  std::vector<std::uint16_t> own;
+  std::vector<float> single;
+  std::vector<std::uint8_t> active, narrow;
+  const Extent at{1, 0, 1}, size{3, 3, 1};
+  gather_box(view, at, size, wide, active);
+  gather_box(view, at, size, own, active);
+  gather_box(view, at, size, single, active);
+  ASSERT_EQ(wide.size(), 9u);
+  ASSERT_EQ(own.size(), 9u);
+  ASSERT_EQ(single.size(), 9u);
+  EXPECT_TRUE(active.empty());
+  for (std::size_t y = 0, k = 0; y < 3; ++y)
+    for (std::size_t x = 0; x < 3; ++x, ++k) {
+      EXPECT_EQ(wide[k], view.at(1 + x, y, 1));
+      EXPECT_EQ(double(own[k]), wide[k]);
+      EXPECT_EQ(double(single[k]), wide[k]);
+    }
+  EXPECT_GT(*std::max_element(wide.begin(), wide.end()), 255.0);  // u8 could not hold them
+  EXPECT_THROW(gather_box(view, at, size, narrow, active), std::invalid_argument);
+  const std::vector<float> floats(8, 0.5f);
+  const VolumeView float_view = contiguous_view(floats.data(), {2, 2, 2}, VoxelType::f32);
+  EXPECT_THROW(gather_box(float_view, {0, 0, 0}, {2, 2, 2}, own, active), std::invalid_argument);
+  const std::vector<double> doubles(8, 0.1);
+  const VolumeView double_view = contiguous_view(doubles.data(), {2, 2, 2}, VoxelType::f64);
+  EXPECT_THROW(gather_box(double_view, {0, 0, 0}, {2, 2, 2}, single, active), std::invalid_argument);
+  gather_box(double_view, {0, 0, 0}, {2, 2, 2}, wide, active);
+  EXPECT_EQ(wide, doubles);
 }
 
 TEST(VolumeView, SparseViewReadsItsStridedMask) {
