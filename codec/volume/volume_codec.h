@@ -62,8 +62,8 @@ struct VolumeEncodeResult {
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options);
 
 // The same with box grids read in place through views of the caller's memory (typed, strided;
-// see volume_view.h): bricks are gathered from a view and widened to double one at a time, so
-// a volume is never copied. views[i] with data set gives grid i's values: grids[i] then carries
+// see volume_view.h): bricks are gathered one at a time as the view's storage type, so a
+// volume is never copied. views[i] with data set gives grid i's values: grids[i] then carries
 // only the description (name, class, placement, metadata; volume.dims, type and background
 // equal to the view's, volume.samples and active empty; the mask comes from the view). A view
 // with null data (or an empty span) means the grid's own values. Throws like the above, and
