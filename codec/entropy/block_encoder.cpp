@@ -101,9 +101,7 @@ class BitPlaneEncoder {
   bool code_significance(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
     const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
     const int bit = int((q_[i] >> p) & 1u);
-    int ctx = state_.significance_context(f);
-    if (ctx == 0) ctx = BlockState::zero_context(state_.column(s.c0 + x), r);
-    code(rc, bit, ctx);
+    code(rc, bit, state_.full_significance_context(f, state_.column(s.c0 + x), r));
     if (bit) become_significant(rc, s, x, r, p);
     return bit != 0;
   }
