@@ -29,8 +29,12 @@ struct BitModel {
     const std::uint32_t p = p0;
     if (count >= kSettled) {
       // Settled (the common case): at the capped shift a probability inside [kMinP,
-      // kProbabilityOne - kMinP] stays inside, so no clamp is needed.
-      p0 = std::uint16_t(bit ? p - (p >> kMaxShift) : p + ((kProbabilityOne - p) >> kMaxShift));
+      // kProbabilityOne - kMinP] stays inside, so no clamp is needed. The step is selected
+      // by a mask, not a branch: GCC otherwise splits the coder's paths on the bit, a
+      // mispredicted jump for every unpredictable bit.
+      const std::uint32_t one = 0u - std::uint32_t(bit != 0);
+      p0 = std::uint16_t(p +
+                         ((((kProbabilityOne - p) >> kMaxShift) & ~one) | ((0u - (p >> kMaxShift)) & one)));
       return;
     }
     // shift = 1 + floor(log2(count + 1)): 1, 2, 2, 3, 3, 3, 3, 4, ... up to kMaxShift at

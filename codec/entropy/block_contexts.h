@@ -77,6 +77,12 @@ class BlockState {
   static int zero_context(std::uint32_t w, unsigned r) {
     return kFarContext * int((w >> (kColumnFar + r)) & 1u);
   }
+  // Significance context of coefficient p, row r of column word w: significance_context,
+  // refined by zero_context where that is 0, selected without a branch.
+  int full_significance_context(std::size_t p, std::uint32_t w, unsigned r) const {
+    const int ctx = significance_context(p);
+    return ctx + (zero_context(w, r) & -int(ctx == 0));
+  }
   // Run context of a stripe column with word w.
   static int run_context(std::uint32_t w) { return (w >> kColumnFar) & kRows ? kFarRunContext : kRunContext; }
   // Sign context number and the bit the sign is XORed with before coding (Table D.3).
@@ -89,9 +95,11 @@ class BlockState {
   // Size of the padded per-coefficient array.
   std::size_t padded_count() const { return neighbours_.size(); }
   // Refinement context of row r of column word w.
+  // Without a branch (whether a row was refined before is a coin toss to a predictor).
   static int refinement_context(std::uint32_t w, unsigned r) {
-    if ((w >> (kColumnRefined + r)) & 1u) return kRefineContext0 + 2;
-    return kRefineContext0 + int((w >> (kColumnNeighbour + r)) & 1u);
+    const std::uint32_t refined = (w >> (kColumnRefined + r)) & 1u;
+    const std::uint32_t near = (w >> (kColumnNeighbour + r)) & 1u;
+    return kRefineContext0 + int((refined << 1) | (near & ~refined));
   }
 
   // Marks coefficient p (row y of slice z, column x) significant with the given sign: counts

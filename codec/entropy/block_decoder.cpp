@@ -1,5 +1,6 @@
 #include "codec/entropy/block_decoder.h"
 
+#include <algorithm>
 #include <bit>
 #include <string>
 
@@ -39,8 +40,10 @@ class BitPlaneDecoder {
     }
     // low_plane holds the plane where each coefficient became significant; one significant
     // before a decoded refinement pass was refined in every later one, lastly lowest_refined.
-    for (auto& low : out_.low_plane)
-      if (low != 255 && low > lowest_refined) low = std::uint8_t(lowest_refined);
+    // min(low, lowest_refined) with 255 kept: 255 + 1 wraps to 0 (a form that vectorizes).
+    const auto cap = std::uint8_t(lowest_refined + 1);
+    if (lowest_refined < planes)
+      for (auto& low : out_.low_plane) low = std::uint8_t(std::min(std::uint8_t(low + 1), cap) - 1);
     return std::move(out_);
   }
 
@@ -71,8 +74,7 @@ class BitPlaneDecoder {
     // Decodes the significance bit of row r of column x of stripe s.
     [[gnu::always_inline]] void decode_significance(const Stripe& s, std::size_t x, unsigned r) {
       const std::size_t f = s.f0 + x + r * stride;
-      int ctx = state.significance_context(f);
-      if (ctx == 0) ctx = BlockState::zero_context(state.column(s.c0 + x), r);
+      const int ctx = state.full_significance_context(f, state.column(s.c0 + x), r);
       if (rc.decode(state.models[std::size_t(ctx)])) become_significant(s, x, r);
     }
   };

@@ -10,7 +10,9 @@
 namespace pupwave {
 namespace {
 
-// Runs the coding passes over one block and records the truncation points.
+// Runs the coding passes over one block and, when Track, records the truncation points and the
+// distortion each pass removes (a whole-codeword encode needs neither: it skips their cost).
+template <bool Track>
 class BitPlaneEncoder {
  public:
   BitPlaneEncoder(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
@@ -36,7 +38,8 @@ class BitPlaneEncoder {
     std::uint32_t all = 0;
     for (auto q : q_) all |= q;
     while (all >> out.planes) ++out.planes;
-    for (std::size_t i = 0; i < q_.size(); ++i) out.initial_distortion += double(m_[i]) * double(m_[i]);
+    if constexpr (Track)
+      for (std::size_t i = 0; i < q_.size(); ++i) out.initial_distortion += double(m_[i]) * double(m_[i]);
     for (int p = out.planes - 1; p >= 0; --p) {
       if (p != out.planes - 1) {
         significance_pass(p);
@@ -47,11 +50,18 @@ class BitPlaneEncoder {
       cleanup_pass(p);
       finish_pass(out);
     }
+    if (tally_ != nullptr) add_to_tally();
+    if constexpr (!Track) {
+      out.committed = rc_.finish();
+      return out;
+    }
     auto committed = rc_.committed();
     out.committed.assign(committed.begin(), committed.end());
-    if (tally_ != nullptr) add_to_tally();
     return out;
   }
+
+  // Passes coded so far (untracked encodes count them only).
+  int passes_coded() const { return passes_coded_; }
 
  private:
   // Reconstruction (index units) of magnitude q known down to bit-plane p.
@@ -60,6 +70,7 @@ class BitPlaneEncoder {
     return double(known) + delta_ * double(1u << p);
   }
   void add_gain(double m, double before, double after) {
+    if constexpr (!Track) return;
     gain_ += (m - before) * (m - before) - (m - after) * (m - after);
   }
 
@@ -79,6 +90,8 @@ class BitPlaneEncoder {
   }
 
   void finish_pass(EncodedBlock& out) {
+    ++passes_coded_;
+    if constexpr (!Track) return;
     out.passes.push_back(rc_.truncation_point());
     out.distortion_drop.push_back(gain_);
     gain_ = 0.0;
@@ -88,9 +101,7 @@ class BitPlaneEncoder {
   bool code_significance(RangeEncoder& rc, const Stripe& s, std::size_t x, unsigned r, int p) {
     const std::size_t f = s.f0 + x + r * flag_row_, i = s.i0 + x + r * size_[0];
     const int bit = int((q_[i] >> p) & 1u);
-    int ctx = state_.significance_context(f);
-    if (ctx == 0) ctx = BlockState::zero_context(state_.column(s.c0 + x), r);
-    code(rc, bit, ctx);
+    code(rc, bit, state_.full_significance_context(f, state_.column(s.c0 + x), r));
     if (bit) become_significant(rc, s, x, r, p);
     return bit != 0;
   }
@@ -181,6 +192,7 @@ class BitPlaneEncoder {
   std::vector<std::uint32_t> q_;
   RangeEncoder rc_;
   double gain_ = 0.0;
+  int passes_coded_ = 0;
   ContextTally* tally_;                                // null unless prior training counts bits
   std::size_t prior_class_;                            // band class of the block (ctx_priors.h)
   std::array<std::uint8_t, kBlockContexts> seen_{};    // bits kept per context (<= kTallyWindow)
@@ -198,7 +210,16 @@ EncodedBlock encode_block(std::span<const float> magnitude, std::span<const std:
                           const Extent& size, unsigned orientation, double delta) {
   if (magnitude.size() != size[0] * size[1] * size[2] || negative.size() != magnitude.size())
     throw std::invalid_argument("encode_block: coefficient count does not match the block size");
-  return BitPlaneEncoder(magnitude, negative, size, orientation, delta).run();
+  return BitPlaneEncoder<true>(magnitude, negative, size, orientation, delta).run();
+}
+
+WholeBlock encode_block_whole(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
+                              const Extent& size, unsigned orientation, double delta) {
+  if (magnitude.size() != size[0] * size[1] * size[2] || negative.size() != magnitude.size())
+    throw std::invalid_argument("encode_block: coefficient count does not match the block size");
+  BitPlaneEncoder<false> encoder(magnitude, negative, size, orientation, delta);
+  EncodedBlock coded = encoder.run();
+  return WholeBlock{coded.planes, encoder.passes_coded(), std::move(coded.committed)};
 }
 
 }  // namespace pupwave

@@ -44,4 +44,16 @@ struct EncodedBlock {
 EncodedBlock encode_block(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
                           const Extent& size, unsigned orientation, double delta);
 
+// A block coded with every pass as one codeword (no truncation points kept).
+struct WholeBlock {
+  int planes = 0;
+  int passes = 0;
+  std::vector<std::uint8_t> codeword;  // EncodedBlock::codeword(passes) of encode_block
+};
+
+// The same codeword as encode_block's with every pass, without the truncation points and
+// distortion estimates (lossless, fixed-step and trial encodes need only the codeword).
+WholeBlock encode_block_whole(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
+                              const Extent& size, unsigned orientation, double delta);
+
 }  // namespace pupwave

@@ -48,10 +48,12 @@ class RangeDecoder {
   // unpredictable, and a mispredicted jump costs more than computing both outcomes.
   int decode_with(std::uint32_t p0) {
     const std::uint32_t bound = (range_ >> kProbabilityBits) * p0;
-    const int bit = code_ >= bound ? 1 : 0;
-    const std::uint32_t taken = bound & (0u - std::uint32_t(bit));
-    code_ -= taken;
-    range_ = bit ? range_ - bound : bound;
+    // zero: all ones when the bit is 0 (code below bound), from the borrow of the 64-bit
+    // difference, so GCC cannot turn the selection into a jump.
+    const std::uint32_t zero = std::uint32_t((std::uint64_t(code_) - bound) >> 32);
+    const int bit = int(zero + 1u);
+    code_ -= bound & ~zero;
+    range_ = (bound & zero) | ((range_ - bound) & ~zero);
     // Renormalisation is rare (about once per 8 bits of output), so a branch keeps the
     // leading-zero count off the common path. range_ >= 2^13 after any decision
     // (p0 >= 31), so at most 2 bytes are shifted in.

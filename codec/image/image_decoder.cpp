@@ -2,7 +2,9 @@
 // in parallel, dequantize, inverse wavelet transform (stopping early for reduced
 // resolution), inverse colour transform.
 #include <algorithm>
+#include <bit>
 #include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "codec/entropy/block_decoder.h"
@@ -46,13 +48,13 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   return values;
 }
 
-// reconstruct()'s offset for every bit-plane a coefficient can end on (255: insignificant),
+// reconstruct()'s offset for every bit-plane a coefficient can end on (255: insignificant, 0),
 // so the loop below needs no variable shift or branch per sample.
 struct PlaneOffsets {
   double value[256];
   PlaneOffsets(double delta, bool exact) {
     for (unsigned p = 0; p < 256; ++p)
-      value[p] = (exact && p == 0) ? 0.0 : delta * double(1u << (p < 32 && p != 255 ? p : 0));
+      value[p] = p == 255 || (exact && p == 0) ? 0.0 : delta * double(1u << (p < 32 ? p : 0));
   }
 };
 
@@ -73,9 +75,13 @@ void dequantize_into(const ParsedStream& s, std::size_t i, T* first, std::size_t
   for (std::size_t y = 0; y < b.size[1]; ++y, known += b.size[0], plane += b.size[0]) {
     T* row = first + y * stride;
     for (std::size_t x = 0; x < b.size[0]; ++x) {
+      // Without branches (significance and sign are coin tosses): an insignificant sample
+      // has known 0 and offset 0, so it comes out +0 as before; the sign goes on as a bit.
       const std::int32_t v = known[x];
-      const float r = float(double(v < 0 ? -std::int64_t(v) : v) + offsets.value[plane[x]]);
-      row[x] = plane[x] != 255 ? T(v < 0 ? -r : r) * step : T(0);
+      const float r = float(double(std::abs(std::int64_t(v))) + offsets.value[plane[x]]);
+      const float signed_r =
+          std::bit_cast<float>(std::bit_cast<std::uint32_t>(r) ^ (std::uint32_t(v) & 0x80000000u));
+      row[x] = T(signed_r) * step;
     }
   }
 }

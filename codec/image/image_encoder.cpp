@@ -204,16 +204,16 @@ std::optional<std::vector<std::uint8_t>> code_every_pass(
       plan, false, [&] { return over.load(std::memory_order_relaxed); },
       [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
         const CodeBlock& b = plan.blocks[i];
-        const EncodedBlock coded =
-            encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
-        const int n = coded.pass_count();
-        entries[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(coded.size(n))};
-        const std::size_t sum = total.fetch_add(coded.size(n)) + coded.size(n);
+        WholeBlock coded = encode_block_whole(magnitude, negative, b.size, b.orientation, plan.header.delta);
+        const int n = coded.passes;
+        const std::size_t size = coded.codeword.size();
+        entries[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(size)};
+        const std::size_t sum = total.fetch_add(size) + size;
         if (sum > byte_limit) over = true;
         if (trial && sum > kMaxTrialBytes) dropped = true;
         if (dropped) return;
-        words[i] = coded.codeword(n);
-        words[i].shrink_to_fit();  // codeword() leaves up to twice the capacity it needs
+        words[i] = std::move(coded.codeword);
+        words[i].shrink_to_fit();  // the encoder's buffer has up to twice the capacity it needs
       });
   if (over) {
     words.clear();
