@@ -3,6 +3,7 @@
 // rate model's step, kept inside the bracket of the trials so far (bisection when the secant
 // leaves it). Each trial codes every block (fast: no arithmetic coding).
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -38,6 +39,12 @@ constexpr std::size_t kSampleEvery = 4;
 constexpr std::size_t kSampleWhole = 16;
 // A streamed encode holds its sample's coefficients: one block in kStreamSampleEvery.
 constexpr std::size_t kStreamSampleEvery = 8;
+// Images of two kStripePeriod or more rows are surveyed by stripes (survey_stripes).
+constexpr std::size_t kStripeRows = 256;
+constexpr std::size_t kStripePeriod = 1024;
+// Stripes, their edges extended, predict 3-6% more bytes than the whole image (both mosaics at
+// 0.25-2 bpp; the pair's range absorbs the rest of the spread).
+constexpr double kStripeBias = 0.955;
 constexpr int kMaxSampleTrials = 6;
 constexpr double kSampleClose = 0.003;
 // Streamed size search (search_size_streamed): each pass codes every block at a fine step and
@@ -45,7 +52,7 @@ constexpr double kSampleClose = 0.003;
 // (the sample's miss on the mosaics and photographs is -1% to +3%); at most kMaxPairPasses
 // passes once one fits.
 constexpr double kPairRatio = 1.0905;  // 2^(1/8)
-constexpr double kPairAim = 1.005;
+constexpr double kPairAim = 1.015;
 constexpr int kMaxPairPasses = 4;
 // Trial encodes (each decoded and measured) for a PSNR target, met within kPsnrTolerance dB above.
 constexpr int kMaxPsnrTrials = 12;
@@ -252,6 +259,40 @@ double model_step(const ImagePlan& plan, double budget) {
   return guess_base_step(total, budget, 1.0);
 }
 
+// Signed indices of `values` at step 1 / inv (as indices_of); returns the squared error in
+// index units. Four samples at a time (GCC/Clang vector extensions: the scalar loop did not
+// vectorize and cost 13% of an encode), summed in a fixed order: the same on any thread.
+double quantize_error(std::span<const float> values, float inv, float delta, std::vector<std::int32_t>& q) {
+  using F4 = float __attribute__((vector_size(16)));
+  using I4 = std::int32_t __attribute__((vector_size(16)));
+  const std::size_t n = values.size();
+  q.resize(n);
+  const float* v = values.data();
+  std::int32_t* out = q.data();
+  const F4 vinv = F4{} + inv, limit = F4{} + kIndexLimit, vdelta = F4{} + delta;
+  F4 acc = {};
+  std::size_t k = 0;
+  for (; k + 4 <= n; k += 4) {
+    F4 x;
+    std::memcpy(&x, v + k, sizeof x);
+    const F4 m = (x < 0.0f ? -x : x) * vinv;
+    const I4 index = __builtin_convertvector(m < limit ? m : limit, I4);  // NaN: limit
+    const I4 signed_index = x < 0.0f ? -index : index;
+    std::memcpy(out + k, &signed_index, sizeof signed_index);
+    const F4 e = m - (index == 0 ? F4{} : __builtin_convertvector(index, F4) + vdelta);
+    acc += e * e;
+  }
+  double sum = double(acc[0]) + double(acc[1]) + double(acc[2]) + double(acc[3]);
+  for (; k < n; ++k) {
+    const float m = std::fabs(v[k]) * inv;
+    const auto index = std::int32_t(m < kIndexLimit ? m : kIndexLimit);  // NaN too
+    out[k] = v[k] < 0.0f ? -index : index;
+    const float e = m - (index == 0 ? 0.0f : float(index) + delta);
+    sum += double(e) * double(e);
+  }
+  return sum;
+}
+
 // Blocks standing for all in the step search: each (component, band) with few blocks whole,
 // about one in kSampleEvery of the others, each weighted by how many it stands for. `values`:
 // their coefficients where the components are not held in the plan (streamed encodes).
@@ -259,6 +300,10 @@ struct Sample {
   std::vector<std::size_t> ids;
   std::vector<double> weights;
   std::vector<std::vector<float>> values;
+  // Surveyed by stripes (survey_stripes): blocks of other plans, each with its (component,
+  // band) unit and extent; ids is then empty and weights are per unit.
+  std::vector<std::size_t> units;
+  std::vector<std::array<std::size_t, 2>> sizes;
 };
 
 Sample sample_blocks(const ImagePlan& plan, std::size_t every = kSampleEvery) {
@@ -287,23 +332,32 @@ Sample sample_blocks(const ImagePlan& plan, std::size_t every = kSampleEvery) {
 // index bytes of the sampled entries scaled to all blocks.
 double sampled_size(ImagePlan& plan, const Sample& sample, double t) {
   set_base_step(plan, std::exp(t));
-  std::vector<BlockEntry> entries(sample.ids.size());
-  plan.executor->run(sample.ids.size(), [&](std::size_t k) {
+  const bool striped = !sample.units.empty();
+  const std::size_t n = striped ? sample.units.size() : sample.ids.size();
+  std::vector<BlockEntry> entries(n);
+  const float delta = float(plan.header.delta);
+  plan.executor->run(n, [&](std::size_t k) {
     thread_local std::vector<std::int32_t> q;
-    const std::size_t i = sample.ids[k];
-    if (sample.values.empty())
-      block_indices(plan, i, q);
-    else
-      indices_of(plan, i, std::span<const float>(sample.values[k]), q);
-    const CodeBlock& b = plan.blocks[i];
-    const HtCodeword w = ht_encode_block(q, b.size[0], b.size[1]);
+    std::array<std::size_t, 2> size{};
+    if (striped) {
+      quantize_error(sample.values[k], 1.0f / plan.header.steps[sample.units[k]], delta, q);
+      size = sample.sizes[k];
+    } else {
+      const CodeBlock& b = plan.blocks[sample.ids[k]];
+      if (sample.values.empty())
+        block_indices(plan, sample.ids[k], q);
+      else
+        indices_of(plan, sample.ids[k], std::span<const float>(sample.values[k]), q);
+      size = {b.size[0], b.size[1]};
+    }
+    const HtCodeword w = ht_encode_block(q, size[0], size[1]);
     entries[k] = {w.planes, w.planes > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
   });
   double data = 0.0;
-  for (std::size_t k = 0; k < sample.ids.size(); ++k) data += sample.weights[k] * double(entries[k].length);
-  const double index =
-      double(encode_index(entries).size()) * double(plan.blocks.size()) / double(entries.size());
-  return double(container_size(plan.header, 0, 0)) + index + data;
+  for (std::size_t k = 0; k < n; ++k)
+    data += sample.weights[striped ? sample.units[k] : k] * double(entries[k].length);
+  const double index = double(encode_index(entries).size()) * double(plan.blocks.size()) / double(n);
+  return double(container_size(plan.header, 0, 0)) + (index + data) * (striped ? kStripeBias : 1.0);
 }
 
 // The log step at which the sample predicts `goal` bytes (a secant on log size over log step
@@ -402,6 +456,68 @@ std::pair<double, Sample> survey(const ImagePlan& plan, double budget) {
   return {guess_base_step(total, budget, 1.0), std::move(sample)};
 }
 
+// The same from a kStripeRows-row stripe of every kStripePeriod rows (at offsets that do not
+// repeat with the period, so a periodic picture is not sampled at one phase), each transformed
+// as an image of its own (its edges extended as the image's are), one block in two of each kept:
+// a quarter of the survey's transform work. Nullopt where the image is too short for stripes.
+std::optional<std::pair<double, Sample>> survey_stripes(const ImagePlan& plan, const EncodeOptions& options,
+                                                        double budget) {
+  const std::size_t height = plan.header.dims[1], stripes = height / kStripePeriod;
+  if (stripes < 2 || plan.source.row_stride <= 0) return std::nullopt;
+  EncodeOptions o = options;
+  o.levels = plan.header.levels;
+  const std::size_t units = plan.header.channels * plan.bands.size();
+  Sample sample;
+  std::vector<double> counted(units, 0.0), sampled(units, 0.0);
+  for (const CodeBlock& b : plan.blocks)
+    counted[b.component * plan.bands.size() + b.band] += double(b.count());
+  ThreadHistograms histograms;
+  double surveyed = 0.0;
+  for (std::size_t k = 0; k < stripes; ++k) {
+    const double phase = std::fmod(0.25 + 0.6180339887 * double(k), 1.0);
+    const std::size_t y0 = k * kStripePeriod + std::size_t(phase * double(kStripePeriod - kStripeRows));
+    ImageView v = plan.source;
+    v.data = static_cast<const std::uint8_t*>(v.data) +
+             std::ptrdiff_t(y0) * v.row_stride * std::ptrdiff_t(bytes_per_sample(v.storage));
+    v.height = kStripeRows;
+    v.drop_rows = nullptr;
+    const ImagePlan sp = plan_image(v, o);
+    if (sp.bands.size() != plan.bands.size() || sp.strip_reach == 0) return std::nullopt;
+    // Bands of few blocks in the stripe are kept whole.
+    std::vector<std::size_t> in_band(units, 0);
+    for (const CodeBlock& b : sp.blocks) ++in_band[b.component * plan.bands.size() + b.band];
+    std::vector<std::vector<float>> kept(sp.blocks.size());
+    for (std::size_t c = 0; c < plan.header.channels; ++c)
+      stream_component<float>(sp, c, [&](std::size_t i, std::span<const float> values) {
+        const CodeBlock& b = sp.blocks[i];
+        histograms.mine().add(values, magnitude_scale(plan, c, b.band));
+        if (in_band[b.component * plan.bands.size() + b.band] < kSampleWhole ||
+            ((std::uint32_t(i) * 2654435761u) >> 24) % 2 == 0)
+          kept[i].assign(values.begin(), values.end());
+      });
+    if (plan.source.drop_rows)
+      plan.source.drop_rows(plan.source.drop_context, plan.source, y0, y0 + kStripeRows);
+    for (std::size_t i = 0; i < sp.blocks.size(); ++i) {
+      if (kept[i].empty()) continue;
+      const CodeBlock& b = sp.blocks[i];
+      const std::size_t u = b.component * plan.bands.size() + b.band;
+      sampled[u] += double(kept[i].size());
+      sample.units.push_back(u);
+      sample.sizes.push_back({b.size[0], b.size[1]});
+      sample.values.push_back(std::move(kept[i]));
+    }
+    surveyed += double(sp.samples);
+  }
+  sample.weights.resize(units);
+  for (std::size_t u = 0; u < units; ++u) {
+    if (counted[u] > 0.0 && sampled[u] == 0.0) return std::nullopt;  // a band the stripes missed
+    sample.weights[u] = sampled[u] > 0.0 ? counted[u] / sampled[u] : 0.0;
+  }
+  const double fraction = surveyed / double(plan.samples);
+  return std::pair<double, Sample>{guess_base_step(histograms.total(), budget * fraction, 1.0),
+                                   std::move(sample)};
+}
+
 // Every block of a streamed pass coded at two base steps, exp(t) (fine) and kPairRatio times
 // that (coarse), with the output squared error of each; the stream takes, per (component,
 // band), either (the header stores a step per band).
@@ -410,40 +526,6 @@ struct CodedPair {
   Coded fine, coarse;
   std::vector<double> fine_error, coarse_error;  // per block, output units squared
 };
-
-// Signed indices of `values` at step 1 / inv (as indices_of); returns the squared error in
-// index units. Four samples at a time (GCC/Clang vector extensions: the scalar loop did not
-// vectorize and cost 13% of an encode), summed in a fixed order: the same on any thread.
-double quantize_error(std::span<const float> values, float inv, float delta, std::vector<std::int32_t>& q) {
-  using F4 = float __attribute__((vector_size(16)));
-  using I4 = std::int32_t __attribute__((vector_size(16)));
-  const std::size_t n = values.size();
-  q.resize(n);
-  const float* v = values.data();
-  std::int32_t* out = q.data();
-  const F4 vinv = F4{} + inv, limit = F4{} + kIndexLimit, vdelta = F4{} + delta;
-  F4 acc = {};
-  std::size_t k = 0;
-  for (; k + 4 <= n; k += 4) {
-    F4 x;
-    std::memcpy(&x, v + k, sizeof x);
-    const F4 m = (x < 0.0f ? -x : x) * vinv;
-    const I4 index = __builtin_convertvector(m < limit ? m : limit, I4);  // NaN: limit
-    const I4 signed_index = x < 0.0f ? -index : index;
-    std::memcpy(out + k, &signed_index, sizeof signed_index);
-    const F4 e = m - (index == 0 ? F4{} : __builtin_convertvector(index, F4) + vdelta);
-    acc += e * e;
-  }
-  double sum = double(acc[0]) + double(acc[1]) + double(acc[2]) + double(acc[3]);
-  for (; k < n; ++k) {
-    const float m = std::fabs(v[k]) * inv;
-    const auto index = std::int32_t(m < kIndexLimit ? m : kIndexLimit);  // NaN too
-    out[k] = v[k] < 0.0f ? -index : index;
-    const float e = m - (index == 0 ? 0.0f : float(index) + delta);
-    sum += double(e) * double(e);
-  }
-  return sum;
-}
 
 // One strip-wise pass over every component: each block quantized and coded at both steps as
 // the strips complete it; only codewords are held.
@@ -512,12 +594,17 @@ std::optional<std::vector<std::uint8_t>> mix_pair(ImagePlan& plan, CodedPair& p,
     total = size();
   }
   if (total > budget) return std::nullopt;
-  for (std::size_t k = n; k-- > 0;) {
-    coarse[order[k]] = 0;
+  // Back to fine, the units saving most first, wherever the room left holds them.
+  std::vector<std::size_t> switched(order.begin(), order.begin() + std::ptrdiff_t(n));
+  std::stable_sort(switched.begin(), switched.end(),
+                   [&](std::size_t x, std::size_t y) { return saved[x] > saved[y]; });
+  for (const std::size_t u : switched) {
+    if (total + saved[u] > budget * (1.0 + 1e-3)) continue;  // cannot fit (index bytes aside)
+    coarse[u] = 0;
     if (const double back = size(); back <= budget)
       total = back;
     else
-      coarse[order[k]] = 1;
+      coarse[u] = 1;
   }
   set_base_step(plan, std::exp(p.t));
   const std::vector<float> fine_steps = plan.header.steps;
@@ -538,8 +625,11 @@ std::optional<std::vector<std::uint8_t>> mix_pair(ImagePlan& plan, CodedPair& p,
 // steps the sample predicts to bracket the budget (mix_pair), the next aimed with the sample's
 // miss on this one; the file is within the budget and, unless the passes run out, within
 // kSizeTolerance under it.
-std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& plan, double budget) {
-  auto [model, sample] = survey(plan, budget);
+std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& plan,
+                                                                  const EncodeOptions& options,
+                                                                  double budget) {
+  auto surveyed = survey_stripes(plan, options, budget);
+  auto [model, sample] = surveyed ? std::move(*surveyed) : survey(plan, budget);
   const double coarsest = std::log(plan.peak * 4.0);
   model = std::clamp(model, plan.peak * kFinestStep, plan.peak * 4.0);
   // The fine step aims a little over the budget: the coarse one then falls under it.
@@ -550,8 +640,8 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
   for (int n = 0;; ++n) {
     CodedPair p = code_pair(plan, t);
     const double fine = double(file_size(plan, p.fine));
-    const bool under = fine < budget * (1.0 - kSizeTolerance);
     if (auto bytes = mix_pair(plan, p, budget)) {
+      const bool under = double(bytes->size()) < budget * (1.0 - kSizeTolerance);
       if (!best || bytes->size() > best->size()) {
         best = std::move(bytes);
         best_t = t;
@@ -562,7 +652,10 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
     if (!best && t >= coarsest)
       return {assemble(plan, p.coarse.entries, p.coarse.words), std::exp(t) * kPairRatio};
     const double miss = std::log(fine) - std::log(sampled_size(plan, sample, t));
-    const double next = sample_search(plan, sample, budget * kPairAim * std::exp(-miss), t, slope).first;
+    // Passes after the first aim the fine step just within the budget (the miss is known now),
+    // so a pair whose mix fell short by a band's worth needs no mixing the next time.
+    const double aim = budget * (1.0 - 0.5 * kSizeTolerance);
+    const double next = sample_search(plan, sample, aim * std::exp(-miss), t, slope).first;
     // Past the pass budget with nothing within it yet: an octave coarser at least.
     t = std::min(n + 1 >= kMaxPairPasses && !best ? std::max(next, t + std::numbers::ln2) : next, coarsest);
   }
@@ -669,7 +762,7 @@ EncodeResult encode_ht(const ImageView& image, ImagePlan& plan, const EncodeOpti
   if (options.mode == RateMode::bpp) {
     const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
     std::tie(bytes, base) = plan.strip_reach > 0 && !plan.header.reversible
-                                ? search_size_streamed(plan, budget)
+                                ? search_size_streamed(plan, options, budget)
                                 : search_size_held(plan, budget);
     return make_encode_result(image, plan, std::move(bytes), base);
   }
