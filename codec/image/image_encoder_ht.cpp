@@ -1,7 +1,10 @@
 // encode_image with the ht back end: every block is one codeword at the plan's steps, so a
-// byte budget or PSNR target is met by searching the base step: a secant on log(step) from the
-// rate model's step, kept inside the bracket of the trials so far (bisection when the secant
-// leaves it). Each trial codes every block (fast: no arithmetic coding).
+// byte budget or PSNR target is met by choosing steps. Integer images at a byte budget stream
+// (search_size_streamed): a survey pass gives the rate model and a sample of blocks, the sample
+// picks a step, and one strip-wise pass codes every block at that step and one a little
+// coarser, each band taking either; only codewords are held. Other sources, and PSNR targets,
+// hold the transformed components and search the base step with full trials: a secant on
+// log(step), kept inside the bracket of the trials so far (bisection when it leaves it).
 #include <algorithm>
 #include <array>
 #include <atomic>
