@@ -33,7 +33,7 @@ namespace {
 constexpr int kMaxSizeTrials = 12;
 // The lossless attempt against a lossy budget (code_once) gives up once the first
 // kHopelessAfter of the blocks project a stream kHopeless times over the budget.
-constexpr double kHopelessAfter = 0.125;
+constexpr double kHopelessAfter = 0.0625;
 constexpr double kHopeless = 2.0;
 constexpr double kSizeTolerance = 0.01;
 // The size search first runs on a sample of the blocks (a quarter of those of bands with
