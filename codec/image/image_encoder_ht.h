@@ -8,9 +8,9 @@
 
 namespace pupwave {
 
-// Encodes with the ht coder: one codeword per block, rate control by the quantizer base step
-// (a few trial encodes from the rate model's step). A lossless encode whose codewords exceed
-// `byte_limit` stops early and returns an empty result (bytes empty).
+// Encodes with the ht coder: one codeword per block, rate control by the quantizer steps
+// (image_encoder_ht.cpp). A lossless encode whose codewords exceed `byte_limit`, or whose
+// first blocks project twice that, stops early and returns an empty result (bytes empty).
 EncodeResult encode_ht(const ImageView& image, ImagePlan& plan, const EncodeOptions& options,
                        std::size_t byte_limit = std::numeric_limits<std::size_t>::max());
 

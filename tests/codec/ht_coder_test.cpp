@@ -173,6 +173,37 @@ TEST(HtCoder, OutputDoesNotDependOnThreadCount) {
     expect_thread_independent(img, ht_options(mode, mode == RateMode::bpp ? 1.0 : 36.0));
 }
 
+// Images of 2048 rows or more are surveyed by stripes before their one streamed coding pass;
+// the whole-image path (strip_encode off) searches the step with every component held.
+TEST(HtCoder, TallImagesMeetBudgetsFromBelowOnEitherPath) {
+  const Image img = synthetic_image(96, 2304, 3, SampleType::u8, 5);
+  const double pixels = double(img.plane_size());
+  for (double bpp : {0.5, 2.0}) {
+    EncodeOptions streamed = ht_options(RateMode::bpp, bpp), held = streamed;
+    held.strip_encode = false;
+    const EncodeResult a = encode_image(img, streamed), b = encode_image(img, held);
+    for (const EncodeResult* r : {&a, &b}) {
+      const double got = double(r->bytes.size()) * 8.0 / pixels;
+      EXPECT_LE(got, bpp);
+      EXPECT_GE(got, 0.98 * bpp) << "target " << bpp << (r == &a ? " streamed" : " held");
+      EXPECT_NEAR(psnr_of(img, decode_image(r->bytes)), r->psnr, 1e-9);
+    }
+    EXPECT_GT(a.psnr, b.psnr - 0.1) << "target " << bpp;  // per-band steps lose nothing
+  }
+  expect_thread_independent(img, ht_options(RateMode::bpp, 1.0));
+}
+
+// The lossless attempt against a budget gives up early only when the stream cannot fit:
+// a budget the lossless stream fits still gets it.
+TEST(HtCoder, LosslessWinsWhereItFits) {
+  const Image img = synthetic_image(96, 2304, 1, SampleType::u8, 5);
+  const std::size_t lossless = encode_image(img, ht_options(RateMode::lossless, 0.0, "cdf53")).bytes.size();
+  const double bpp = double(lossless) * 8.0 / double(img.plane_size()) * 1.01;
+  const EncodeResult r = encode_image(img, ht_options(RateMode::bpp, bpp));
+  EXPECT_TRUE(r.switched_to_lossless);
+  EXPECT_EQ(decode_image(r.bytes).samples, img.samples);
+}
+
 TEST(HtCoder, ReducedLevelsDecodeFromAPrefix) {
   const Image img = synthetic_image(240, 176, 3, SampleType::u8, 6);
   for (RateMode mode : {RateMode::bpp, RateMode::lossless}) {
