@@ -54,6 +54,7 @@ struct CompressOptions {
 
 EntropyCoder entropy_coder(const std::string& name) {
   if (name == "zstd") return EntropyCoder::zstd;
+  if (name == "lc") return EntropyCoder::lc;
   return name == "ht" ? EntropyCoder::ht : EntropyCoder::ebcot;
 }
 
@@ -362,8 +363,9 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--brick", opt->brick, "volumes: brick edge (power of two, 8..256, default 64)");
   cmd->add_option(
          "--entropy", opt->entropy,
-         "entropy coder: ebcot (bit-plane, default), ht (high-throughput, no arithmetic coding) or zstd")
-      ->transform(CLI::IsMember({"ebcot", "ht", "zstd"}, CLI::ignore_case));
+         "entropy coder: ebcot (bit-plane, default), ht (high-throughput, no arithmetic coding), zstd, "
+         "or lc (lossless only: context-modelled coefficients, the smallest lossless files)")
+      ->transform(CLI::IsMember({"ebcot", "ht", "zstd", "lc"}, CLI::ignore_case));
   cmd->add_option("--effort", opt->effort,
                   "images, --bpp: 1 (default, fastest) or 2 (three base steps per band and RDOQ: about 1% "
                   "smaller at equal PSNR, up to 1.9x the encode time)")
