@@ -43,6 +43,7 @@ LcCodeword lc_encode_block(std::span<const std::int32_t> values, std::size_t wid
 // Throws DecodeError unless the largest decoded magnitude has bit length `planes` and every
 // value stays within 2^30.
 void lc_decode_block(std::span<const std::uint8_t> codeword, std::size_t width, std::size_t height,
-                     bool low_pass, const LcParent& parent, int planes, std::int32_t* out, std::size_t stride);
+                     bool low_pass, const LcParent& parent, int planes, std::int32_t* out,
+                     std::size_t stride);
 
 }  // namespace pupwave

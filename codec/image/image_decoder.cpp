@@ -146,8 +146,9 @@ void decode_lc_into(const ParsedStream& s, const Extent& region, const Executor&
       const CodeBlock& b = s.blocks[i];
       if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
       std::int32_t* plane = planes[b.component];
-      lc_decode_block(s.codeword(i), b.size[0], b.size[1], b.orientation == 0, lc_parent(s.bands, b, plane, region[0], planes[0]),
-                      s.index[i].planes, plane + b.offset[0] + region[0] * b.offset[1], region[0]);
+      lc_decode_block(s.codeword(i), b.size[0], b.size[1], b.orientation == 0,
+                      lc_parent(s.bands, b, plane, region[0], planes[0]), s.index[i].planes,
+                      plane + b.offset[0] + region[0] * b.offset[1], region[0]);
     });
     first = end;
   }

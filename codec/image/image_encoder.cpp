@@ -768,6 +768,13 @@ EncodeResult encode_in_domain(const ImageView& image, const EncodeOptions& optio
                               const CodedDomain& domain) {
   if (options.levels >= 0 || options.entropy == EntropyCoder::zstd)
     return encode_with_levels(image, options, domain);
+  // The lc coder's default is no wavelet levels: its predictor on the samples themselves codes
+  // the test photographs 2.5-5.5% smaller than on a 5-level cdf53 decomposition.
+  if (options.entropy == EntropyCoder::lc) {
+    EncodeOptions flat = options;
+    flat.levels = 0;
+    return encode_with_levels(image, flat, domain);
+  }
   // Unstable banks (pups:cinpact-c3) amplify the coarse band at every level until quantization
   // indices leave the block coder's range; with default levels, use fewer instead of failing.
   EncodeOptions fewer = options;

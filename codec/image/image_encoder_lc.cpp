@@ -26,8 +26,9 @@ EncodeResult encode_lc(const ImageView& image, ImagePlan& plan) {
       const CodeBlock& b = plan.blocks[i];
       std::vector<std::int32_t> values(b.count());
       copy_block_out(plane, dims, b, values.data());
-      LcCodeword w = lc_encode_block(values, b.size[0], b.size[1], b.orientation == 0,
-                                     lc_parent(plan.bands, b, plane, dims[0], first.empty() ? nullptr : first.data()));
+      LcCodeword w =
+          lc_encode_block(values, b.size[0], b.size[1], b.orientation == 0,
+                          lc_parent(plan.bands, b, plane, dims[0], first.empty() ? nullptr : first.data()));
       entries[i] = {w.planes, w.planes > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
       words[i] = std::move(w.bytes);
     });

@@ -28,8 +28,12 @@ inline LcParent lc_parent(const std::vector<Subband>& bands, const CodeBlock& b,
   }
   for (const Subband& p : bands) {
     if (p.level != own.level + 1 || p.orientation != own.orientation || p.count() == 0) continue;
-    return {plane + p.offset[0] + stride * p.offset[1], stride, p.size[0],     p.size[1],
-            b.offset[0] - own.offset[0], b.offset[1] - own.offset[1]};
+    return {plane + p.offset[0] + stride * p.offset[1],
+            stride,
+            p.size[0],
+            p.size[1],
+            b.offset[0] - own.offset[0],
+            b.offset[1] - own.offset[1]};
   }
   return {};
 }
