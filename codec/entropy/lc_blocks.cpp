@@ -50,7 +50,8 @@ struct Models {
   std::array<Model, kActivityContexts> zero{};
   std::array<std::array<Model, kLengths>, kActivityContexts> length{};  // "bit length > n"
   std::array<std::array<Model, kLengths>, kActivityContexts> first{};   // bit below the leading one
-  std::array<std::array<Model, 2>, kLengths> second{};                  // the next bit, by the first
+  std::array<std::array<std::array<Model, 2>, kLengths>, kActivityContexts>
+      second{};                  // the next, by the first
   std::array<Model, 27> sign{};  // by the signs of W and N (and of the guide's residual)
 };
 
@@ -115,7 +116,8 @@ std::uint32_t code_magnitude(Io& io, Models& m, int ctx, std::uint32_t mag, int 
     v = 2 * v +
         std::uint32_t(io.bit(int((mag >> (len - 2)) & 1u), m.first[std::size_t(ctx)][std::size_t(len)]));
   if (len >= 3)
-    v = 2 * v + std::uint32_t(io.bit(int((mag >> (len - 3)) & 1u), m.second[std::size_t(len)][v & 1u]));
+    v = 2 * v + std::uint32_t(io.bit(int((mag >> (len - 3)) & 1u),
+                                     m.second[std::size_t(ctx)][std::size_t(len)][v & 1u]));
   if (len >= 4) v = (v << (len - 3)) | io.raw(mag & ((1u << (len - 3)) - 1u), len - 3);
   return v;
 }
@@ -164,8 +166,9 @@ std::uint32_t code_symbols(Io& io, std::int32_t* symbols, std::size_t stride, st
   return largest;
 }
 
-// Predictors of the coarse band: weighted, MED, their 3:1 mix.
-constexpr int kPredictors = 3;
+// Predictors of the coarse band: weighted with light corrections, MED, their 3:1 mix, weighted
+// with strong corrections (JPEG XL's default strengths; light ones suit most photographs).
+constexpr int kPredictors = 4;
 // Fixed-point fraction of the predictions (1/8 sample units).
 constexpr int kFrac = 3;
 // Prediction errors are capped here in the error rows (so weighted sums fit 64 bits).
@@ -180,7 +183,7 @@ inline std::int64_t med(std::int64_t w, std::int64_t n, std::int64_t nw) {
 
 // The self-correcting weighted predictor (the idea of JPEG XL's modular mode): four simple
 // sub-predictors, each weighted by the inverse of its recent absolute error at the causal
-// neighbours, two of them corrected by the signed errors the final prediction made there.
+// neighbours, three of them corrected by the signed errors the final prediction made there.
 class WeightedPredictor {
  public:
   static constexpr int kSubs = 4;
@@ -201,15 +204,16 @@ class WeightedPredictor {
     const std::int64_t* cur = true_.data() + (y & 1) * (w_ + 2);
     const std::int64_t te_w = cur[x], te_n = up[x + 1], te_nw = up[x], te_ne = up[x + 2];
     sub_value_[0] = (s.w + s.ne - s.n) << kFrac;
-    sub_value_[1] = (s.n << kFrac) - ((te_w + te_n + te_ne) * 16 >> 5);
-    sub_value_[2] = (s.w << kFrac) - ((te_w + te_n + te_nw) * 10 >> 5);
-    sub_value_[3] = (s.n << kFrac) - ((te_nw + te_n + te_ne) * 7 >> 5);
+    const bool strong = pred_ == 3;
+    sub_value_[1] = (s.n << kFrac) - ((te_w + te_n + te_ne) * (strong ? 16 : 4) >> 5);
+    sub_value_[2] = (s.w << kFrac) - ((te_w + te_n + te_nw) * (strong ? 10 : 2) >> 5);
+    sub_value_[3] = (s.n << kFrac) - ((te_nw + te_n + te_ne) * (strong ? 7 : 1) >> 5);
     std::int64_t total = 0, weights = 0;
     for (int i = 0; i < kSubs; ++i) {
       const std::int64_t* su = sub_[std::size_t(i)].data() + ((y + 1) & 1) * (w_ + 2);
       const std::int64_t* sc = sub_[std::size_t(i)].data() + (y & 1) * (w_ + 2);
-      const std::int64_t e = 2 * su[x + 1] + 2 * sc[x] + su[x] + su[x + 2];
-      const auto wt = std::int64_t((std::uint32_t(1) << 24) / std::uint32_t(e + 4) + 1);  // e < 2^29
+      const std::int64_t e = su[x + 1] + sc[x] + su[x] + su[x + 2];
+      const auto wt = std::int64_t((std::uint32_t(1) << 24) / std::uint32_t(e + 16) + 1);  // e < 2^28
       total += wt * sub_value_[std::size_t(i)];
       weights += wt;
     }
@@ -275,7 +279,10 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
     for (std::size_t x = 0; x < w; ++x) {
       const std::size_t i = (y + kPad) * pw + x + kPad;
       const std::uint32_t* a = mag.data() + i;
-      std::uint32_t s = 4 * (a[-1] + a[-pw]) + 2 * (a[-pw - 1] + a[-pw + 1]) + a[-2] + a[-2 * pw];
+      // A wider neighbourhood than the detail bands' (the samples' residuals are less sparse).
+      std::uint32_t s = 5 * (a[-1] + a[-pw]) + 3 * (a[-pw - 1] + a[-pw + 1]) +
+                        2 * (a[-2] + a[-2 * pw] + a[-pw + 2]) + a[-pw - 2] + a[-2 * pw + 1] + a[-2 * pw - 1] +
+                        a[-2 * pw + 2] + a[-2 * pw - 2];
       const std::int64_t p8 = wp.predict(neighbours(v, stride, w, x, y), x, y);
       int gsign = 1;
       if (guide.guide) {  // the first component's MED residual at this very sample
@@ -283,6 +290,11 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
         const std::int64_t e = guide.guide[y * guide.guide_stride + x] - med(g.w, g.n, g.nw);
         s += std::uint32_t(2 * std::min<std::int64_t>(e < 0 ? -e : e, kMagnitudeCap));
         gsign = e == 0 ? 1 : (e < 0 ? 0 : 2);
+      }
+      if (guide.guide2) {  // the previous component's MED residual (V after U: strongly alike)
+        const auto g = neighbours(guide.guide2, guide.guide_stride, w, x, y);
+        const std::int64_t e = guide.guide2[y * guide.guide_stride + x] - med(g.w, g.n, g.nw);
+        s += std::uint32_t(8 * std::min<std::int64_t>(e < 0 ? -e : e, kMagnitudeCap));
       }
       const std::int64_t pred = (p8 + (1 << (kFrac - 1))) >> kFrac;
       const int ctx = activity_context(s);

@@ -4,8 +4,10 @@
 // zero / bit length (unary) / two modelled mantissa bits / raw bits, every decision coded by the
 // range coder with a two-rate adaptive probability in a context made from the magnitudes of the
 // causal neighbours (W, N, NW, NE, WW, NN) and of the parent in the next coarser band of the
-// same orientation (ECECOW-style context modelling). The coarse band is predicted by the
-// median edge detector (MED of LOCO-I) and its residuals are coded the same way. No
+// same orientation (ECECOW-style context modelling). The coarse band (the whole image at 0
+// levels, the lc default) is predicted by a self-correcting weighted predictor (after JPEG XL's
+// modular mode) or the median edge detector of LOCO-I, and its residuals are coded the same way,
+// with the residuals of earlier colour components at the same sample in the context. No
 // truncation points: reversible (lossless) streams only.
 
 #include <cstddef>
@@ -27,6 +29,8 @@ struct LcParent {
   // place (already decoded), whose MED residuals join the context. Null: none.
   const std::int32_t* guide = nullptr;
   std::size_t guide_stride = 0;
+  // Components after the second: the previous component's block, a second guide. Null: none.
+  const std::int32_t* guide2 = nullptr;
 };
 
 struct LcCodeword {

@@ -131,12 +131,14 @@ template void decode_block_at<std::int32_t>(const ParsedStream&, std::size_t, st
 
 namespace {
 
-// decode_into for the lc coder: one resolution at a time (in parallel inside it), the first
-// component's blocks before the others', so every block's parent band and guide are decoded
-// before the block.
+// decode_into for the lc coder: one resolution and component at a time (the blocks of each in
+// parallel), so every block's parent band and guides (the first and the previous component)
+// are decoded before the block.
 void decode_lc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
                     const std::vector<std::int32_t*>& planes) {
-  const auto group = [&](std::size_t i) { return 2 * s.blocks[i].resolution + (s.blocks[i].component > 0); };
+  const auto group = [&](std::size_t i) {
+    return std::size_t(s.blocks[i].resolution) * 65 + s.blocks[i].component;
+  };
   std::size_t first = 0;
   while (first < s.blocks.size()) {
     std::size_t end = first;
@@ -147,8 +149,9 @@ void decode_lc_into(const ParsedStream& s, const Extent& region, const Executor&
       if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
       std::int32_t* plane = planes[b.component];
       lc_decode_block(s.codeword(i), b.size[0], b.size[1], b.orientation == 0,
-                      lc_parent(s.bands, b, plane, region[0], planes[0]), s.index[i].planes,
-                      plane + b.offset[0] + region[0] * b.offset[1], region[0]);
+                      lc_parent(s.bands, b, plane, region[0], planes[0],
+                                b.component > 0 ? planes[b.component - 1] : nullptr),
+                      s.index[i].planes, plane + b.offset[0] + region[0] * b.offset[1], region[0]);
     });
     first = end;
   }

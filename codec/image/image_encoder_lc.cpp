@@ -15,6 +15,7 @@ EncodeResult encode_lc(const ImageView& image, ImagePlan& plan) {
   std::vector<std::vector<std::uint8_t>> words(plan.blocks.size());
   const Extent& dims = plan.header.dims;
   std::vector<std::int32_t> first;  // the first component, the guide of the others' coarse band
+  std::vector<std::int32_t> previous;
   for (std::size_t c = 0; c < plan.header.channels; ++c) {
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
@@ -28,11 +29,13 @@ EncodeResult encode_lc(const ImageView& image, ImagePlan& plan) {
       copy_block_out(plane, dims, b, values.data());
       LcCodeword w =
           lc_encode_block(values, b.size[0], b.size[1], b.orientation == 0,
-                          lc_parent(plan.bands, b, plane, dims[0], first.empty() ? nullptr : first.data()));
+                          lc_parent(plan.bands, b, plane, dims[0], first.empty() ? nullptr : first.data(),
+                                    previous.empty() ? nullptr : previous.data()));
       entries[i] = {w.planes, w.planes > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
       words[i] = std::move(w.bytes);
     });
     if (c == 0 && plan.header.channels > 1) first = plan.icoef[0];
+    if (c + 1 < plan.header.channels) previous = plan.icoef[c];
     release_component(plan, c);
   }
   release_coefficients(plan);

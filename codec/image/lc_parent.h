@@ -14,9 +14,11 @@ namespace pupwave {
 
 // The parent of block `b` in `plane` (rows of `stride` samples), or none (the coarse band, the
 // coarsest detail bands, an empty parent band); for a coarse-band block of a component after
-// the first, the guide: the same block in `first_plane` (the first component's plane).
+// the first, the guides: the same block in `first_plane` (the first component's plane) and,
+// after the second, in `previous_plane` (the previous component's).
 inline LcParent lc_parent(const std::vector<Subband>& bands, const CodeBlock& b, const std::int32_t* plane,
-                          std::size_t stride, const std::int32_t* first_plane) {
+                          std::size_t stride, const std::int32_t* first_plane,
+                          const std::int32_t* previous_plane = nullptr) {
   const Subband& own = bands[b.band];
   if (own.orientation == 0) {
     LcParent g;
@@ -24,6 +26,7 @@ inline LcParent lc_parent(const std::vector<Subband>& bands, const CodeBlock& b,
       g.guide = first_plane + b.offset[0] + stride * b.offset[1];
       g.guide_stride = stride;
     }
+    if (b.component > 1 && previous_plane) g.guide2 = previous_plane + b.offset[0] + stride * b.offset[1];
     return g;
   }
   for (const Subband& p : bands) {

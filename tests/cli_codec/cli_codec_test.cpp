@@ -140,7 +140,7 @@ TEST_F(CliCodec, GoldenLosslessStreamOfCamera) {
       0);
   EXPECT_EQ(crc32(cli::read_file_bytes(tmp("g.pw"))), 2158918420u);  // stream version 4
   ASSERT_EQ(run_cli("compress " + image("camera.png") + " " + tmp("l.pw") + " --lossless").status, 0);
-  EXPECT_EQ(crc32(cli::read_file_bytes(tmp("l.pw"))), 1186918192u);  // stream version 4, entropy coder 3
+  EXPECT_EQ(crc32(cli::read_file_bytes(tmp("l.pw"))), 473516650u);  // stream version 4, entropy coder 3
 }
 
 }  // namespace
