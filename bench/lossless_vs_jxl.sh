@@ -51,19 +51,20 @@ done
 
 for ((r = 0; r < runs; ++r)); do
   for f in $images; do
-    in=$work/$f.ppm
-    [[ $f == camera ]] && in=$work/$f.pgm
+    ext=ppm
+    [[ $f == camera ]] && ext=pgm
+    in=$work/$f.$ext
     cpu "$f lc enc" "$pw" compress "$in" "$work/$f.lc.pw" --lossless --threads 1 -q
-    cpu "$f lc dec" "$pw" decompress "$work/$f.lc.pw" "$work/$f.lc.pnm" --threads 1 -q
+    cpu "$f lc dec" "$pw" decompress "$work/$f.lc.pw" "$work/$f.lc.$ext" --threads 1 -q
     cpu "$f ebcot enc" "$pw" compress "$in" "$work/$f.eb.pw" --lossless --entropy ebcot --threads 1 -q
-    cpu "$f ebcot dec" "$pw" decompress "$work/$f.eb.pw" "$work/$f.eb.pnm" --threads 1 -q
+    cpu "$f ebcot dec" "$pw" decompress "$work/$f.eb.pw" "$work/$f.eb.$ext" --threads 1 -q
     if ((jxl)); then
       cpu "$f jxl enc" cjxl "$in" "$work/$f.jxl" -d 0 -e 7 --num_threads=0 --quiet
-      cpu "$f jxl dec" djxl "$work/$f.jxl" "$work/$f.jxl.pnm" --num_threads=1 --quiet
+      cpu "$f jxl dec" djxl "$work/$f.jxl" "$work/$f.jxl.$ext" --num_threads=1 --quiet
     fi
     if ((opj)); then
       cpu "$f opj enc" opj_compress -i "$in" -o "$work/$f.j2k"
-      cpu "$f opj dec" opj_decompress -i "$work/$f.j2k" -o "$work/$f.opj.pnm"
+      cpu "$f opj dec" opj_decompress -i "$work/$f.j2k" -o "$work/$f.opj.$ext"
     fi
   done
 done
@@ -74,22 +75,27 @@ pct() { awk -v a="$1" -v b="$2" 'BEGIN{printf "%+.1f%%", 100 * (a / b - 1)}'; }
   echo "# Lossless: pupwave lc against JPEG XL and OpenJPEG (issue 20)"
   echo
   echo "Made by \`bench/lossless_vs_jxl.sh $build $runs\` on $(date -u +%Y-%m-%d) ($(nproc) cores;"
-  echo "$(have cjxl && cjxl --version 2>&1 | head -1 || echo 'cjxl not installed');"
-  echo "$(have opj_compress && opj_compress -h 2>&1 | grep -m1 -o 'openjp2 library v[0-9.]*' || echo 'OpenJPEG not installed'))."
+  if have cjxl; then cjxl --version 2>&1 | sed -n 1p; else echo "cjxl not installed"; fi
+  if have opj_compress; then
+    { opj_compress -h 2>&1 || true; } | sed -n 's/.*\(openjp2 library v[0-9.]*\).*/OpenJPEG (\1))./p'
+  else
+    echo "OpenJPEG not installed)."
+  fi
   echo "Bytes of each lossless file; CPU seconds (user + system, least of $runs interleaved runs, one thread)"
   echo "of the whole process, reading and writing binary PNM. \"exact\": the decode equals the input."
   echo
   echo "| image | lc bytes | ebcot bytes (before) | cjxl -e 7 bytes | OpenJPEG bytes | lc vs cjxl | lc vs ebcot | lc exact | cjxl exact |"
   echo "|---|---|---|---|---|---|---|---|---|"
   for f in $images; do
-    in=$work/$f.ppm
-    [[ $f == camera ]] && in=$work/$f.pgm
+    ext=ppm
+    [[ $f == camera ]] && ext=pgm
+    in=$work/$f.$ext
     lc=$(size "$work/$f.lc.pw")
     eb=$(size "$work/$f.eb.pw")
     jx=-; oj=-; vs=-; jex=-
-    if ((jxl)); then jx=$(size "$work/$f.jxl"); vs=$(pct "$lc" "$jx"); jex=$(exact "$in" "$work/$f.jxl.pnm"); fi
+    if ((jxl)); then jx=$(size "$work/$f.jxl"); vs=$(pct "$lc" "$jx"); jex=$(exact "$in" "$work/$f.jxl.$ext"); fi
     ((opj)) && oj=$(size "$work/$f.j2k")
-    echo "| $f | $lc | $eb | $jx | $oj | $vs | $(pct "$lc" "$eb") | $(exact "$in" "$work/$f.lc.pnm") | $jex |"
+    echo "| $f | $lc | $eb | $jx | $oj | $vs | $(pct "$lc" "$eb") | $(exact "$in" "$work/$f.lc.$ext") | $jex |"
   done
   echo
   echo "| image | lc enc s | ebcot enc s | cjxl enc s | OpenJPEG enc s | cjxl / lc enc | lc dec s | ebcot dec s | djxl dec s | OpenJPEG dec s |"

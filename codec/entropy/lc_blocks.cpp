@@ -294,7 +294,7 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
       if (guide.guide2) {  // the previous component's MED residual (V after U: strongly alike)
         const auto g = neighbours(guide.guide2, guide.guide_stride, w, x, y);
         const std::int64_t e = guide.guide2[y * guide.guide_stride + x] - med(g.w, g.n, g.nw);
-        s += std::uint32_t(8 * std::min<std::int64_t>(e < 0 ? -e : e, kMagnitudeCap));
+        s += std::uint32_t(16 * std::min<std::int64_t>(e < 0 ? -e : e, kMagnitudeCap));
       }
       const std::int64_t pred = (p8 + (1 << (kFrac - 1))) >> kFrac;
       const int ctx = activity_context(s);
