@@ -77,7 +77,7 @@ pct() { awk -v a="$1" -v b="$2" 'BEGIN{printf "%+.1f%%", 100 * (a / b - 1)}'; }
   echo "Made by \`bench/lossless_vs_jxl.sh $build $runs\` on $(date -u +%Y-%m-%d) ($(nproc) cores;"
   if have cjxl; then cjxl --version 2>&1 | sed -n 1p; else echo "cjxl not installed"; fi
   if have opj_compress; then
-    { opj_compress -h 2>&1 || true; } | sed -n 's/.*\(openjp2 library v[0-9.]*\).*/OpenJPEG (\1))./p'
+    { opj_compress -h 2>&1 || true; } | sed -n 's/.*\(openjp2 library v[0-9][0-9.]*[0-9]\).*/OpenJPEG (\1))./p'
   else
     echo "OpenJPEG not installed)."
   fi
@@ -107,6 +107,11 @@ pct() { awk -v a="$1" -v b="$2" 'BEGIN{printf "%+.1f%%", 100 * (a / b - 1)}'; }
     ((jxl)) && ratio=$(awk -v a="$je" -v b="$le" 'BEGIN{printf "%.1fx", a / b}')
     echo "| $f | $le | $ee | $je | $oe | $ratio | ${best[$f lc dec]} | ${best[$f ebcot dec]} | ${best[$f jxl dec]:--} | ${best[$f opj dec]:--} |"
   done
+  # The hand-written "## Notes" section of an earlier run is kept (it reads these tables).
+  if [[ -f $out ]] && grep -q '^## Notes' "$out"; then
+    echo
+    sed -n '/^## Notes/,$p' "$out"
+  fi
 } >"$out.tmp"
 mv "$out.tmp" "$out"
 cat "$out"

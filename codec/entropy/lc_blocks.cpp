@@ -65,7 +65,7 @@ inline int activity_context(std::uint32_t s) {
 
 struct EncoderIo {
   static constexpr bool kEncoding = true;
-  void note(std::uint32_t) {}
+  static constexpr bool kDry = false;
   RangeEncoder coder;
   int bit(int b, Model& m) {
     coder.encode_probability(b, m.p0());
@@ -84,7 +84,7 @@ struct EncoderIo {
 
 struct DecoderIo {
   static constexpr bool kEncoding = false;
-  void note(std::uint32_t) {}
+  static constexpr bool kDry = false;
   RangeDecoder coder;
   int bit(int, Model& m) {
     const int b = coder.decode_probability(m.p0());
@@ -277,6 +277,15 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
   for (std::size_t y = 0; y < h; ++y) {
     std::int32_t* row = v + y * stride;
     for (std::size_t x = 0; x < w; ++x) {
+      if constexpr (Io::kDry) {  // residuals only: no contexts
+        const std::int64_t p8 = wp.predict(neighbours(v, stride, w, x, y), x, y);
+        const std::int64_t r = std::int64_t(row[x]) - ((p8 + (1 << (kFrac - 1))) >> kFrac);
+        const auto magnitude = std::uint32_t(std::min<std::int64_t>(r < 0 ? -r : r, 0xFFFFFFFFll));
+        wp.update(row[x], x, y);
+        largest = std::max(largest, magnitude);
+        io.note(magnitude);
+        continue;
+      }
       const std::size_t i = (y + kPad) * pw + x + kPad;
       const std::uint32_t* a = mag.data() + i;
       // A wider neighbourhood than the detail bands' (the samples' residuals are less sparse).
@@ -314,8 +323,7 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
       }
       wp.update(row[x], x, y);
 
-      largest = std::max(largest, Io::kEncoding ? magnitude : u);  // the dry run's may pass 2^30
-      io.note(magnitude);
+      largest = std::max(largest, u);
       mag[i] = std::min(u, kMagnitudeCap);
       sgn[i] = std::int8_t(u == 0 ? 0 : (negative ? -1 : 1));
     }
@@ -326,6 +334,7 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
 // Codes nothing: the encoder's dry run of code_predicted, which finds the largest residual.
 struct NullIo {
   static constexpr bool kEncoding = true;
+  static constexpr bool kDry = true;
   std::uint64_t cost = 0;  // sum of the residuals' bit lengths: the predictors' figure of merit
   void note(std::uint32_t magnitude) { cost += std::uint64_t(std::bit_width(magnitude)); }
   int bit(int b, Model&) { return b; }
