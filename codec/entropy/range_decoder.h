@@ -26,6 +26,8 @@ class RangeDecoder {
     model.update(bit);
     return bit;
   }
+  // Inverse of RangeEncoder::encode_probability.
+  int decode_probability(std::uint32_t p0) { return decode_with(p0); }
   int decode_equiprobable() { return decode_with(kProbabilityOne / 2); }
   // Inverse of RangeEncoder::encode_raw: `n` (1..16) raw bits. A corrupt codeword can put the
   // code past the last part; the value is then clamped (wrong bits, never out of range).

@@ -28,6 +28,9 @@ class RangeEncoder {
     encode_with(bit, model.p0);
     model.update(bit);
   }
+  // Codes `bit` with probability p0 / 2^15 of a 0 (p0 in 1 .. 2^15 - 1), for models that
+  // keep their own probability (the lossless coder's two-rate models).
+  void encode_probability(int bit, std::uint32_t p0) { encode_with(bit, p0); }
   // Codes a bit with probability one half (no adaptation).
   void encode_equiprobable(int bit) { encode_with(bit, std::uint16_t(kProbabilityOne / 2)); }
   // Codes the low `n` (1..16) bits of `value` raw, all at once (the coefficient coder's

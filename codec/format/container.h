@@ -32,8 +32,9 @@ inline constexpr std::size_t kMaxTotalSamples = std::size_t(1) << 31;
 inline constexpr std::size_t kMaxSpecLength = 4096;
 inline constexpr std::uint32_t kMaxChannels = 64;
 
-// ebcot: bit-plane (block_encoder.h); zstd: zstd_blocks.h; ht: high-throughput (ht_blocks.h).
-enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1, ht = 2 };
+// ebcot: bit-plane (block_encoder.h); zstd: zstd_blocks.h; ht: high-throughput (ht_blocks.h);
+// lc: lossless context coder (lc_blocks.h), reversible streams only.
+enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1, ht = 2, lc = 3 };
 const char* to_string(EntropyCoder coder);
 
 // Domain the samples are coded in (float images): see codec/image/transfer.h.

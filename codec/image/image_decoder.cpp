@@ -9,6 +9,7 @@
 
 #include "codec/entropy/block_decoder.h"
 #include "codec/entropy/ht_blocks.h"
+#include "codec/entropy/lc_blocks.h"
 #include "codec/entropy/zstd_blocks.h"
 #include "codec/error.h"
 #include "codec/format/container.h"
@@ -16,6 +17,7 @@
 #include "codec/image/image_components.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/image_strips.h"
+#include "codec/image/lc_parent.h"
 #include "codec/image/transfer.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
@@ -31,6 +33,8 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   const StreamHeader& h = s.header;
   std::vector<T> values(b.count(), T(0));
   if (e.passes == 0) return values;
+  // lc blocks read their parent band: decode_lc_into decodes them, never one at a time here.
+  if (h.entropy == EntropyCoder::lc) throw std::logic_error("lc blocks decode with their parent bands");
   if (h.entropy != EntropyCoder::ebcot) {
     std::vector<std::int32_t> q(b.count());
     if (h.entropy == EntropyCoder::zstd)
@@ -133,11 +137,39 @@ template void decode_block_at<std::int32_t>(const ParsedStream&, std::size_t, st
 
 namespace {
 
+// decode_into for the lc coder: one resolution and component at a time (the blocks of each in
+// parallel), so every block's parent band and guides (the first and the previous component)
+// are decoded before the block.
+void decode_lc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
+                    const std::vector<std::int32_t*>& planes) {
+  const auto group = [&](std::size_t i) {
+    return std::size_t(s.blocks[i].resolution) * 65 + s.blocks[i].component;
+  };
+  std::size_t first = 0;
+  while (first < s.blocks.size()) {
+    std::size_t end = first;
+    while (end < s.blocks.size() && group(end) == group(first)) ++end;
+    ex.run(end - first, [&](std::size_t k) {
+      const std::size_t i = first + k;
+      const CodeBlock& b = s.blocks[i];
+      if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
+      std::int32_t* plane = planes[b.component];
+      lc_decode_block(s.codeword(i), b.size[0], b.size[1], b.orientation == 0,
+                      lc_parent(s.bands, b, plane, region[0], planes[0],
+                                b.component > 0 ? planes[b.component - 1] : nullptr),
+                      s.index[i].planes, plane + b.offset[0] + region[0] * b.offset[1], region[0]);
+    });
+    first = end;
+  }
+}
+
 // Decodes every block of the read resolutions into the component planes at planes[c] (each
 // `region`-sized and zeroed: the low corner of the Mallat layout that holds those resolutions).
 template <class T>
 void decode_into(const ParsedStream& s, const Extent& region, const Executor& ex,
                  const std::vector<T*>& planes) {
+  if constexpr (std::is_same_v<T, std::int32_t>)
+    if (s.header.entropy == EntropyCoder::lc) return decode_lc_into(s, region, ex, planes);
   ex.run(s.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
     if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed

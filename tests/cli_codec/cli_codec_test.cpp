@@ -132,10 +132,15 @@ TEST_F(CliCodec, BadOptionsFailWithoutOutput) {
   }
 }
 
-// Pins the stream of a real photograph (see tests/codec/golden_stream_test.cpp).
+// Pins the streams of a real photograph (see tests/codec/golden_stream_test.cpp): the bit-plane
+// coder's lossless stream, and the lc coder's (the --lossless default since issue 20).
 TEST_F(CliCodec, GoldenLosslessStreamOfCamera) {
-  ASSERT_EQ(run_cli("compress " + image("camera.png") + " " + tmp("g.pw") + " --lossless").status, 0);
+  ASSERT_EQ(
+      run_cli("compress " + image("camera.png") + " " + tmp("g.pw") + " --lossless --entropy ebcot").status,
+      0);
   EXPECT_EQ(crc32(cli::read_file_bytes(tmp("g.pw"))), 2158918420u);  // stream version 4
+  ASSERT_EQ(run_cli("compress " + image("camera.png") + " " + tmp("l.pw") + " --lossless").status, 0);
+  EXPECT_EQ(crc32(cli::read_file_bytes(tmp("l.pw"))), 473516650u);  // stream version 4, entropy coder 3
 }
 
 }  // namespace

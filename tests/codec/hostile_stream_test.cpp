@@ -156,5 +156,65 @@ TEST(HostileStream, DescribeStreamSummarizesAValidStream) {
   EXPECT_NE(text.find("DATA 0"), std::string::npos) << text;
 }
 
+// A lossless stream of the lc coder (entropy coder 3), coarse band and detail bands.
+std::vector<std::uint8_t> lc_stream(int levels) {
+  EncodeOptions o;
+  o.mode = RateMode::lossless;
+  o.transform = "cdf53";
+  o.levels = levels;
+  o.entropy = EntropyCoder::lc;
+  return encode_image(testing::synthetic_image(70, 50, 3, SampleType::u8), o).bytes;
+}
+
+TEST(HostileStream, LcTruncationsAreRejected) {
+  for (int levels : {0, 2}) {
+    const auto bytes = lc_stream(levels);
+    for (std::size_t cut = 0; cut < bytes.size(); cut += 1 + cut / 16) {
+      const std::vector<std::uint8_t> head(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
+      EXPECT_THROW(decode_image(head), DecodeError) << "cut at " << cut;
+    }
+  }
+}
+
+// lc code-blocks with flipped bits behind valid chunk CRCs reach the lc decoder: each decode
+// gives an error (the index's bit-plane count, the value bound) or an image of the right shape,
+// never a crash, an overrun or a hang. An arithmetic codeword has no redundancy to check, so
+// most such flips decode to wrong samples: the chunk CRC is what detects them.
+TEST(HostileStream, CorruptLcBlocksBehindValidCrcsAreContained) {
+  for (int levels : {0, 2}) {
+    const auto bytes = lc_stream(levels);
+    std::mt19937 rng(23);
+    int trials = 0;
+    for (std::size_t start : chunk_starts(bytes)) {
+      if (std::string(bytes.begin() + std::ptrdiff_t(start), bytes.begin() + std::ptrdiff_t(start) + 4) !=
+          "DATA")
+        continue;
+      ByteReader r(std::span<const std::uint8_t>(bytes).subspan(start + 4, 4), "length");
+      const std::size_t length = r.u32();
+      for (int k = 0; k < 40 && length > 0; ++k, ++trials) {
+        auto bad = bytes;
+        bad[start + 8 + rng() % length] ^= std::uint8_t(1u << (rng() % 8));
+        const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bad).subspan(start, 8 + length));
+        for (int i = 0; i < 4; ++i) bad[start + 8 + length + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
+        try {
+          const Image out = decode_image(bad);
+          EXPECT_EQ(out.width, 70u);
+          EXPECT_EQ(out.height, 50u);
+        } catch (const DecodeError&) {
+        }
+      }
+    }
+    EXPECT_GT(trials, 0);
+  }
+}
+
+TEST(HostileStream, LcCoderOnlyInReversibleStreams) {
+  const auto bytes = lc_stream(0);
+  EXPECT_EQ(decode_image(bytes).width, 70u);
+  // Coder field (HEAD offset 15) beyond lc, and lc with the reversible flag (16) cleared.
+  EXPECT_THROW(decode_image(with_header_edit(bytes, [](std::uint8_t* p) { p[15] = 4; })), DecodeError);
+  EXPECT_THROW(decode_image(with_header_edit(bytes, [](std::uint8_t* p) { p[16] = 0; })), DecodeError);
+}
+
 }  // namespace
 }  // namespace pupwave

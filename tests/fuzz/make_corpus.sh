@@ -55,17 +55,21 @@ enc() {  # enc INPUT ARGS...: one image seed
   img=$((img + 1))
   "$cli" compress "$input" "$out/image/seed-$img.pw" "$@" --threads 1 > /dev/null
 }
-enc "$tmp/grey.pgm" --lossless
+enc "$tmp/grey.pgm" --lossless --entropy ebcot
 enc "$tmp/grey.pgm" --bpp 1.5
 enc "$tmp/grey.pgm" --bpp 2 --entropy zstd
 enc "$tmp/grey.pgm" --bpp 2 --transform pups:chaikin-ext
 enc "$tmp/grey.pgm" --bpp 2 --transform kobbelt:k4pt --levels 2
-enc "$tmp/rgb.ppm" --lossless
+enc "$tmp/rgb.ppm" --lossless --entropy ebcot
 enc "$tmp/rgb.ppm" --psnr 30
-enc "$tmp/tiny.pgm" --lossless --levels 1
+enc "$tmp/tiny.pgm" --lossless --levels 1 --entropy ebcot
 # The high-throughput coder (entropy coder 2): lossy and lossless, so the target reaches it.
 enc "$tmp/grey.pgm" --bpp 1.5 --entropy ht
 enc "$tmp/rgb.ppm" --lossless --entropy ht
+# The lossless context coder (entropy coder 3, the --lossless default): predicted samples, and
+# wavelet levels (detail bands with parent contexts).
+enc "$tmp/rgb.ppm" --lossless
+enc "$tmp/grey.pgm" --lossless --levels 2
 for f in "$out"/image/seed-*.pw; do
   for level in 0 1 2; do
     { printf "\\x$(printf %02x $level)"; cat "$f"; } > "$out/image_level/$(basename "$f" .pw)-level$level"
