@@ -23,7 +23,9 @@ namespace pupwave {
 // coefficient coder (coef_encoder.h); the bit-plane block coder's far-neighbour contexts and
 // trained priors (image version 3's coder), so version 3 streams are refused.
 // Version 5: the bit-plane block coder's priors retrained, as image version 4.
-inline constexpr std::uint8_t kVolumeStreamVersion = 5;
+// Version 6: a brick's outlier corrections range coded with adaptive models, not a zstd frame
+// of varints (volume_outliers.cpp).
+inline constexpr std::uint8_t kVolumeStreamVersion = 6;
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;

@@ -1,50 +1,144 @@
 #include "codec/volume/volume_outliers.h"
 
-#include <zstd.h>
-
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 
+#include "codec/entropy/bit_model.h"
+#include "codec/entropy/range_decoder.h"
+#include "codec/entropy/range_encoder.h"
 #include "codec/error.h"
 
 namespace pupwave {
 namespace {
 
-constexpr int kZstdLevel = 9;
-constexpr std::size_t kMaxVarintBytes = 10;
 // Corrections beyond this many bounds mean a broken reconstruction; refuse rather than overflow.
 constexpr double kMaxCorrection = 9.0e15;
 
-void put_varint(std::vector<std::uint8_t>& out, std::uint64_t v) {
-  while (v >= 0x80u) {
-    out.push_back(std::uint8_t(v | 0x80u));
-    v >>= 7;
-  }
-  out.push_back(std::uint8_t(v));
+// A brick's corrections are range coded with adaptive models (fresh per brick): each index as
+// the gap from the previous one, Elias-gamma style (its bit width in unary with models chosen by
+// the previous gap's width, since outliers cluster where the coding error is large; the top
+// mantissa bits with models, the rest raw), then the correction's sign and |k| - 1 in unary.
+constexpr int kGapClasses = 12;        // contexts: the previous gap's bit width, capped
+constexpr int kMaxWidth = 32;          // gaps + 1 are below 2^32 (a brick holds at most 256^3 voxels)
+constexpr int kModelledMantissa = 2;   // mantissa bits below the leading one with models
+constexpr int kMagnitudeModels = 8;    // unary bins of |k| - 1 before the raw escape
+constexpr int kMaxMagnitudeBits = 53;  // |k| < kMaxCorrection < 2^53
+constexpr int kRawChunk = 16;          // the range coder takes at most 16 raw bits at once
+
+struct OutlierModels {
+  std::array<BitModel, kMaxWidth> count{};
+  std::array<std::array<BitModel, kMaxWidth>, kGapClasses> width{};
+  std::array<std::array<BitModel, 1 << kModelledMantissa>, kMaxWidth + 1> mantissa{};
+  std::array<BitModel, 3> sign{};  // by the previous correction's sign (none yet, +, -)
+  std::array<BitModel, kMagnitudeModels> magnitude{};
+  int previous_width = 0;
+  int previous_sign = 0;
+};
+
+void put_raw(RangeEncoder& enc, std::uint64_t v, int n) {
+  for (; n > kRawChunk; n -= kRawChunk)
+    enc.encode_raw(std::uint32_t(v >> (n - kRawChunk)) & 0xffffu, kRawChunk);
+  if (n > 0) enc.encode_raw(std::uint32_t(v) & ((1u << n) - 1u), n);
 }
 
-std::uint64_t get_varint(std::span<const std::uint8_t> in, std::size_t& pos) {
+std::uint64_t get_raw(RangeDecoder& dec, int n) {
   std::uint64_t v = 0;
-  for (int shift = 0; shift < 64; shift += 7) {
-    require_stream(pos < in.size(), "outlier list truncated");
-    const std::uint8_t b = in[pos++];
-    v |= std::uint64_t(b & 0x7fu) << shift;
-    if ((b & 0x80u) == 0) return v;
-  }
-  throw DecodeError("outlier list: bad varint");
+  for (; n > kRawChunk; n -= kRawChunk) v = (v << kRawChunk) | dec.decode_raw(kRawChunk);
+  return n > 0 ? (v << n) | dec.decode_raw(n) : v;
 }
 
-std::uint64_t zigzag(std::int64_t v) { return (std::uint64_t(v) << 1) ^ std::uint64_t(v >> 63); }
-std::int64_t unzigzag(std::uint64_t v) { return std::int64_t(v >> 1) ^ -std::int64_t(v & 1u); }
+// v in [1, 2^kMaxWidth): its bit width - 1 in unary with `bins`, the rest of the mantissa as
+// `mantissa` says (the top bits with models when given).
+void put_gamma(RangeEncoder& enc, std::span<BitModel, kMaxWidth> bins, std::uint64_t v,
+               std::span<std::array<BitModel, 1 << kModelledMantissa>> mantissa = {}) {
+  const int w = int(std::bit_width(v)) - 1;
+  for (int j = 0; j < w; ++j) enc.encode(1, bins[std::size_t(j)]);
+  if (w < kMaxWidth - 1) enc.encode(0, bins[std::size_t(w)]);
+  const int modelled = mantissa.empty() ? 0 : std::min(w, kModelledMantissa);
+  std::size_t node = 1;
+  for (int b = w - 1; b >= w - modelled; --b) {
+    const int bit = int((v >> b) & 1u);
+    enc.encode(bit, mantissa[std::size_t(w)][node]);
+    node = 2 * node + std::size_t(bit);
+  }
+  put_raw(enc, v, w - modelled);
+}
+
+std::uint64_t get_gamma(RangeDecoder& dec, std::span<BitModel, kMaxWidth> bins,
+                        std::span<std::array<BitModel, 1 << kModelledMantissa>> mantissa = {}) {
+  int w = 0;
+  while (w < kMaxWidth - 1 && dec.decode(bins[std::size_t(w)]) != 0) ++w;
+  const int modelled = mantissa.empty() ? 0 : std::min(w, kModelledMantissa);
+  std::size_t node = 1;
+  for (int b = 0; b < modelled; ++b)
+    node = 2 * node + std::size_t(dec.decode(mantissa[std::size_t(w)][node]));
+  const std::uint64_t top = node;  // the leading one and the modelled bits
+  return (top << (w - modelled)) | get_raw(dec, w - modelled);
+}
+
+void put_gap(RangeEncoder& enc, OutlierModels& m, std::uint64_t gap) {
+  const std::uint64_t v = gap + 1;
+  put_gamma(enc, m.width[std::size_t(std::min(m.previous_width, kGapClasses - 1))], v, m.mantissa);
+  m.previous_width = int(std::bit_width(v)) - 1;
+}
+
+std::uint64_t get_gap(RangeDecoder& dec, OutlierModels& m) {
+  const std::uint64_t v =
+      get_gamma(dec, m.width[std::size_t(std::min(m.previous_width, kGapClasses - 1))], m.mantissa);
+  m.previous_width = int(std::bit_width(v)) - 1;
+  return v - 1;
+}
+
+void put_correction(RangeEncoder& enc, OutlierModels& m, std::int64_t k) {
+  const bool negative = k < 0;
+  enc.encode(negative ? 1 : 0, m.sign[std::size_t(m.previous_sign)]);
+  m.previous_sign = negative ? 2 : 1;
+  const std::uint64_t a = (negative ? 0 - std::uint64_t(k) : std::uint64_t(k)) - 1;
+  for (std::uint64_t j = 0; j < std::min<std::uint64_t>(a, kMagnitudeModels); ++j)
+    enc.encode(1, m.magnitude[j]);
+  if (a < kMagnitudeModels) {
+    enc.encode(0, m.magnitude[a]);
+    return;
+  }
+  const std::uint64_t rest = a - kMagnitudeModels;
+  const int n = int(std::bit_width(rest));
+  enc.encode_raw(std::uint32_t(n), 6);
+  put_raw(enc, rest, n);
+}
+
+std::int64_t get_correction(RangeDecoder& dec, OutlierModels& m) {
+  const bool negative = dec.decode(m.sign[std::size_t(m.previous_sign)]) != 0;
+  m.previous_sign = negative ? 2 : 1;
+  std::uint64_t a = 0;
+  while (a < kMagnitudeModels && dec.decode(m.magnitude[a]) != 0) ++a;
+  if (a == kMagnitudeModels) {
+    const int n = int(dec.decode_raw(6));
+    require_stream(n <= kMaxMagnitudeBits, "outlier correction too large");
+    a += get_raw(dec, n);
+    require_stream(a < (std::uint64_t(1) << kMaxMagnitudeBits), "outlier correction too large");
+  }
+  const auto magnitude = std::int64_t(a + 1);
+  return negative ? -magnitude : magnitude;
+}
 
 // The correction of voxel i, whose stored reconstruction `value` is farther than bound from
 // `original`: appends it to out and returns the corrected stored value.
 double correct(std::size_t i, double original, double value, double bound, VoxelType type,
                std::vector<Outlier>& out) {
   const double residual = original - value;
-  const double k = std::round(residual / bound);
+  double k = std::round(residual / bound);
   if (!(std::abs(k) < kMaxCorrection)) throw EncodeError("error bound too small for the data range");
-  const double fixed = to_stored(value + k * bound, type);
+  double fixed = to_stored(value + k * bound, type);
+  // The smallest |k| that holds the bound codes shorter (|k| - 1 in unary) than the nearest. Float
+  // types only: the decoder adds k E to the unrounded reconstruction, which for u8/u16 differs from
+  // `value` by up to 1/2, a margin only the nearest k leaves.
+  const double smaller = k - (k > 0 ? 1.0 : -1.0);
+  if (smaller != 0.0 && (type == VoxelType::f32 || type == VoxelType::f64)) {
+    const double f = to_stored(value + smaller * bound, type);
+    if (std::abs(original - f) <= bound) k = smaller, fixed = f;
+  }
   if (!(std::abs(original - fixed) <= bound))
     throw EncodeError("error bound below the precision of the stored type");
   out.push_back({std::uint32_t(i), std::int64_t(k)});
@@ -141,47 +235,38 @@ void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> o
 
 std::vector<std::uint8_t> encode_outliers(std::span<const Outlier> outliers) {
   if (outliers.empty()) return {};
-  std::vector<std::uint8_t> raw;
-  put_varint(raw, outliers.size());
+  RangeEncoder enc;
+  OutlierModels m;
+  put_gamma(enc, m.count, std::uint64_t(outliers.size()));
   std::uint32_t next = 0;
   for (const Outlier& o : outliers) {
-    put_varint(raw, o.index - next);
+    put_gap(enc, m, o.index - next);
     next = o.index + 1;
+    put_correction(enc, m, o.k);
   }
-  for (const Outlier& o : outliers) put_varint(raw, zigzag(o.k));
-  std::vector<std::uint8_t> out(ZSTD_compressBound(raw.size()));
-  const std::size_t n = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), kZstdLevel);
-  if (ZSTD_isError(n)) throw EncodeError(std::string("zstd: ") + ZSTD_getErrorName(n));
-  out.resize(n);
-  return out;
+  std::vector<std::uint8_t> bytes = enc.finish();
+  // A short list can code to no bytes (the decoder reads zeros past the end), but an empty list
+  // means no outliers: one zero byte decodes the same.
+  if (bytes.empty()) bytes.push_back(0);
+  return bytes;
 }
 
 std::vector<Outlier> decode_outliers(std::span<const std::uint8_t> bytes, std::size_t count) {
   if (bytes.empty()) return {};
-  const unsigned long long content = ZSTD_getFrameContentSize(bytes.data(), bytes.size());
-  require_stream(content != ZSTD_CONTENTSIZE_ERROR && content != ZSTD_CONTENTSIZE_UNKNOWN &&
-                     content <= (2 * count + 1) * kMaxVarintBytes,
-                 "outlier list size");
-  std::vector<std::uint8_t> raw(static_cast<std::size_t>(content));
-  const std::size_t n = ZSTD_decompress(raw.data(), raw.size(), bytes.data(), bytes.size());
-  require_stream(!ZSTD_isError(n) && n == raw.size(), "corrupt outlier list");
-  std::size_t pos = 0;
-  const std::uint64_t total = get_varint(raw, pos);
+  RangeDecoder dec(bytes);
+  OutlierModels m;
+  const std::uint64_t total = get_gamma(dec, m.count);
   require_stream(total >= 1 && total <= count, "outlier count");
   std::vector<Outlier> out(static_cast<std::size_t>(total));
   std::uint64_t next = 0;
   for (Outlier& o : out) {
     require_stream(next < count, "outlier index out of range");
-    const std::uint64_t gap = get_varint(raw, pos);
+    const std::uint64_t gap = get_gap(dec, m);
     require_stream(gap < count - next, "outlier index out of range");  // also rules out wrap-around
     next += gap;
     o.index = std::uint32_t(next++);
+    o.k = get_correction(dec, m);
   }
-  for (Outlier& o : out) {
-    o.k = unzigzag(get_varint(raw, pos));
-    require_stream(o.k != 0, "outlier correction");
-  }
-  require_stream(pos == raw.size(), "trailing bytes in outlier list");
   return out;
 }
 

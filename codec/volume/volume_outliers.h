@@ -1,8 +1,9 @@
 #pragma once
 // Internal to the volume codec: explicit corrections of the voxels the transform coding leaves
 // outside a point-wise error bound E (the SPERR approach). A correction is k * E added to the
-// reconstruction (k = round(residual / E), so |residual - k E| <= E / 2 before the value is
-// rounded to its stored type, and <= E after, since the original is itself a stored value).
+// reconstruction: k = round(residual / E) (|residual - k E| <= E / 2 before the value is rounded
+// to its stored type, and <= E after, since the original is itself a stored value), or for
+// float types k one nearer 0 when that stored value is still within E (|k| - 1 is coded in unary).
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +65,7 @@ inline void store_and_find_outliers(std::span<const double> original, std::span<
 void apply_outliers(std::span<double> reconstruction, std::span<const Outlier> outliers, double bound,
                     VoxelType type);
 
-// Indices as gaps and corrections as zigzag varints, compressed by zstd (empty for none).
+// Indices as gaps and corrections, range coded with adaptive models (empty for none; docs/bitstream.md).
 std::vector<std::uint8_t> encode_outliers(std::span<const Outlier> outliers);
 
 // Inverse of encode_outliers for a brick of `count` voxels; throws DecodeError unless every

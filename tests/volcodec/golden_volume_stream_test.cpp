@@ -7,7 +7,9 @@
 // of these box-grid streams. Version 4 added VHDR's coder byte, codes max-error streams with the
 // coefficient coder and changed the bit-plane coder's contexts (issue 20): all four changed.
 // Version 5 (the block coder's priors retrained, issue 20) changed all four (by the version byte
-// at least).
+// at least). Version 6 (outlier corrections range coded, issues 15/17) changed all four: the
+// lossless and step streams by the version byte only; the estimated outlier-list size in the
+// step choice (encoder only) changed the sphere stream once more.
 #include <gtest/gtest.h>
 
 #include "codec/error.h"
@@ -60,22 +62,22 @@ std::vector<std::uint8_t> as_version3(std::span<const std::uint8_t> v4) {
 TEST(GoldenVolumeStream, LosslessStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(test::smooth_volume({21, 17, 9}, VoxelType::u16, 4000.0), VolumeRateMode::lossless, 0,
                        "cdf53"),
-            2428100518u);
+            2362214367u);
 }
 
 TEST(GoldenVolumeStream, ErrorBoundedStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(test::smooth_volume({21, 17, 9}, VoxelType::f32, 10.0), VolumeRateMode::max_error,
                        1e-2, "cdf97"),
-            1059602092u);
+            261538417u);
   EXPECT_EQ(stream_crc(test::sphere_level_set({24, 24, 24}, 7.0, 2.5, 0.3), VolumeRateMode::max_error, 1e-3,
                        "cdf97"),
-            3547243199u);
+            2566571382u);
 }
 
 TEST(GoldenVolumeStream, StepStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(test::smooth_volume({19, 13, 11}, VoxelType::f64, 1.0, 3), VolumeRateMode::step, 1e-3,
                        "cdf53"),
-            2108478532u);
+            1525128645u);
 }
 
 // Version 3 streams (older bit-plane contexts, no coder byte) are refused, not misdecoded.
@@ -95,6 +97,16 @@ TEST(GoldenVolumeStream, Version4StreamsAreRefused) {
   ASSERT_EQ(v4[4], kVolumeStreamVersion);
   v4[4] = 4;
   EXPECT_THROW(decode_volumes(v4), DecodeError);
+}
+
+// Version 5 streams (outlier lists as zstd frames of varints) are refused: their lists would
+// decode as range-coded corrections, wrong and silently.
+TEST(GoldenVolumeStream, Version5StreamsAreRefused) {
+  auto v5 = encode_golden(test::smooth_volume({21, 17, 9}, VoxelType::f32, 10.0), VolumeRateMode::max_error,
+                          1e-2, "cdf97");
+  ASSERT_EQ(v5[4], kVolumeStreamVersion);
+  v5[4] = 5;
+  EXPECT_THROW(decode_volumes(v5), DecodeError);
 }
 
 }  // namespace
