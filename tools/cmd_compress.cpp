@@ -273,9 +273,9 @@ void run_compress(const CompressOptions& opt) {
   EncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
-  // --lossless defaults to the lc coder: 3-4% smaller than the bit-plane coder on the test
-  // photographs, decoding as fast (bench/results/lossless.md).
-  enc.entropy = entropy_coder(opt.entropy.empty() ? (opt.lossless ? "lc" : "ebcot") : opt.entropy);
+  // Without --entropy the library's default coder choice applies (encode_image_default_coder:
+  // lc for lossless, the bit-plane coder for rate targets).
+  if (!opt.entropy.empty()) enc.entropy = entropy_coder(opt.entropy);
   // Only the byte-budget search has more than one effort; elsewhere the option would be ignored.
   if (opt.effort != 0 && !(opt.bpp > 0.0))
     throw std::invalid_argument("--effort applies to --bpp targets only");
@@ -290,19 +290,7 @@ void run_compress(const CompressOptions& opt) {
   const EncodeResult r = [&] {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
     if (!image.metadata.empty()) enc.metadata = &image.metadata;
-    EncodeResult first = encode_image(view, enc);
-    // A rate target that gave the bit-plane coder's lossless stream gives the --lossless default
-    // (lc, smaller) instead, so no rate target exceeds the --lossless file.
-    if (!first.switched_to_lossless || !opt.entropy.empty()) return first;
-    EncodeOptions exact = enc;
-    exact.mode = RateMode::lossless;
-    exact.transform = "cdf53";
-    exact.entropy = EntropyCoder::lc;
-    exact.measure_psnr = false;
-    EncodeResult lc = encode_image(view, exact);
-    lc.psnr = std::numeric_limits<double>::infinity();
-    lc.switched_to_lossless = true;
-    return lc.bytes.size() < first.bytes.size() ? lc : first;
+    return opt.entropy.empty() ? encode_image_default_coder(view, enc) : encode_image(view, enc);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_output(opt, r.bytes);

@@ -141,7 +141,10 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOpti
     view.channel_stride = image.channel_stride;
     view.pixel_stride = image.pixel_stride;
     view.row_stride = image.row_stride;
-    std::vector<std::uint8_t> bytes = encode_image(view, enc).bytes;
+    // No coder chosen: the default choice, as the CLI makes it (lc for lossless).
+    const bool chosen = options.zstd || options.ht;
+    std::vector<std::uint8_t> bytes =
+        (chosen ? encode_image(view, enc) : encode_image_default_coder(view, enc)).bytes;
     check_decodable(bytes);
     return bytes;
   });

@@ -224,8 +224,13 @@ ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_level
   const StreamHeader& h = s.header;
   s.bands = header_bands(h);
   if (drop_levels < 0 || drop_levels > h.levels)
-    throw std::invalid_argument("level " + std::to_string(drop_levels) + " outside [0, " +
-                                std::to_string(h.levels) + "] (the stream's levels)");
+    throw std::invalid_argument(
+        "level " + std::to_string(drop_levels) + " outside [0, " + std::to_string(h.levels) +
+        "] (the stream's levels" +
+        // The lossless default (lc) predicts samples without a wavelet: say how to get levels.
+        (h.levels == 0 ? "; it was coded without wavelet levels, as lossless is by default: compress with "
+                         "--levels N for reduced-resolution decoding)"
+                       : ")"));
   const Extent out = level_extent(h.dims, drop_levels);
   check_decode_limit(out[0] * out[1] * out[2], limits, "pupwave stream: decoded size in pixels");
   const int resolutions = h.levels + 1;

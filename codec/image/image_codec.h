@@ -84,6 +84,12 @@ inline EncodeResult encode_image(const Image& image, const EncodeOptions& option
   return encode_image(view_of(image), with_metadata);
 }
 
+// encode_image with the default coder (options.entropy is ignored): lossless uses the lc coder
+// (smaller than the bit-plane coder's lossless stream, bench/results/lossless.md), rate targets
+// the bit-plane coder, and a rate target that ends lossless (switched_to_lossless) gives the lc
+// stream when it is the smaller. The CLI without --entropy and the library both encode here.
+EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions options);
+
 // Decodes a stream, at full resolution (level 0) or at 1/2^level resolution, reading only
 // the data that resolution needs. Throws DecodeError for a corrupt or truncated stream and
 // std::invalid_argument when level exceeds the stream's level count.

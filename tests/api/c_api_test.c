@@ -44,7 +44,17 @@ static void test_image_lossless(void) {
         pupwave_decoded_dim(d, 1) == h && pupwave_decoded_channels(d) == 3);
   CHECK(d && pupwave_decoded_size(d) == w * h * 3 && memcmp(pupwave_decoded_data(d), rgb, w * h * 3) == 0);
   pupwave_decoded_destroy(d);
-  /* Level 1: half size, rounded up. */
+  /* The lossless default codes no wavelet levels: level 1 is refused; with levels it is half
+   * size, rounded up. */
+  d = NULL;
+  CHECK(pupwave_decompress_image(pupwave_stream_data(s), pupwave_stream_size(s), 1, 0, &d) != PUPWAVE_OK);
+  pupwave_stream_destroy(s);
+  s = NULL;
+  CHECK(pupwave_options_set_levels(o, 3) == PUPWAVE_OK);
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
+  CHECK(pupwave_decompress_image(pupwave_stream_data(s), pupwave_stream_size(s), 0, 1, &d) == PUPWAVE_OK);
+  CHECK(d && memcmp(pupwave_decoded_data(d), rgb, w * h * 3) == 0);
+  pupwave_decoded_destroy(d);
   CHECK(pupwave_decompress_image(pupwave_stream_data(s), pupwave_stream_size(s), 1, 0, &d) == PUPWAVE_OK);
   CHECK(d && pupwave_decoded_dim(d, 0) == 34 && pupwave_decoded_dim(d, 1) == 23);
   pupwave_decoded_destroy(d);

@@ -72,7 +72,8 @@ pupwave_status pupwave_options_set_levels(pupwave_options* options, int levels);
 pupwave_status pupwave_options_set_threads(pupwave_options* options, unsigned threads);
 /* Volumes: brick edge (power of two, 8..256). */
 pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick);
-/* Images: 1 selects the zstd entropy coder instead of the bit-plane coder. */
+/* Images: 1 selects the zstd entropy coder instead of the default (the bit-plane coder for rate
+ * targets, the lossless context coder lc for lossless). */
 pupwave_status pupwave_options_set_zstd(pupwave_options* options, int zstd);
 /* Images: 1 selects the high-throughput block coder (no arithmetic coding; faster, larger files
  * at the same quality). Not together with zstd. */

@@ -74,7 +74,7 @@ struct ImageOptions {
   double target = 40.0;   // dB, bits per pixel or step; ignored for lossless
   std::string transform;  // transform spec (cdf97, cdf53, pups:..., kobbelt:...); "": cdf97, cdf53 lossless
   int levels = -1;        // decomposition levels, -1: from the image size
-  bool zstd = false;      // entropy coder: false = bit-plane coder (default), true = zstd
+  bool zstd = false;      // entropy coder: true = zstd; neither this nor ht: the bit-plane coder, lc for lossless
   bool ht = false;        // entropy coder: high-throughput block coder (not with zstd)
   unsigned threads = 0;   // most worker threads (0: all cores, 1: the calling thread)
   // Encoder effort for bpp targets: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
