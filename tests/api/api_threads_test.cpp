@@ -47,7 +47,16 @@ std::vector<std::uint16_t> pattern(std::size_t w, std::size_t h, std::size_t c) 
 TEST(PublicApi, ImageLosslessAndLevels) {
   const auto px = pattern(70, 50, 3);
   const auto view = api::interleaved_view(px.data(), 70, 50, 3, api::SampleType::u16);
-  const auto bytes = api::compress_image(view, image_options(api::ImageRate::lossless, 0));
+  // The lossless default (lc) codes no wavelet levels, so a reduced level is refused...
+  const auto flat = api::compress_image(view, image_options(api::ImageRate::lossless, 0));
+  const api::Image exact = api::decompress_image(flat);
+  ASSERT_EQ(exact.data.size(), px.size() * 2);
+  EXPECT_EQ(std::memcmp(exact.data.data(), px.data(), exact.data.size()), 0);
+  EXPECT_THROW(api::decompress_image(flat, 1), api::Error);
+  // ...and with levels asked for, it decodes at half size.
+  api::ImageOptions leveled = image_options(api::ImageRate::lossless, 0);
+  leveled.levels = 3;
+  const auto bytes = api::compress_image(view, leveled);
   const api::Image back = api::decompress_image(bytes);
   ASSERT_EQ(back.data.size(), px.size() * 2);
   EXPECT_EQ(std::memcmp(back.data.data(), px.data(), back.data.size()), 0);
