@@ -2,6 +2,7 @@
 // crafted inputs must give DecodeError (never a crash, a hang or a huge allocation).
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
 
 #include "codec/error.h"
@@ -32,6 +33,30 @@ std::vector<std::size_t> chunk_starts(const std::vector<std::uint8_t>& bytes) {
     pos += 12 + r.u32();
   }
   return starts;
+}
+
+// Calls `decode` with `per_chunk` copies of the stream, each with one random bit of a DATA
+// chunk's payload flipped and that chunk's CRC fixed, so the block decoder sees the damage;
+// returns how many copies were made.
+int for_each_data_flip(const std::vector<std::uint8_t>& bytes, unsigned seed, int per_chunk,
+                       const std::function<void(const std::vector<std::uint8_t>&)>& decode) {
+  std::mt19937 rng(seed);
+  int trials = 0;
+  for (std::size_t start : chunk_starts(bytes)) {
+    if (std::string(bytes.begin() + std::ptrdiff_t(start), bytes.begin() + std::ptrdiff_t(start) + 4) !=
+        "DATA")
+      continue;
+    ByteReader r(std::span<const std::uint8_t>(bytes).subspan(start + 4, 4), "length");
+    const std::size_t length = r.u32();
+    for (int k = 0; k < per_chunk && length > 0; ++k, ++trials) {
+      auto bad = bytes;
+      bad[start + 8 + rng() % length] ^= std::uint8_t(1u << (rng() % 8));
+      const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bad).subspan(start, 8 + length));
+      for (int i = 0; i < 4; ++i) bad[start + 8 + length + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
+      decode(bad);
+    }
+  }
+  return trials;
 }
 
 // Rewrites the HEAD chunk's payload through `edit` and fixes its CRC, so only the field
@@ -91,27 +116,15 @@ TEST(HostileStream, EveryFlippedBitIsDetected) {
 // coefficients can be undetectable), never a crash or an overrun.
 TEST(HostileStream, CorruptHtBlocksBehindValidCrcsAreContained) {
   const auto bytes = sample_stream(EntropyCoder::ht);
-  std::mt19937 rng(16);
-  int rejected = 0, trials = 0;
-  for (std::size_t start : chunk_starts(bytes)) {
-    if (std::string(bytes.begin() + std::ptrdiff_t(start), bytes.begin() + std::ptrdiff_t(start) + 4) !=
-        "DATA")
-      continue;
-    ByteReader r(std::span<const std::uint8_t>(bytes).subspan(start + 4, 4), "length");
-    const std::size_t length = r.u32();
-    for (int k = 0; k < 60 && length > 0; ++k, ++trials) {
-      auto bad = bytes;
-      bad[start + 8 + rng() % length] ^= std::uint8_t(1u << (rng() % 8));
-      const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bad).subspan(start, 8 + length));
-      for (int i = 0; i < 4; ++i) bad[start + 8 + length + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
-      try {
-        const Image out = decode_image(bad);
-        EXPECT_EQ(out.width, 70u);
-      } catch (const DecodeError&) {
-        ++rejected;
-      }
+  int rejected = 0;
+  const int trials = for_each_data_flip(bytes, 16, 60, [&](const std::vector<std::uint8_t>& bad) {
+    try {
+      const Image out = decode_image(bad);
+      EXPECT_EQ(out.width, 70u);
+    } catch (const DecodeError&) {
+      ++rejected;
     }
-  }
+  });
   EXPECT_GT(trials, 0);
   EXPECT_GT(rejected, trials / 2);
 }
@@ -182,28 +195,15 @@ TEST(HostileStream, LcTruncationsAreRejected) {
 // most such flips decode to wrong samples: the chunk CRC is what detects them.
 TEST(HostileStream, CorruptLcBlocksBehindValidCrcsAreContained) {
   for (int levels : {0, 2}) {
-    const auto bytes = lc_stream(levels);
-    std::mt19937 rng(23);
-    int trials = 0;
-    for (std::size_t start : chunk_starts(bytes)) {
-      if (std::string(bytes.begin() + std::ptrdiff_t(start), bytes.begin() + std::ptrdiff_t(start) + 4) !=
-          "DATA")
-        continue;
-      ByteReader r(std::span<const std::uint8_t>(bytes).subspan(start + 4, 4), "length");
-      const std::size_t length = r.u32();
-      for (int k = 0; k < 40 && length > 0; ++k, ++trials) {
-        auto bad = bytes;
-        bad[start + 8 + rng() % length] ^= std::uint8_t(1u << (rng() % 8));
-        const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bad).subspan(start, 8 + length));
-        for (int i = 0; i < 4; ++i) bad[start + 8 + length + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
-        try {
-          const Image out = decode_image(bad);
-          EXPECT_EQ(out.width, 70u);
-          EXPECT_EQ(out.height, 50u);
-        } catch (const DecodeError&) {
-        }
-      }
-    }
+    const int trials =
+        for_each_data_flip(lc_stream(levels), 23, 40, [](const std::vector<std::uint8_t>& bad) {
+          try {
+            const Image out = decode_image(bad);
+            EXPECT_EQ(out.width, 70u);
+            EXPECT_EQ(out.height, 50u);
+          } catch (const DecodeError&) {
+          }
+        });
     EXPECT_GT(trials, 0);
   }
 }
