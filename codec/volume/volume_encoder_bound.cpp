@@ -33,25 +33,26 @@ double outlier_bytes(std::size_t n, std::size_t voxels) {
   return double(n) * (std::log2(double(voxels) / double(n)) + c) / 8.0;
 }
 
-// One candidate step: its modelled size, its reconstruction and the exact corrections.
+// One candidate step: its modelled size, the exact corrections and the error they leave. Its
+// reconstruction is not kept (one buffer serves every candidate: a second one cost each thread
+// 1 MiB for a pass that measuring the error with the outliers makes unnecessary).
 struct Candidate {
   double bytes = 0.0;
-  std::vector<float> requantized;  // reconstruction as the decoder holds it (float, not stored)
   std::vector<Outlier> outliers;
+  StoredError error;
 };
 
 // Buffers reused from brick to brick by each thread: fresh multi-megabyte vectors per
 // candidate cost more in page faults than the evaluation itself.
 struct Scratch {
-  std::vector<float> coef;  // the brick's transform
+  std::vector<float> coef;         // the brick's transform
+  std::vector<float> requantized;  // a candidate's reconstruction as the decoder holds it
   Candidate best, trial;
-  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~2 MB (two float
-  // reconstructions and the outlier lists), not the hundreds a 256^3 brick takes.
+  // Drops buffers larger than a 64^3 brick needs, so a pool thread keeps ~2 MB (the transform,
+  // one float reconstruction and the outlier lists), not the hundreds a 256^3 brick takes.
   void trim() {
     constexpr std::size_t kKeptVoxels = std::size_t(1) << 18;
-    if (coef.capacity() > kKeptVoxels || best.requantized.capacity() > kKeptVoxels ||
-        trial.requantized.capacity() > kKeptVoxels)
-      *this = Scratch{};
+    if (coef.capacity() > kKeptVoxels || requantized.capacity() > kKeptVoxels) *this = Scratch{};
   }
 };
 
@@ -67,10 +68,10 @@ struct BrickInput {
 };
 
 template <class S>
-void evaluate(const BrickInput<S>& in, double base, Candidate& c) {
+void evaluate(const BrickInput<S>& in, double base, std::vector<float>& requantized, Candidate& c) {
   IndexStats stats;
-  requantize_brick(in.coding, in.coef, in.size, base, c.requantized, &stats);
-  store_and_find_outliers(in.samples, c.requantized, {}, in.active, in.bound, in.type, c.outliers, nullptr);
+  requantize_brick(in.coding, in.coef, in.size, base, requantized, &stats);
+  store_and_find_outliers(in.samples, requantized, {}, in.active, in.bound, in.type, c.outliers, &c.error);
   c.bytes = kBytesPerSignificant * stats.significant + kBytesPerLog2Index * stats.log2_sum +
             kBytesPerMapBit * stats.map_bits + outlier_bytes(c.outliers.size(), in.samples.size());
 }
@@ -88,11 +89,11 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   Candidate& best = scratch.best;
   // Descent over the factors from the usual best: the modelled total is unimodal in practice.
   std::size_t at = kFirstFactor;
-  evaluate(in, kBoundStepFactors[at] * bound, best);
+  evaluate(in, kBoundStepFactors[at] * bound, scratch.requantized, best);
   for (const std::ptrdiff_t direction : {1, -1}) {
     bool moved = false;
     for (std::size_t next = at + direction; next < kFactorCount; next += direction) {
-      evaluate(in, kBoundStepFactors[next] * bound, scratch.trial);
+      evaluate(in, kBoundStepFactors[next] * bound, scratch.requantized, scratch.trial);
       if (scratch.trial.bytes >= best.bytes) break;
       std::swap(best, scratch.trial);
       at = next;
@@ -106,13 +107,8 @@ BrickCode code_within_bound(const VolumePlan& plan, const VolumeGrid& grid, cons
   for (const auto& b : code.coded.coded) code.passes.push_back(b.pass_count());
   code.outliers = encode_outliers(best.outliers);
   code.outlier_count = best.outliers.size();
-  // The error of the chosen step only, in a second pass over its reconstruction (the same
-  // outliers again, into the trial's list).
-  StoredError error;
-  store_and_find_outliers(samples, best.requantized, {}, active, bound, grid.volume.type,
-                          scratch.trial.outliers, &error);
-  code.max_error = error.max;
-  code.sse = error.sse;
+  code.max_error = best.error.max;
+  code.sse = best.error.sse;
   scratch.trim();
   return code;
 }
