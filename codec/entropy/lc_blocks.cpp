@@ -130,6 +130,7 @@ template <class Io>
 std::uint32_t code_symbols(Io& io, std::int32_t* symbols, std::size_t stride, std::size_t w, std::size_t h,
                            const LcParent& parent, int planes) {
   const std::size_t pw = w + 2 * kPad;
+  const auto sp = std::ptrdiff_t(pw);  // signed: a[-pw] with a size_t pw is pointer overflow
   std::vector<std::uint32_t> mag((h + kPad) * pw, 0u);
   std::vector<std::int8_t> sgn((h + kPad) * pw, 0);
   auto models = std::make_unique<Models>();
@@ -143,7 +144,7 @@ std::uint32_t code_symbols(Io& io, std::int32_t* symbols, std::size_t stride, st
     for (std::size_t x = 0; x < w; ++x) {
       const std::size_t i = (y + kPad) * pw + x + kPad;
       const std::uint32_t* a = mag.data() + i;
-      std::uint32_t s = 4 * (a[-1] + a[-pw]) + 2 * (a[-pw - 1] + a[-pw + 1]) + a[-2] + a[-2 * pw];
+      std::uint32_t s = 4 * (a[-1] + a[-sp]) + 2 * (a[-sp - 1] + a[-sp + 1]) + a[-2] + a[-2 * sp];
       if (prow) {
         const std::int32_t p = prow[std::min((parent.x0 + x) >> 1, parent.width - 1)];
         s += 2 * std::min(std::uint32_t(p < 0 ? -std::int64_t(p) : p), kMagnitudeCap);
@@ -267,6 +268,7 @@ template <class Io>
 std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::size_t w, std::size_t h,
                              int planes, int mode, const LcParent& guide) {
   const std::size_t pw = w + 2 * kPad;
+  const auto sp = std::ptrdiff_t(pw);  // signed: a[-pw] with a size_t pw is pointer overflow
   std::vector<std::uint32_t> mag((h + kPad) * pw, 0u);
   std::vector<std::int8_t> sgn((h + kPad) * pw, 0);
   auto models = std::make_unique<Models>();
@@ -289,9 +291,9 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
       const std::size_t i = (y + kPad) * pw + x + kPad;
       const std::uint32_t* a = mag.data() + i;
       // A wider neighbourhood than the detail bands' (the samples' residuals are less sparse).
-      std::uint32_t s = 5 * (a[-1] + a[-pw]) + 3 * (a[-pw - 1] + a[-pw + 1]) +
-                        2 * (a[-2] + a[-2 * pw] + a[-pw + 2]) + a[-pw - 2] + a[-2 * pw + 1] + a[-2 * pw - 1] +
-                        a[-2 * pw + 2] + a[-2 * pw - 2];
+      std::uint32_t s = 5 * (a[-1] + a[-sp]) + 3 * (a[-sp - 1] + a[-sp + 1]) +
+                        2 * (a[-2] + a[-2 * sp] + a[-sp + 2]) + a[-sp - 2] + a[-2 * sp + 1] + a[-2 * sp - 1] +
+                        a[-2 * sp + 2] + a[-2 * sp - 2];
       const std::int64_t p8 = wp.predict(neighbours(v, stride, w, x, y), x, y);
       int gsign = 1;
       if (guide.guide) {  // the first component's MED residual at this very sample
