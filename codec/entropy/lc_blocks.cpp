@@ -124,16 +124,25 @@ std::uint32_t code_magnitude(Io& io, Models& m, int ctx, std::uint32_t mag, int 
 
 inline int sign_of(std::int8_t s) { return s + 1; }  // -1, 0, 1 -> 0, 1, 2
 
+// What a block's coder keeps of the samples already coded: magnitudes and signs on a grid padded
+// by kPad on the left, right and top (so neighbours need no edge tests), and fresh models.
+struct CausalState {
+  std::size_t pw;
+  std::ptrdiff_t sp;  // pw, signed: a[-pw] with a size_t pw is pointer overflow
+  std::vector<std::uint32_t> mag;
+  std::vector<std::int8_t> sgn;
+  std::unique_ptr<Models> models = std::make_unique<Models>();
+  CausalState(std::size_t w, std::size_t h)
+      : pw(w + 2 * kPad), sp(std::ptrdiff_t(pw)), mag((h + kPad) * pw, 0u), sgn((h + kPad) * pw, 0) {}
+};
+
 // Codes the symbols of a block (the encoder's `symbols`, or decoded into them; row y at
 // symbols + y * stride) and returns the largest magnitude.
 template <class Io>
 std::uint32_t code_symbols(Io& io, std::int32_t* symbols, std::size_t stride, std::size_t w, std::size_t h,
                            const LcParent& parent, int planes) {
-  const std::size_t pw = w + 2 * kPad;
-  const auto sp = std::ptrdiff_t(pw);  // signed: a[-pw] with a size_t pw is pointer overflow
-  std::vector<std::uint32_t> mag((h + kPad) * pw, 0u);
-  std::vector<std::int8_t> sgn((h + kPad) * pw, 0);
-  auto models = std::make_unique<Models>();
+  CausalState state(w, h);
+  auto& [pw, sp, mag, sgn, models] = state;
   Models& m = *models;
   std::uint32_t largest = 0;
   for (std::size_t y = 0; y < h; ++y) {
@@ -267,11 +276,8 @@ inline WeightedPredictor::Neighbours neighbours(const std::int32_t* v, std::size
 template <class Io>
 std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::size_t w, std::size_t h,
                              int planes, int mode, const LcParent& guide) {
-  const std::size_t pw = w + 2 * kPad;
-  const auto sp = std::ptrdiff_t(pw);  // signed: a[-pw] with a size_t pw is pointer overflow
-  std::vector<std::uint32_t> mag((h + kPad) * pw, 0u);
-  std::vector<std::int8_t> sgn((h + kPad) * pw, 0);
-  auto models = std::make_unique<Models>();
+  CausalState state(w, h);
+  auto& [pw, sp, mag, sgn, models] = state;
   Models& m = *models;
   WeightedPredictor wp(w, mode);
 
