@@ -3,6 +3,7 @@
 // no arithmetic coding. The reader treats its input as hostile: bits past the end read as 0
 // and are counted, so a decoder checks `overran()` once per block instead of every read.
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -14,34 +15,46 @@ namespace pupwave {
 
 class HtBitWriter {
  public:
+  // Packs into `scratch`, reused from block to block (its size is its capacity here), so a block
+  // costs one allocation of the exact size in finish() instead of a growing vector's several.
+  explicit HtBitWriter(std::vector<std::uint8_t>& scratch) : out_(scratch) {}
   // Appends the low `n` bits of v (n <= 32), most significant first.
   void put(std::uint64_t v, int n) {
     acc_ = (acc_ << n) | v;
     used_ += n;
     if (used_ >= 32) {
       used_ -= 32;
+      if (out_.size() < size_ + 4) out_.resize(std::max<std::size_t>(256, 2 * out_.size()));
       const auto word = std::uint32_t(acc_ >> used_);
-      const std::uint8_t b[4] = {std::uint8_t(word >> 24), std::uint8_t(word >> 16), std::uint8_t(word >> 8),
-                                 std::uint8_t(word)};
-      out_.insert(out_.end(), b, b + 4);
+      std::uint8_t* p = out_.data() + size_;
+      p[0] = std::uint8_t(word >> 24);
+      p[1] = std::uint8_t(word >> 16);
+      p[2] = std::uint8_t(word >> 8);
+      p[3] = std::uint8_t(word);
+      size_ += 4;
     }
   }
   // The bytes written, the last one padded with zeros.
   std::vector<std::uint8_t> finish() {
+    std::vector<std::uint8_t> bytes(size_ + std::size_t(used_ + 7) / 8);
+    std::copy_n(out_.data(), size_, bytes.data());
+    std::size_t n = size_;
     while (used_ >= 8) {
       used_ -= 8;
-      out_.push_back(std::uint8_t(acc_ >> used_));
+      bytes[n++] = std::uint8_t(acc_ >> used_);
     }
-    if (used_ > 0) out_.push_back(std::uint8_t(acc_ << (8 - used_)));
+    if (used_ > 0) bytes[n] = std::uint8_t(acc_ << (8 - used_));
     used_ = 0;
-    return std::move(out_);
+    size_ = 0;
+    return bytes;
   }
-  std::size_t bits() const { return out_.size() * 8 + std::size_t(used_); }
+  std::size_t bits() const { return size_ * 8 + std::size_t(used_); }
 
  private:
   std::uint64_t acc_ = 0;
   int used_ = 0;  // bits of acc_ not yet in out_ (< 32)
-  std::vector<std::uint8_t> out_;
+  std::vector<std::uint8_t>& out_;
+  std::size_t size_ = 0;  // bytes of out_ written
 };
 
 class HtBitReader {

@@ -99,6 +99,21 @@ inline std::uint64_t get_rice(HtBitReader& r, int k) {
   return (std::uint64_t(1) << (bits - 1)) | r.get(bits - 1);
 }
 
+// Whether every index is 0, ORed 16 at a time (vectorized) so a nonzero block stops early.
+bool all_zero(std::span<const std::int32_t> indices) {
+  const std::int32_t* p = indices.data();
+  const std::size_t n = indices.size();
+  std::size_t k = 0;
+  for (; k + 16 <= n; k += 16) {
+    std::uint32_t any = 0;
+    for (std::size_t j = 0; j < 16; ++j) any |= std::uint32_t(p[k + j]);
+    if (any != 0) return false;
+  }
+  for (; k < n; ++k)
+    if (p[k] != 0) return false;
+  return true;
+}
+
 void update_run_state(Contexts& c, int change) {
   c.run_state = std::clamp(c.run_state + change, 0, kRunStates - 1);
 }
@@ -106,7 +121,7 @@ void update_run_state(Contexts& c, int change) {
 // Codes the zeros of row `q` from x on until a nonzero (coded too) or the row's end; returns
 // the position after them.
 std::size_t encode_run(HtBitWriter& w, Contexts& c, const std::int32_t* q, std::size_t x, std::size_t width,
-                       std::uint32_t* cur) {
+                       std::uint32_t* cur, std::uint32_t& all) {
   std::size_t count = 0;
   for (; x < width && q[x] == 0; ++x)
     if (++count == std::size_t(1) << kRunExponent[std::size_t(c.run_state)]) {
@@ -121,6 +136,7 @@ std::size_t encode_run(HtBitWriter& w, Contexts& c, const std::int32_t* q, std::
   w.put(count, kRunExponent[std::size_t(c.run_state)] + 1);  // a 0, then the run length
   update_run_state(c, -1);
   const std::uint32_t v = std::uint32_t(std::abs(q[x]));
+  all |= v;
   RiceStats& s = c.rice[0];
   put_rice(w, v - 1, s.k(), q[x] < 0);
   s.update(v - 1);
@@ -165,17 +181,15 @@ std::size_t decode_run(HtBitReader& r, Contexts& c, std::int32_t* q, std::size_t
 
 HtCodeword ht_encode_block(std::span<const std::int32_t> indices, std::size_t width, std::size_t height) {
   HtCodeword out;
-  std::uint32_t all = 0;
-  for (std::int32_t v : indices) all |= std::uint32_t(std::abs(v));
-  if (all == 0) return out;
-  if (int(std::bit_width(all)) > kMaxBitPlanes)
-    throw IndexRangeError("quantization index too large for the ht coder");
-  out.planes = int(std::bit_width(all));
+  if (all_zero(indices)) return out;
   // Magnitude rows padded by one column each side; row 0 is the zero row above the block.
   const std::size_t stride = width + 2;
-  std::vector<std::uint32_t> rows(stride * (height + 1), 0);
+  thread_local std::vector<std::uint32_t> rows;
+  rows.assign(stride * (height + 1), 0);
+  thread_local std::vector<std::uint8_t> scratch;
   Contexts c;
-  HtBitWriter w;
+  HtBitWriter w(scratch);
+  std::uint32_t all = 0;  // every magnitude OR-ed, gathered while coding (not a pass of its own)
   for (std::size_t y = 0; y < height; ++y) {
     const std::uint32_t* up = rows.data() + y * stride;
     std::uint32_t* cur = rows.data() + (y + 1) * stride;
@@ -183,17 +197,22 @@ HtCodeword ht_encode_block(std::span<const std::int32_t> indices, std::size_t wi
     for (std::size_t x = 0; x < width;) {
       const std::uint32_t sum = neighbour_sum(up, cur, x);
       if (sum == 0) {
-        x = encode_run(w, c, q, x, width, cur);
+        x = encode_run(w, c, q, x, width, cur, all);
         continue;
       }
       RiceStats& s = c.rice[std::size_t(context_of(sum))];
       const std::uint32_t v = std::uint32_t(std::abs(q[x]));
+      all |= v;
       put_rice(w, v, s.k(), v != 0 ? int(q[x] < 0) : -1);
       s.update(v);
       cur[x + 1] = std::min(v, kMagnitudeCap);
       ++x;
     }
   }
+  // Checked after coding: a too-large magnitude only makes codes that are thrown away.
+  if (int(std::bit_width(all)) > kMaxBitPlanes)
+    throw IndexRangeError("quantization index too large for the ht coder");
+  out.planes = int(std::bit_width(all));
   out.bytes = w.finish();
   return out;
 }
