@@ -122,13 +122,16 @@ void update_run_state(Contexts& c, int change) {
 // the position after them.
 std::size_t encode_run(HtBitWriter& w, Contexts& c, const std::int32_t* q, std::size_t x, std::size_t width,
                        std::uint32_t* cur, std::uint32_t& all) {
-  std::size_t count = 0;
-  for (; x < width && q[x] == 0; ++x)
-    if (++count == std::size_t(1) << kRunExponent[std::size_t(c.run_state)]) {
-      w.put(1, 1);
-      count = 0;
-      update_run_state(c, 1);
-    }
+  // The zeros are found first, then their full runs written one per step (not one step per
+  // zero: at low rates most of a block is runs): the same bits as counting them one by one.
+  const std::size_t start = x;
+  while (x < width && q[x] == 0) ++x;
+  std::size_t count = x - start;
+  for (std::size_t run; count >= (run = std::size_t(1) << kRunExponent[std::size_t(c.run_state)]);) {
+    w.put(1, 1);
+    count -= run;
+    update_run_state(c, 1);
+  }
   if (x == width) {
     if (count > 0) w.put(1, 1);  // a run cut short by the row's end
     return x;
