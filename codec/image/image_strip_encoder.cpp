@@ -21,6 +21,8 @@ constexpr std::size_t kChunk = 64;
 constexpr std::size_t kPiece = 16;
 // Columns per column-analysis task (a window of them stays in cache while lifted).
 constexpr std::size_t kColumnChunk = 128;
+// Samples per colour-conversion task: a strip of a 4096-wide image in four.
+constexpr std::size_t kTaskSamples = std::size_t(1) << 14;
 
 // Takes rows top to bottom: `count` rows of the receiver's width, row i at rows + i * stride.
 template <class T>
@@ -191,12 +193,22 @@ std::size_t find_band(const ImagePlan& plan, int level, unsigned orientation) {
   return std::size_t(-1);
 }
 
+// Rows [y0, y1) of component c (colour converted and level shifted) as tasks of a few rows
+// each: the converters split rows into tasks of 2^16 samples, so a strip of a wide image was
+// one task, and its colour conversion (6% of an RGB ht encode) ran on one thread.
 template <class T>
 void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out) {
-  if constexpr (std::is_same_v<T, float>)
-    float_component_rows(plan.source, plan.header.colour, c, y0, y1, out, *plan.executor);
-  else
-    integer_component_rows(plan.source, plan.header.colour, c, y0, y1, out, *plan.executor);
+  const std::size_t width = plan.header.dims[0];
+  const std::size_t per_task = std::max<std::size_t>(1, kTaskSamples / std::max<std::size_t>(width, 1));
+  const std::size_t tasks = (y1 - y0 + per_task - 1) / per_task;
+  plan.executor->run(tasks, [&](std::size_t k) {
+    const std::size_t a = y0 + k * per_task, b = std::min(y1, a + per_task);
+    T* rows = out + (a - y0) * width;
+    if constexpr (std::is_same_v<T, float>)
+      float_component_rows(plan.source, plan.header.colour, c, a, b, rows, serial_executor());
+    else
+      integer_component_rows(plan.source, plan.header.colour, c, a, b, rows, serial_executor());
+  });
 }
 
 }  // namespace
