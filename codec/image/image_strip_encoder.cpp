@@ -197,17 +197,28 @@ std::size_t find_band(const ImagePlan& plan, int level, unsigned orientation) {
 // each: the converters split rows into tasks of 2^16 samples, so a strip of a wide image was
 // one task, and its colour conversion (6% of an RGB ht encode) ran on one thread.
 template <class T>
-void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out) {
+void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out,
+                    const Executor& ex) {
+  if constexpr (std::is_same_v<T, float>)
+    float_component_rows(plan.source, plan.header.colour, c, y0, y1, out, ex);
+  else
+    integer_component_rows(plan.source, plan.header.colour, c, y0, y1, out, ex);
+}
+
+// Rows [y0, y1) of component c (colour converted and level shifted). Colour converted rows go
+// as tasks of a few rows each: the converters split rows into tasks of 2^16 samples, so a
+// strip of a 4096-wide image was one task, and its ICT (6% of an RGB ht encode) ran on one
+// thread. Rows only level shifted keep the converters' tasks (a smaller one costs more than it).
+template <class T>
+void strip_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out) {
+  if (plan.header.colour == ColourTransform::none || c >= 3)
+    return component_rows<T>(plan, c, y0, y1, out, *plan.executor);
   const std::size_t width = plan.header.dims[0];
   const std::size_t per_task = std::max<std::size_t>(1, kTaskSamples / std::max<std::size_t>(width, 1));
   const std::size_t tasks = (y1 - y0 + per_task - 1) / per_task;
   plan.executor->run(tasks, [&](std::size_t k) {
     const std::size_t a = y0 + k * per_task, b = std::min(y1, a + per_task);
-    T* rows = out + (a - y0) * width;
-    if constexpr (std::is_same_v<T, float>)
-      float_component_rows(plan.source, plan.header.colour, c, a, b, rows, serial_executor());
-    else
-      integer_component_rows(plan.source, plan.header.colour, c, a, b, rows, serial_executor());
+    component_rows<T>(plan, c, a, b, out + (a - y0) * width, serial_executor());
   });
 }
 
@@ -240,7 +251,7 @@ void stream_component(const ImagePlan& plan, std::size_t c, const BlockSink<T>& 
   std::vector<T> rows(kPiece * width);
   for (std::size_t y0 = 0; y0 < height; y0 += kPiece) {
     const std::size_t y1 = std::min(height, y0 + kPiece);
-    component_rows<T>(plan, c, y0, y1, rows.data());
+    strip_rows<T>(plan, c, y0, y1, rows.data());
     // With the rows before too: the kernel may map pages again while mapping those after them
     // (ext4's large folios; 4 MB of a 16 MB PGM stayed mapped when only [y0, y1) was dropped).
     if (plan.source.drop_rows)
