@@ -253,11 +253,7 @@ std::optional<std::vector<std::uint8_t>> code_once(ImagePlan& plan, std::size_t 
     release_component(plan, c);
   }
   release_coefficients(plan);
-  if (out.over) {
-    out = Coded{};
-    return_freed_pages();  // the trial's codewords would stay resident through the lossy encode
-    return std::nullopt;
-  }
+  if (out.over) return std::nullopt;
   return assemble_freeing(plan, out);
 }
 
@@ -347,15 +343,7 @@ double quantize_error(std::span<const float> values, float inv, float delta, std
 struct Sample {
   std::vector<std::size_t> ids;
   std::vector<double> weights;
-  // One allocation, block k's coefficients at [starts[k], starts[k + 1]): a vector per block,
-  // allocated among the survey's transform buffers, kept their pages resident (issue 16: 3 MiB
-  // of a grey 4096^2 encode after the survey).
-  std::vector<float> values;
-  std::vector<std::size_t> starts;
-  bool held() const { return !starts.empty(); }
-  std::span<const float> block(std::size_t k) const {
-    return std::span<const float>(values).subspan(starts[k], starts[k + 1] - starts[k]);
-  }
+  std::vector<std::vector<float>> values;
   // Surveyed by stripes (survey_stripes): blocks of other plans, each with its (component,
   // band) unit and extent; ids is then empty and weights are per unit.
   std::vector<std::size_t> units;
@@ -396,14 +384,14 @@ double sampled_size(ImagePlan& plan, const Sample& sample, double t) {
     thread_local std::vector<std::int32_t> q;
     std::array<std::size_t, 2> size{};
     if (striped) {
-      quantize_error(sample.block(k), 1.0f / plan.header.steps[sample.units[k]], delta, q);
+      quantize_error(sample.values[k], 1.0f / plan.header.steps[sample.units[k]], delta, q);
       size = sample.sizes[k];
     } else {
       const CodeBlock& b = plan.blocks[sample.ids[k]];
-      if (!sample.held())
+      if (sample.values.empty())
         block_indices(plan, sample.ids[k], q);
       else
-        indices_of(plan, sample.ids[k], sample.block(k), q);
+        indices_of(plan, sample.ids[k], std::span<const float>(sample.values[k]), q);
       size = {b.size[0], b.size[1]};
     }
     const HtCodeword w = ht_encode_block(q, size[0], size[1]);
@@ -501,18 +489,12 @@ std::pair<std::vector<std::uint8_t>, double> search_size(ImagePlan& plan, const 
 std::pair<double, Sample> survey(const ImagePlan& plan, double budget) {
   Sample sample = sample_blocks(plan, kStreamSampleEvery);
   std::vector<std::size_t> slot(plan.blocks.size(), std::size_t(-1));
-  sample.starts.assign(1, 0);
-  for (std::size_t k = 0; k < sample.ids.size(); ++k) {
-    slot[sample.ids[k]] = k;
-    sample.starts.push_back(sample.starts.back() + plan.blocks[sample.ids[k]].count());
-  }
-  sample.values.resize(sample.starts.back());
+  for (std::size_t k = 0; k < sample.ids.size(); ++k) slot[sample.ids[k]] = k;
+  sample.values.resize(sample.ids.size());
   ThreadHistograms histograms;
   for (std::size_t c = 0; c < plan.header.channels; ++c)
     stream_component<float>(plan, c, [&](std::size_t i, std::span<const float> values) {
-      if (slot[i] != std::size_t(-1))
-        std::copy(values.begin(), values.end(),
-                  sample.values.begin() + std::ptrdiff_t(sample.starts[slot[i]]));
+      if (slot[i] != std::size_t(-1)) sample.values[slot[i]].assign(values.begin(), values.end());
       histograms.mine().add(values, magnitude_scale(plan, c, plan.blocks[i].band));
     });
   const MagnitudeHistogram total = histograms.total();
@@ -531,7 +513,6 @@ std::optional<std::pair<double, Sample>> survey_stripes(const ImagePlan& plan, c
   o.levels = plan.header.levels;
   const std::size_t units = plan.header.channels * plan.bands.size();
   Sample sample;
-  sample.starts.assign(1, 0);
   std::vector<double> counted(units, 0.0), sampled(units, 0.0);
   for (const CodeBlock& b : plan.blocks)
     counted[b.component * plan.bands.size() + b.band] += double(b.count());
@@ -550,37 +531,25 @@ std::optional<std::pair<double, Sample>> survey_stripes(const ImagePlan& plan, c
     // Bands of few blocks in the stripe are kept whole.
     std::vector<std::size_t> in_band(units, 0);
     for (const CodeBlock& b : sp.blocks) ++in_band[b.component * plan.bands.size() + b.band];
-    // Where each kept block's coefficients go in sample.values (none: not kept).
-    std::vector<std::size_t> at(sp.blocks.size(), std::size_t(-1));
-    std::size_t end = sample.values.size();
-    for (std::size_t i = 0; i < sp.blocks.size(); ++i) {
-      const CodeBlock& b = sp.blocks[i];
-      if (in_band[b.component * plan.bands.size() + b.band] >= kSampleWhole &&
-          ((std::uint32_t(i) * 2654435761u) >> 24) % 2 != 0)
-        continue;
-      at[i] = end;
-      end += b.count();
-    }
-    // Every stripe's plan is the same: the first one sizes the values of all.
-    if (k == 0) sample.values.reserve(stripes * end);
-    sample.values.resize(end);
+    std::vector<std::vector<float>> kept(sp.blocks.size());
     for (std::size_t c = 0; c < plan.header.channels; ++c)
       stream_component<float>(sp, c, [&](std::size_t i, std::span<const float> values) {
         const CodeBlock& b = sp.blocks[i];
         histograms.mine().add(values, magnitude_scale(plan, c, b.band));
-        if (at[i] != std::size_t(-1))
-          std::copy(values.begin(), values.end(), sample.values.begin() + std::ptrdiff_t(at[i]));
+        if (in_band[b.component * plan.bands.size() + b.band] < kSampleWhole ||
+            ((std::uint32_t(i) * 2654435761u) >> 24) % 2 == 0)
+          kept[i].assign(values.begin(), values.end());
       });
     if (plan.source.drop_rows)
       plan.source.drop_rows(plan.source.drop_context, plan.source, y0, y0 + kStripeRows);
     for (std::size_t i = 0; i < sp.blocks.size(); ++i) {
-      if (at[i] == std::size_t(-1)) continue;
+      if (kept[i].empty()) continue;
       const CodeBlock& b = sp.blocks[i];
       const std::size_t u = b.component * plan.bands.size() + b.band;
-      sampled[u] += double(b.count());
+      sampled[u] += double(kept[i].size());
       sample.units.push_back(u);
       sample.sizes.push_back({b.size[0], b.size[1]});
-      sample.starts.push_back(at[i] + b.count());
+      sample.values.push_back(std::move(kept[i]));
     }
     surveyed += double(sp.samples);
   }
@@ -718,7 +687,6 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
                                                                   double budget) {
   auto surveyed = survey_stripes(plan, options, budget);
   auto [model, sample] = surveyed ? std::move(*surveyed) : survey(plan, budget);
-  return_freed_pages();  // the survey's transform buffers: the pair's may not fit their holes
   const double coarsest = std::log(plan.peak * 4.0);
   model = std::clamp(model, plan.peak * kFinestStep, plan.peak * 4.0);
   // The fine step aims a little over the budget: the coarse one then falls under it.
