@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <type_traits>
@@ -86,18 +87,20 @@ void return_freed_pages() {
 }
 
 // Hands the pages of many small freed blocks (codewords copied into a stream) back to the
-// system every kTrimBytes: the allocator keeps them otherwise, and the copy and its source
-// would both stay resident (glibc's malloc_trim; elsewhere nothing is done).
+// system every `step` bytes (kTrimBytes by default): the allocator keeps them otherwise, and
+// the copy and its source would both stay resident (glibc's malloc_trim; elsewhere nothing).
 class FreedMemory {
  public:
+  explicit FreedMemory(std::size_t step = kTrimBytes) : step_(step) {}
   void add(std::size_t bytes) {
-    if ((pending_ += bytes) < kTrimBytes) return;
+    if ((pending_ += bytes) < step_) return;
     pending_ = 0;
     return_freed_pages();
   }
 
  private:
   static constexpr std::size_t kTrimBytes = std::size_t(16) << 20;
+  std::size_t step_;
   std::size_t pending_ = 0;
 };
 
@@ -287,7 +290,10 @@ std::vector<std::uint8_t> build_stream(const ImagePlan& plan, Coded& coded, cons
   std::vector<std::size_t> sizes(std::size_t(plan.header.levels) + 1, 0);
   for (std::size_t i = 0; i < passes.size(); ++i)
     sizes[std::size_t(plan.blocks[i].resolution)] += entries[i].length;
-  FreedMemory freed;
+  // Every 1/16 of the stream, 1 MiB at least (issue 16: at 16 MiB a 4 MiB stream and the blocks
+  // it was copied from were both resident at the end).
+  FreedMemory freed(
+      std::max(std::accumulate(sizes.begin(), sizes.end(), std::size_t(0)) / 16, std::size_t(1) << 20));
   return write_container(plan.header, entries, sizes, [&](std::size_t r, std::vector<std::uint8_t>& out) {
     for (std::size_t i = 0; i < passes.size(); ++i) {
       if (std::size_t(plan.blocks[i].resolution) != r) continue;
@@ -308,6 +314,7 @@ std::vector<std::uint8_t> build(const ImagePlan& plan, const CodedImage& coded,
 // The last build of an encode: frees the coded blocks as it goes.
 std::vector<std::uint8_t> build_final(const ImagePlan& plan, CodedImage& coded,
                                       const std::vector<int>& passes) {
+  return_freed_pages();  // the coding pass's freed buffers: the stream may take their place
   return build_stream(plan, coded, passes);
 }
 

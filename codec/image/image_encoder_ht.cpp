@@ -15,11 +15,16 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <span>
 #include <thread>
 #include <tuple>
 #include <utility>
+
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "codec/entropy/ht_blocks.h"
 #include "codec/image/image_encoder_ht.h"
@@ -122,6 +127,9 @@ void code_block(const ImagePlan& plan, std::size_t i, const std::vector<std::int
   HtCodeword w = ht_encode_block(q, b.size[0], b.size[1]);
   out.entries[i] = {w.planes, w.planes > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
   if (total.fetch_add(w.bytes.size()) + w.bytes.size() > byte_limit) over = true;
+  // The writer's buffer grew by doubling: held as it is, a pass's codewords took 1.4 times
+  // their bytes (issue 16: the pair's codewords were the largest part of a 2 bpp encode).
+  w.bytes.shrink_to_fit();
   out.words[i] = std::move(w.bytes);
 }
 
@@ -189,6 +197,39 @@ std::size_t file_size(const ImagePlan& plan, const Coded& c) {
   return container_size(plan.header, encode_index(c.entries).size(), c.data_bytes);
 }
 
+// Returns the pages of freed memory to the system (glibc's malloc_trim; elsewhere nothing):
+// the allocator keeps the pages of many small freed codewords resident otherwise.
+void return_freed_pages() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
+// The stream of `c` (assemble's bytes), each codeword freed once copied into it and the
+// freed pages returned every 1/16 of the stream (1 MiB at least), so the codewords and the
+// stream are not both held whole (issue 16: assemble held them and a copy of the payloads).
+std::vector<std::uint8_t> assemble_freeing(const ImagePlan& plan, Coded& c) {
+  return_freed_pages();  // what the caller released before: the stream may take its place
+  std::vector<std::size_t> sizes(std::size_t(plan.header.levels) + 1, 0);
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+    sizes[std::size_t(plan.blocks[i].resolution)] += c.words[i].size();
+  const std::size_t step =
+      std::max(std::accumulate(sizes.begin(), sizes.end(), std::size_t(0)) / 16, std::size_t(1) << 20);
+  std::size_t pending = 0;
+  return write_container(plan.header, c.entries, sizes, [&](std::size_t r, std::vector<std::uint8_t>& out) {
+    for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+      if (std::size_t(plan.blocks[i].resolution) != r) continue;
+      out.insert(out.end(), c.words[i].begin(), c.words[i].end());
+      pending += c.words[i].size();
+      std::vector<std::uint8_t>().swap(c.words[i]);
+      if (pending >= step) {
+        pending = 0;
+        return_freed_pages();
+      }
+    }
+  });
+}
+
 // Lossless and --step encodes: by strips where the plan allows (strip_reach), else one
 // component transformed at a time (its blocks coded, then its buffer reused), stopping once the
 // codewords exceed `byte_limit` (a lossless attempt against a lossy budget mostly stops early).
@@ -213,7 +254,7 @@ std::optional<std::vector<std::uint8_t>> code_once(ImagePlan& plan, std::size_t 
   }
   release_coefficients(plan);
   if (out.over) return std::nullopt;
-  return assemble(plan, out.entries, out.words);
+  return assemble_freeing(plan, out);
 }
 
 // One trial of a step search: the step (log), what it scored, and its coded blocks.
@@ -427,7 +468,7 @@ std::pair<std::vector<std::uint8_t>, double> search_size(ImagePlan& plan, const 
       low = std::move(trial);
     }
     // Nothing fits even with every index zero: the smallest file there is.
-    if (!high && t >= coarsest) return {assemble(plan, low->coded.entries, low->coded.words), std::exp(t)};
+    if (!high && t >= coarsest) return {assemble_freeing(plan, low->coded), std::exp(t)};
     double next = next_step(low, high, std::log(goal), slope);
     if (n + 1 < kMaxSizeTrials) {
       // The sample's miss at t (log units) holds nearly unchanged for steps close by.
@@ -439,7 +480,8 @@ std::pair<std::vector<std::uint8_t>, double> search_size(ImagePlan& plan, const 
     // Past the trial budget with nothing within it yet: an octave coarser at least.
     t = std::min(n + 1 >= kMaxSizeTrials && !high ? std::max(next, t + std::numbers::ln2) : next, coarsest);
   }
-  return {assemble(plan, high->coded.entries, high->coded.words), std::exp(high->log_step)};
+  low.reset();  // its codewords: the stream may take their place
+  return {assemble_freeing(plan, high->coded), std::exp(high->log_step)};
 }
 
 // Pass 1 of a streamed size search: the rate model's step and the sampled blocks' coefficients
@@ -565,8 +607,9 @@ CodedPair code_pair(ImagePlan& plan, double t) {
 // The largest file within `budget` the pair gives (nullopt when even every band at the coarse
 // step exceeds it): from every band fine, the bands whose coarse step costs the least error
 // per byte saved switch to it until the file fits, then any switched band whose fine codewords
-// fit the room left switches back (the largest first). Sets the header's steps to the choice.
-std::optional<std::vector<std::uint8_t>> mix_pair(ImagePlan& plan, CodedPair& p, double budget) {
+// fit the room left switches back (the largest first). Sets the header's steps to the choice
+// and p.fine to its blocks; returns the file's size.
+std::optional<std::size_t> mix_pair(ImagePlan& plan, CodedPair& p, double budget) {
   const std::size_t units = plan.header.channels * plan.bands.size();
   std::vector<double> saved(units, 0.0), cost(units, 0.0);
   for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
@@ -621,8 +664,19 @@ std::optional<std::vector<std::uint8_t>> mix_pair(ImagePlan& plan, CodedPair& p,
       p.fine.words[i] = std::move(p.coarse.words[i]);
     }
   }
-  return assemble(plan, p.fine.entries, p.fine.words);
+  p.fine.data_bytes = 0;
+  for (const BlockEntry& e : p.fine.entries) p.fine.data_bytes += e.length;
+  return file_size(plan, p.fine);
 }
+
+// A mix of a pair (mix_pair) kept until the search ends: its blocks and steps, not its stream
+// (assembled once, from blocks freed as they are copied: issue 16).
+struct Mixed {
+  Coded coded;
+  std::vector<float> steps;
+  std::size_t size = 0;
+  double t = 0.0;
+};
 
 // A byte budget by strip-wise passes: the survey, then passes coding every block at a pair of
 // steps the sample predicts to bracket the budget (mix_pair), the next aimed with the sample's
@@ -638,22 +692,21 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
   // The fine step aims a little over the budget: the coarse one then falls under it.
   auto [t, slope] = sample_search(plan, sample, budget * kPairAim, std::log(model), kSizeSlope);
   t = std::min(t, coarsest);
-  std::optional<std::vector<std::uint8_t>> best;  // within the budget
-  double best_t = 0.0;
+  std::optional<Mixed> best;  // within the budget
   for (int n = 0;; ++n) {
     CodedPair p = code_pair(plan, t);
     const double fine = double(file_size(plan, p.fine));
-    if (auto bytes = mix_pair(plan, p, budget)) {
-      const bool under = double(bytes->size()) < budget * (1.0 - kSizeTolerance);
-      if (!best || bytes->size() > best->size()) {
-        best = std::move(bytes);
-        best_t = t;
-      }
+    if (const auto size = mix_pair(plan, p, budget)) {
+      const bool under = double(*size) < budget * (1.0 - kSizeTolerance);
+      if (!best || *size > best->size) best = Mixed{std::move(p.fine), plan.header.steps, *size, t};
       if (!under || n + 1 >= kMaxPairPasses) break;
     }
     // Nothing fits even with every index zero: the coarse file is the smallest there is.
-    if (!best && t >= coarsest)
-      return {assemble(plan, p.coarse.entries, p.coarse.words), std::exp(t) * kPairRatio};
+    if (!best && t >= coarsest) {
+      p.fine = Coded{};
+      sample = Sample{};
+      return {assemble_freeing(plan, p.coarse), std::exp(t) * kPairRatio};
+    }
     const double miss = std::log(fine) - std::log(sampled_size(plan, sample, t));
     // Passes after the first aim the fine step just within the budget (the miss is known now),
     // so a pair whose mix fell short by a band's worth needs no mixing the next time.
@@ -662,7 +715,9 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
     // Past the pass budget with nothing within it yet: an octave coarser at least.
     t = std::min(n + 1 >= kMaxPairPasses && !best ? std::max(next, t + std::numbers::ln2) : next, coarsest);
   }
-  return {std::move(*best), std::exp(best_t)};
+  sample = Sample{};  // the last pair is freed already: the stream takes their place
+  plan.header.steps = best->steps;
+  return {assemble_freeing(plan, best->coded), std::exp(best->t)};
 }
 
 // The same with every component transformed and held (for sources that cannot be streamed).
