@@ -84,6 +84,36 @@ TEST(ImageCodec, LosslessIsBitExact) {
         }
 }
 
+// A byte budget the lossless stream fits gets it, on images large enough (2048 blocks and up)
+// that the encoder estimates the lossless size from a sample of blocks before its exact trial
+// (image_encoder.cpp, lossless_clearly_over): the estimate must not drop a stream that fits,
+// also where the sample could mislead (the top half flat, every byte in the lower half).
+TEST(ImageCodec, LosslessWinsWhereItFitsOnALargeImage) {
+  for (bool half_flat : {false, true}) {
+    Image img = synthetic_image(1536, 1536, 1, SampleType::u8, 7);
+    if (half_flat)
+      for (std::size_t y = 0; y < img.height / 2; ++y)
+        for (std::size_t x = 0; x < img.width; ++x) img.at(0, x, y) = 100.0f;
+    EncodeOptions o = options(RateMode::lossless, 0.0, "cdf53");
+    o.block_size = {32, 32, 1};  // 1536^2 in 32^2 blocks: 2300 blocks, so the estimate runs
+    const std::size_t lossless = encode_image(img, o).bytes.size();
+    const double pixels = double(img.plane_size());
+    o.transform = "cdf97";
+    o.mode = RateMode::bpp;
+    o.target = (double(lossless) + 0.5) * 8.0 / pixels;  // a budget of exactly the lossless size
+    const EncodeResult fits = encode_image(img, o);
+    EXPECT_TRUE(fits.switched_to_lossless) << "half flat " << half_flat;
+    EXPECT_EQ(fits.bytes.size(), lossless);
+    EXPECT_EQ(decode_image(fits.bytes).samples, img.samples);
+    for (double fraction : {0.99, 0.5}) {  // just under (exact trial) and far under (the estimate)
+      o.target = double(lossless) * fraction * 8.0 / pixels;
+      const EncodeResult over = encode_image(img, o);
+      EXPECT_FALSE(over.switched_to_lossless) << "half flat " << half_flat << " fraction " << fraction;
+      EXPECT_LE(double(over.bytes.size()) * 8.0 / pixels, o.target);
+    }
+  }
+}
+
 TEST(ImageCodec, LosslessRejectsFloatAndIrreversibleTransforms) {
   const Image f = synthetic_image(16, 16, 1, SampleType::f32);
   EXPECT_THROW(encode_image(f, options(RateMode::lossless, 0.0, "cdf53")), std::invalid_argument);
