@@ -82,6 +82,9 @@ EncodedBlock code_one(const BrickCoding& c, std::span<const T> coef, const Exten
   std::vector<float> magnitude(b.count());
   std::vector<std::uint8_t> negative(b.count());
   quantize<T>(values, step, magnitude, negative);
+  // The same float addition as requantize_row, so the encoder's prediction stays bit exact.
+  if (c.rounding != 0.0f)
+    for (float& m : magnitude) m += c.rounding;
   if (c.coef) return code_indices(magnitude, negative, b.size);
   return encode_block(magnitude, negative, b.size, b.orientation, c.delta);
 }

@@ -33,6 +33,9 @@ struct BrickCoding {
   double delta = 0.4375;    // reconstruction offset inside a bin (index units)
   bool reversible = false;  // integer transform, steps 1, bit exact
   bool coef = false;        // non-embedded coefficient coder (coef_encoder.h), not the bit-plane coder
+  // Encoder only: index = floor(|c| / step + rounding) (0: the dead-zone quantizer; the stream
+  // only carries delta, so decoders need not know it).
+  float rounding = 0.0f;
 };
 
 // Code-blocks of a brick of `size`, in partition_blocks order.

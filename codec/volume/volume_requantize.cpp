@@ -30,11 +30,12 @@ double binary_entropy_bits(double k, double n) {
 // whether one is out of the block coder's range. No float sum here, so that the loop vectorises;
 // the same float and double operations as quantize() and reconstruct(), so the values are identical.
 std::size_t requantize_row(const float* coef, float* out, float* lg, std::size_t n, float inv, float step,
-                           double delta, std::uint32_t& too_large) {
+                           double delta, float rounding, std::uint32_t& too_large) {
   std::uint32_t count = 0, large = 0;
   for (std::size_t x = 0; x < n; ++x) {
     const float v = coef[x];
-    const float m = std::fabs(v) * inv;  // |v| * inv; a NaN or -0 gives index 0 either way
+    // |v| * inv + rounding, as code_one; a NaN or -0 gives index 0 either way (rounding < 1).
+    const float m = std::fabs(v) * inv + rounding;
     const std::uint32_t in_range = m < float(1u << kMaxBitPlanes) ? 1u : 0u;  // 0 for NaN too
     large |= in_range ^ 1u;
     const std::int32_t q =
@@ -71,7 +72,7 @@ void requantize_brick(const BrickCoding& c, std::span<const float> coef, const E
       for (std::size_t y = 0; y < b.size[1]; ++y) {
         const std::size_t row = b.offset[0] + size[0] * ((b.offset[1] + y) + size[1] * (b.offset[2] + z));
         significant += requantize_row(coef.data() + row, out.data() + row, lg.data(), b.size[0], inv, step,
-                                      c.delta, too_large);
+                                      c.delta, c.rounding, too_large);
         // In scan order, as the stream's rate model was fitted: a float sum depends on its order.
         for (std::size_t x = 0; x < b.size[0]; ++x) log2_sum += lg[x];
       }

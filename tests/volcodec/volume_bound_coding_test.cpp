@@ -39,25 +39,31 @@ TEST(VolumeBoundCoding, RequantizedBrickEqualsTheDecodedBrickBitForBit) {
   for (const std::string& spec : transform_specs()) {
     const auto t = make_transform(spec);
     if (t->is_reversible()) continue;  // lossless coding never takes this path
-    for (double delta : {0.4375, 0.5}) {
-      const BrickCoding c{t.get(), default_levels(v.dims), 16, delta, false};
-      const std::vector<float> coef = analyze_brick(c, v.samples, v.dims);
-      for (double base : {0.003, 0.05, 0.9}) {
-        std::vector<float> predicted;
-        IndexStats stats;
-        requantize_brick(c, coef, v.dims, base, predicted, &stats);
-        const std::vector<double> reference = decoded(c, coef, v.dims, base);
-        ASSERT_EQ(predicted.size(), reference.size());
-        // Bit patterns, not values: the outlier search relies on the very same floats.
-        std::size_t differing = 0;
-        for (std::size_t i = 0; i < predicted.size(); ++i) {
-          const double p = predicted[i];
-          differing += std::memcmp(&p, &reference[i], sizeof p) != 0;
+    // Rate modes' offset, the dead zone at the midpoint, and max-error mode's rounding quantizer,
+    // through both block coders.
+    const std::pair<double, float> quantizers[] = {{0.4375, 0.0f}, {0.5, 0.0f}, {0.125, 0.375f}};
+    for (const auto& [delta, rounding] : quantizers)
+      for (const bool coef_coder : {false, true}) {
+        BrickCoding c{t.get(), default_levels(v.dims), 16, delta, false, coef_coder};
+        c.rounding = rounding;
+        const std::vector<float> coef = analyze_brick(c, v.samples, v.dims);
+        for (double base : {0.003, 0.05, 0.9}) {
+          std::vector<float> predicted;
+          IndexStats stats;
+          requantize_brick(c, coef, v.dims, base, predicted, &stats);
+          const std::vector<double> reference = decoded(c, coef, v.dims, base);
+          ASSERT_EQ(predicted.size(), reference.size());
+          // Bit patterns, not values: the outlier search relies on the very same floats.
+          std::size_t differing = 0;
+          for (std::size_t i = 0; i < predicted.size(); ++i) {
+            const double p = predicted[i];
+            differing += std::memcmp(&p, &reference[i], sizeof p) != 0;
+          }
+          EXPECT_EQ(differing, 0u) << spec << " base " << base << " rounding " << rounding << " coef "
+                                   << coef_coder;
+          EXPECT_GT(stats.significant, 0.0) << spec << " base " << base;
         }
-        EXPECT_EQ(differing, 0u) << spec << " base " << base;
-        EXPECT_GT(stats.significant, 0.0) << spec << " base " << base;
       }
-    }
   }
 }
 
