@@ -18,7 +18,10 @@
 // dequantized, inverse-transformed image. The same binary's default encoder (encode_image
 // --bpp, effort 1 and 2) gives the reference curves, and the BD-rate of each coder against
 // effort 1 is printed (tools/bench/bd_metrics.h, the harness's method).
-// Run: build/bench/nonembedded_rd [--bpp LIST] [--coders LIST] [knobs] [--no-reference] IMAGES/DIRS
+// --verify: coef0 / coefp also write the real codewords of every final point (range coder, these
+// contexts) and decode them, printing real against estimated bytes and decode mismatches.
+// Run: build/bench/nonembedded_rd [--bpp LIST] [--coders LIST] [knobs] [--verify] [--no-reference]
+// IMAGES/DIRS
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -55,6 +58,7 @@ struct Args {
   double delta = -1.0;        // reconstruction offset; negative: the codec's 0.4375 less `round`
   estimate::BandOptions est;  // the `est` coder's knobs
   bool reference = true;
+  bool verify = false;  // coef0 / coefp: real codewords of the final points, decoded and compared
   std::vector<fs::path> images;
 };
 
@@ -102,6 +106,8 @@ Args parse(int argc, char** argv) {
       a.est.parent_sign = true;
     } else if (s == "--lambda" && i + 1 < argc) {
       a.est.lambda = std::stod(argv[++i]);
+    } else if (s == "--verify") {
+      a.verify = true;
     } else if (s == "--no-reference") {
       a.reference = false;
     } else if (!s.empty() && s[0] == '-') {
@@ -144,6 +150,7 @@ class Trial {
   // Bytes of the whole stream with `coder` at `base` (quantizes into q_).
   std::size_t bytes(double base, const std::string& coder) {
     quantize(base);
+    verify_ = {};
     const Extent& dims = plan_.header.dims;
     std::vector<BlockEntry> entries(plan_.blocks.size());
     std::vector<std::vector<std::uint8_t>> words(plan_.blocks.size());
@@ -246,12 +253,25 @@ class Trial {
     std::vector<float> u(b.count());
     copy_block_out(plan_.coef[b.component].data(), dims, b, u.data());
     for (float& x : u) x *= inv;
-    const double bits =
-        estimate::coef_band_bits(v, b.size[0], b.size[1], lp.origin, lp.stride, lp.width, lp.height,
-                                 args_.est.parent_weight, args_.est.scale, u, args_.est.lambda, delta());
+    const estimate::BandContext ctx(b.size[0], b.size[1], lp.origin, lp.stride, lp.width, lp.height,
+                                    args_.est.parent_weight, args_.est.scale);
+    const double bits = estimate::coef_band_bits(v, b.size[0], b.size[1], ctx, u, args_.est.lambda, delta());
+    if (args_.verify && bits > 0.0) {  // real codeword and its decode, contexts from the same parents
+      const std::vector<std::uint8_t> word = estimate::coef_band_encode(v, b.size[0], b.size[1], ctx);
+      verify_.real += word.size();
+      verify_.estimated += std::size_t(std::ceil(bits / 8.0));
+      verify_.mismatches += estimate::coef_band_decode(word, b.size[0], b.size[1], ctx) != v;
+      ++verify_.bands;
+    }
     copy_block_in(v.data(), dims, b, q_[b.component].data());  // the children's parent
     return bits;
   }
+
+  // --verify: totals of the last bytes() call.
+  struct Verify {
+    std::size_t real = 0, estimated = 0, bands = 0, mismatches = 0;
+  };
+  const Verify& verified() const { return verify_; }
 
   float delta() const {
     return float(args_.delta >= 0.0 ? args_.delta : std::max(0.0, plan_.header.delta - args_.round));
@@ -308,6 +328,7 @@ class Trial {
   const Args& args_;
   ImagePlan plan_;
   std::vector<std::vector<std::int32_t>> q_;  // signed indices per component, Mallat layout
+  Verify verify_;
 };
 
 // The largest stream within `bpp`: bisection of log(base step).
@@ -327,6 +348,11 @@ RdPoint at_rate(Trial& t, const std::string& coder, double bpp) {
     }
   }
   t.bytes(std::exp(best), coder);
+  if (t.verified().bands > 0)
+    std::fprintf(stderr,
+                 "verify %s %g bpp: %zu bands, estimated %zu bytes, real %zu, decode mismatches %zu\n",
+                 coder.c_str(), bpp, t.verified().bands, t.verified().estimated, t.verified().real,
+                 t.verified().mismatches);
   return {double(best_bytes) * 8.0 / t.pixels(), t.psnr()};
 }
 
