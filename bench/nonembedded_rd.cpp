@@ -18,10 +18,12 @@
 // dequantized, inverse-transformed image. The same binary's default encoder (encode_image
 // --bpp, effort 1 and 2) gives the reference curves, and the BD-rate of each coder against
 // effort 1 is printed (tools/bench/bd_metrics.h, the harness's method).
+// --families L: coef0 / coefp with --lambda also choose a step per band among x 2^(-1/3), 1,
+// 2^(1/3) by output error + L x bits (did not pay: bench/results/rd_issue20.md).
 // --verify: coef0 / coefp also write the real codewords of every final point (range coder, these
 // contexts) and decode them, printing real against estimated bytes and decode mismatches.
-// Run: build/bench/nonembedded_rd [--bpp LIST] [--coders LIST] [knobs] [--verify] [--no-reference]
-// IMAGES/DIRS
+// Run: build/bench/nonembedded_rd [--bpp LIST] [--coders LIST] [knobs] [--families L] [--verify]
+// [--no-reference] IMAGES/DIRS
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -58,7 +60,9 @@ struct Args {
   double delta = -1.0;        // reconstruction offset; negative: the codec's 0.4375 less `round`
   estimate::BandOptions est;  // the `est` coder's knobs
   bool reference = true;
-  bool verify = false;  // coef0 / coefp: real codewords of the final points, decoded and compared
+  bool verify = false;         // coef0 / coefp: real codewords of the final points, decoded and compared
+  bool families = false;       // coef0 / coefp with --lambda: a step per band (x 2^(-1/3), 1, 2^(1/3))
+  double family_lambda = 0.1;  // the slope the families are chosen at (base-step units per bit)
   std::vector<fs::path> images;
 };
 
@@ -106,6 +110,9 @@ Args parse(int argc, char** argv) {
       a.est.parent_sign = true;
     } else if (s == "--lambda" && i + 1 < argc) {
       a.est.lambda = std::stod(argv[++i]);
+    } else if (s == "--families" && i + 1 < argc) {
+      a.families = true;
+      a.family_lambda = std::stod(argv[++i]);
     } else if (s == "--verify") {
       a.verify = true;
     } else if (s == "--no-reference") {
@@ -255,7 +262,41 @@ class Trial {
     for (float& x : u) x *= inv;
     const estimate::BandContext ctx(b.size[0], b.size[1], lp.origin, lp.stride, lp.width, lp.height,
                                     args_.est.parent_weight, args_.est.scale);
-    const double bits = estimate::coef_band_bits(v, b.size[0], b.size[1], ctx, u, args_.est.lambda, delta());
+    double bits = 0.0;
+    if (args_.families && args_.est.lambda > 0.0) {
+      // Per-band step families: the step x 2^(-1/3), 1, 2^(1/3) with the least output error +
+      // lambda x bits (error in base-step units: index-unit error x the multiplier squared;
+      // RDOQ in the band at lambda / multiplier^2), coarse bands first so children see the choice.
+      float& step = plan_.header.steps[b.component * plan_.bands.size() + b.band];
+      const float base_step = step;
+      double best = 1e300;
+      std::vector<std::int32_t> best_v;
+      float best_step = base_step;
+      for (double e : {-1.0 / 3.0, 0.0, 1.0 / 3.0}) {
+        const double mult = std::exp2(e);
+        std::vector<float> um(u.size());
+        for (std::size_t k = 0; k < u.size(); ++k) um[k] = float(u[k] / mult);
+        std::vector<std::int32_t> vm(v.size());
+        const double b_bits = estimate::coef_band_bits(vm, b.size[0], b.size[1], ctx, um,
+                                                       args_.est.lambda / (mult * mult), delta());
+        double d = 0.0;
+        for (std::size_t k = 0; k < um.size(); ++k) {
+          const double r = vm[k] == 0 ? 0.0 : double(std::abs(vm[k])) + double(delta());
+          d += (std::fabs(double(um[k])) - r) * (std::fabs(double(um[k])) - r);
+        }
+        const double j = d * mult * mult + args_.family_lambda * b_bits;
+        if (j < best) {
+          best = j;
+          bits = b_bits;
+          best_v = std::move(vm);
+          best_step = float(base_step * mult);
+        }
+      }
+      v = std::move(best_v);
+      step = best_step;
+    } else {
+      bits = estimate::coef_band_bits(v, b.size[0], b.size[1], ctx, u, args_.est.lambda, delta());
+    }
     if (args_.verify && bits > 0.0) {  // real codeword and its decode, contexts from the same parents
       const std::vector<std::uint8_t> word = estimate::coef_band_encode(v, b.size[0], b.size[1], ctx);
       verify_.real += word.size();
