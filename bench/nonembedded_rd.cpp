@@ -36,6 +36,7 @@
 
 #include "codec/entropy/coef_encoder.h"
 #include "codec/entropy/lc_blocks.h"
+#include "codec/entropy/pc_blocks.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
 #include "codec/image/image_encoder_lc.h"
@@ -302,6 +303,16 @@ class Trial {
       verify_.real += word.size();
       verify_.estimated += std::size_t(std::ceil(bits / 8.0));
       verify_.mismatches += estimate::coef_band_decode(word, b.size[0], b.size[1], ctx) != v;
+      if (args_.est.parent_weight == 1 && args_.est.scale == 1) {  // the codec's copy (pc_blocks.h)
+        std::vector<std::int32_t> copy = v;
+        verify_.codec_differs += pc_encode_block(copy, b.size[0], b.size[1], lp).bytes != word;
+        if (args_.est.lambda > 0.0 && !args_.families) {  // and its RDOQ from the coefficients
+          const PcRdoq rdoq{u, args_.est.lambda, double(delta())};
+          std::vector<std::int32_t> chosen(v.size());
+          verify_.codec_differs += pc_encode_block(chosen, b.size[0], b.size[1], lp, &rdoq).bytes != word;
+          verify_.codec_differs += chosen != v;
+        }
+      }
       ++verify_.bands;
     }
     copy_block_in(v.data(), dims, b, q_[b.component].data());  // the children's parent
@@ -310,7 +321,7 @@ class Trial {
 
   // --verify: totals of the last bytes() call.
   struct Verify {
-    std::size_t real = 0, estimated = 0, bands = 0, mismatches = 0;
+    std::size_t real = 0, estimated = 0, bands = 0, mismatches = 0, codec_differs = 0;
   };
   const Verify& verified() const { return verify_; }
 
@@ -391,9 +402,10 @@ RdPoint at_rate(Trial& t, const std::string& coder, double bpp) {
   t.bytes(std::exp(best), coder);
   if (t.verified().bands > 0)
     std::fprintf(stderr,
-                 "verify %s %g bpp: %zu bands, estimated %zu bytes, real %zu, decode mismatches %zu\n",
+                 "verify %s %g bpp: %zu bands, estimated %zu bytes, real %zu, decode mismatches %zu, "
+                 "pc_blocks codewords differing %zu\n",
                  coder.c_str(), bpp, t.verified().bands, t.verified().estimated, t.verified().real,
-                 t.verified().mismatches);
+                 t.verified().mismatches, t.verified().codec_differs);
   return {double(best_bytes) * 8.0 / t.pixels(), t.psnr()};
 }
 
