@@ -250,8 +250,8 @@ class Trial {
     std::vector<float> u(b.count());
     copy_block_out(plan_.coef[b.component].data(), dims, b, u.data());
     for (float& x : u) x *= inv;
-    const estimate::BandContext ctx(b.size[0], b.size[1], lp.origin, lp.stride, lp.width, lp.height,
-                                    args_.est.parent_weight, args_.est.scale);
+    const PcContext ctx(b.size[0], b.size[1], LcParent{lp.origin, lp.stride, lp.width, lp.height},
+                        args_.est.parent_weight, args_.est.scale);
     double bits = 0.0;
     if (args_.families && args_.est.lambda > 0.0) {
       // Per-band step families: the step x 2^(-1/3), 1, 2^(1/3) with the least output error +
