@@ -35,23 +35,22 @@ inline std::uint64_t get_coef_raw(RangeDecoder& dec, int n) {
   return n > 0 ? dec.decode_raw(n) : 0;
 }
 
-// Codes index q (sign `negative`, ignored for 0) in activity class `ctx` and sign context `sign_ctx`.
-inline void put_coef_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_t sign_ctx, std::uint32_t q,
-                           bool negative) {
+// The decisions of index q (sign `negative`, ignored for 0) in activity class `ctx` and sign
+// context `sign_ctx`, handed to `sink`: bit(b, model) for a modelled bit, escape(e) for the
+// Elias-gamma raw tail of a long high part, rest(v, n) for the n raw low bits. One binarisation
+// for the coder (CoefIndexWriter) and the rate estimates (CoefIndexCounter).
+template <class Sink>
+inline void code_coef_index(Sink& sink, CoefModels& m, int ctx, std::size_t sign_ctx, std::uint32_t q,
+                            bool negative) {
   const int k = coef_rice_k(ctx);
   const std::uint32_t h = q >> k;
   auto& unary = m.unary[std::size_t(ctx)];
   const std::uint32_t ones = std::min<std::uint32_t>(h, kCoefEscape);
-  for (std::uint32_t j = 0; j < ones; ++j)
-    enc.encode(1, unary[std::min<std::size_t>(j, kCoefUnaryModels - 1)]);
-  if (h < kCoefEscape) {
-    enc.encode(0, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]);
-  } else {
-    const std::uint32_t e = h - kCoefEscape;
-    const int n = int(std::bit_width(e));
-    enc.encode_raw(std::uint32_t(n), 5);
-    put_coef_raw(enc, e, n);
-  }
+  for (std::uint32_t j = 0; j < ones; ++j) sink.bit(1, unary[std::min<std::size_t>(j, kCoefUnaryModels - 1)]);
+  if (h < kCoefEscape)
+    sink.bit(0, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]);
+  else
+    sink.escape(h - kCoefEscape);
   // The top low bits with models (a binary tree per high part zero / non-zero), the rest raw.
   const int modelled = std::min(k, kCoefModelledLow);
   auto& low = m.low[std::size_t(ctx)];
@@ -59,12 +58,31 @@ inline void put_coef_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_
   const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
   for (int b = k - 1; b >= k - modelled; --b) {
     const int bit = int((q >> b) & 1u);
-    enc.encode(bit, low[tree + node]);
+    sink.bit(bit, low[tree + node]);
     node = 2 * node + std::size_t(bit);
   }
   const int rest_bits = k - modelled;
-  put_coef_raw(enc, q & ((1u << rest_bits) - 1u), rest_bits);
-  if (q != 0) enc.encode(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? kCoefSignContexts : 0)]);
+  sink.rest(q & ((1u << rest_bits) - 1u), rest_bits);
+  if (q != 0) sink.bit(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? kCoefSignContexts : 0)]);
+}
+
+// The range coder as code_coef_index's sink.
+struct CoefIndexWriter {
+  RangeEncoder& enc;
+  void bit(int b, BitModel& model) { enc.encode(b, model); }
+  void escape(std::uint32_t e) {
+    const int n = int(std::bit_width(e));
+    enc.encode_raw(std::uint32_t(n), 5);
+    put_coef_raw(enc, e, n);
+  }
+  void rest(std::uint32_t v, int n) { put_coef_raw(enc, v, n); }
+};
+
+// Codes index q with the range coder.
+inline void put_coef_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_t sign_ctx, std::uint32_t q,
+                           bool negative) {
+  CoefIndexWriter writer{enc};
+  code_coef_index(writer, m, ctx, sign_ctx, q, negative);
 }
 
 // Inverse of put_coef_index: the magnitude, clamped to `limit` (corrupt input only), and its sign.
@@ -98,33 +116,22 @@ double coef_model_bits(BitModel& m, int bit) {
   return -std::log2(double(p) / double(kProbabilityOne));
 }
 
-// put_coef_index's code length in bits (raw bits counted whole), for rate estimates and RDOQ.
+// Counts the bits code_coef_index's decisions would take (raw bits whole); Update: adapting the
+// models as the coder would.
+template <bool Update>
+struct CoefIndexCounter {
+  double bits = 0.0;
+  void bit(int b, BitModel& model) { bits += coef_model_bits<Update>(model, b); }
+  void escape(std::uint32_t e) { bits += 5.0 + double(std::bit_width(e)); }
+  void rest(std::uint32_t, int n) { bits += double(n); }
+};
+
+// put_coef_index's code length in bits, for rate estimates and RDOQ.
 template <bool Update>
 double coef_index_bits(CoefModels& m, int ctx, std::size_t sign_ctx, std::uint32_t q, bool negative) {
-  const int k = coef_rice_k(ctx);
-  const std::uint32_t h = q >> k;
-  auto& unary = m.unary[std::size_t(ctx)];
-  double bits = 0.0;
-  const std::uint32_t ones = std::min<std::uint32_t>(h, kCoefEscape);
-  for (std::uint32_t j = 0; j < ones; ++j)
-    bits += coef_model_bits<Update>(unary[std::min<std::size_t>(j, kCoefUnaryModels - 1)], 1);
-  if (h < kCoefEscape)
-    bits += coef_model_bits<Update>(unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)], 0);
-  else
-    bits += 5.0 + double(std::bit_width(h - kCoefEscape));
-  const int modelled = std::min(k, kCoefModelledLow);
-  auto& low = m.low[std::size_t(ctx)];
-  std::size_t node = 1;
-  const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
-  for (int b = k - 1; b >= k - modelled; --b) {
-    const int bit = int((q >> b) & 1u);
-    bits += coef_model_bits<Update>(low[tree + node], bit);
-    node = 2 * node + std::size_t(bit);
-  }
-  bits += double(k - modelled);
-  if (q != 0)
-    bits += coef_model_bits<Update>(m.sign[sign_ctx + (q > 1 ? kCoefSignContexts : 0)], negative ? 1 : 0);
-  return bits;
+  CoefIndexCounter<Update> counter;
+  code_coef_index(counter, m, ctx, sign_ctx, q, negative);
+  return counter.bits;
 }
 
 }  // namespace pupwave
