@@ -6,7 +6,7 @@
 // nonembedded_rd estimate (bench/nonembedded_rd.cpp): the parent's weight, the parent's 3x3
 // neighbourhood, and greedy RDOQ (each index chosen among its nearest reconstruction point, the
 // one below and zero by distortion + lambda x the bits the models would spend on it now).
-// A copy on purpose: the codec's coder stays untouched until the estimate says it is worth it.
+// The model and activity contexts are lc_blocks.h's own; the binarisation is re-counted here.
 
 #include <algorithm>
 #include <array>
@@ -16,50 +16,30 @@
 #include <memory>
 #include <vector>
 
+#include "codec/entropy/lc_blocks.h"
+
 namespace pupwave::estimate {
 
-inline constexpr int kActivityContexts = 32;
 inline constexpr int kLengths = 31;
-inline constexpr std::uint32_t kOne = 1u << 15;
 
-// lc_blocks.cpp's Model: mean of a fast (1/64) and a slow (1/1024) count-started estimate.
-struct Model {
-  std::uint16_t fast = 16384, slow = 16384, count = 0;
-  std::uint32_t p0() const { return (std::uint32_t(fast) + slow + 1) >> 1; }
-  void update(int bit) {
-    const int warm = int(std::bit_width(unsigned(count) + 1u));
-    step(fast, std::min(warm, 6), bit);
-    step(slow, std::min(warm, 10), bit);
-    if (count < 1023) ++count;
-  }
-  static void step(std::uint16_t& p, int shift, int bit) {
-    p = std::uint16_t(bit ? p - (p >> shift) : p + ((kOne - p) >> shift));
-  }
-  double cost(int bit) const {
-    const std::uint32_t p = bit ? kOne - p0() : p0();
-    return -std::log2(double(p) / double(kOne));
-  }
-};
+// Bits lc_blocks' model would spend on `bit` now.
+inline double cost(const LcModel& m, int bit) {
+  const std::uint32_t p = bit ? kProbabilityOne - m.p0() : m.p0();
+  return -std::log2(double(p) / double(kProbabilityOne));
+}
 
 struct Models {
-  std::array<Model, kActivityContexts> zero{};
-  std::array<std::array<Model, kLengths>, kActivityContexts> length{}, first{};
-  std::array<std::array<std::array<Model, 2>, kLengths>, kActivityContexts> second{};
-  std::array<Model, 81> sign{};
+  std::array<LcModel, kLcActivityContexts> zero{};
+  std::array<std::array<LcModel, kLengths>, kLcActivityContexts> length{}, first{};
+  std::array<std::array<std::array<LcModel, 2>, kLengths>, kLcActivityContexts> second{};
+  std::array<LcModel, 81> sign{};
 };
-
-inline int activity_context(std::uint32_t s) {
-  if (s == 0) return 0;
-  const int n = int(std::bit_width(s));
-  const int q = n < 2 ? 1 : 2 * n - 2 + int((s >> (n - 2)) & 1u);
-  return std::min(q, kActivityContexts - 1);
-}
 
 // Bits of magnitude `mag` in context ctx; Update: adapt the models as the coder would.
 template <bool Update>
 double magnitude_bits(Models& m, int ctx, std::uint32_t mag, int planes) {
-  auto code = [](Model& model, int bit) {
-    const double c = model.cost(bit);
+  auto code = [](LcModel& model, int bit) {
+    const double c = cost(model, bit);
     if constexpr (Update) model.update(bit);
     return c;
   };
@@ -136,7 +116,7 @@ inline double band_bits(std::vector<std::int32_t>& q, const std::vector<float>& 
               if ((dx || dy) && std::ptrdiff_t(px) + dx >= 0 && std::ptrdiff_t(py) + dy >= 0)
                 s += std::uint32_t(std::abs(pget(px + std::size_t(dx), py + std::size_t(dy))));
       }
-      const int ctx = activity_context(s);
+      const int ctx = lc_activity_context(s);
       const std::size_t k = y * w + x;
       const int sc = 3 * (sgn[i - 1] + 1) + (sgn[i - pw] + 1) + (o.parent_sign ? 9 * psign : 0);
       std::uint32_t v = std::uint32_t(std::abs(q[k]));
@@ -148,7 +128,7 @@ inline double band_bits(std::vector<std::int32_t>& q, const std::vector<float>& 
         for (std::uint32_t c : {nearest, nearest > 0 ? nearest - 1 : 0u, 0u}) {
           const double r = c == 0 ? 0.0 : double(c) + o.delta;
           const double rate =
-              magnitude_bits<false>(m, ctx, c, planes) + (c ? m.sign[std::size_t(sc)].cost(neg) : 0.0);
+              magnitude_bits<false>(m, ctx, c, planes) + (c ? cost(m.sign[std::size_t(sc)], neg) : 0.0);
           const double j = (x0 - r) * (x0 - r) + o.lambda * rate;
           if (j < best) {
             best = j;
@@ -159,9 +139,9 @@ inline double band_bits(std::vector<std::int32_t>& q, const std::vector<float>& 
       }
       bits += magnitude_bits<true>(m, ctx, v, planes);
       if (v != 0) {
-        Model& sm = m.sign[std::size_t(sc)];
+        LcModel& sm = m.sign[std::size_t(sc)];
         const int neg = q[k] < 0;
-        bits += sm.cost(neg);
+        bits += cost(sm, neg);
         sm.update(neg);
       }
       mag[i] = v;

@@ -42,6 +42,7 @@
 #include "codec/image/image_encoder_lc.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/lc_parent.h"
+#include "image_list.h"
 #include "nonembedded_coef.h"
 #include "nonembedded_model.h"
 #include "tools/bench/bd_metrics.h"
@@ -72,18 +73,6 @@ std::vector<std::string> split(const std::string& s) {
   std::stringstream in(s);
   for (std::string item; std::getline(in, item, ',');) out.push_back(item);
   return out;
-}
-
-void add_images(const fs::path& arg, std::vector<fs::path>& out) {
-  if (!fs::is_directory(arg)) {
-    out.push_back(arg);
-    return;
-  }
-  std::vector<fs::path> found;
-  for (const auto& e : fs::directory_iterator(arg))
-    if (e.is_regular_file() && e.path().extension() == ".png") found.push_back(e.path());
-  std::sort(found.begin(), found.end());
-  out.insert(out.end(), found.begin(), found.end());
 }
 
 Args parse(int argc, char** argv) {
@@ -121,7 +110,7 @@ Args parse(int argc, char** argv) {
     } else if (!s.empty() && s[0] == '-') {
       throw std::invalid_argument("unknown option " + s);
     } else {
-      add_images(s, a.images);
+      bench::add_images(s, a.images);
     }
   }
   if (a.images.empty())
@@ -261,8 +250,8 @@ class Trial {
     std::vector<float> u(b.count());
     copy_block_out(plan_.coef[b.component].data(), dims, b, u.data());
     for (float& x : u) x *= inv;
-    const estimate::BandContext ctx(b.size[0], b.size[1], lp.origin, lp.stride, lp.width, lp.height,
-                                    args_.est.parent_weight, args_.est.scale);
+    const PcContext ctx(b.size[0], b.size[1], LcParent{lp.origin, lp.stride, lp.width, lp.height},
+                        args_.est.parent_weight, args_.est.scale);
     double bits = 0.0;
     if (args_.families && args_.est.lambda > 0.0) {
       // Per-band step families: the step x 2^(-1/3), 1, 2^(1/3) with the least output error +

@@ -22,6 +22,7 @@
 #include "codec/entropy/block_tally.h"
 #include "codec/entropy/ctx_priors.h"
 #include "codec/image/image_codec.h"
+#include "image_list.h"
 #include "tools/image_io.h"
 
 namespace {
@@ -43,19 +44,6 @@ std::vector<double> parse_list(const std::string& s) {
   return out;
 }
 
-// The .png files of a directory (sorted, so runs repeat) or the file itself.
-void add_images(const fs::path& arg, std::vector<fs::path>& out) {
-  if (!fs::is_directory(arg)) {
-    out.push_back(arg);
-    return;
-  }
-  std::vector<fs::path> found;
-  for (const auto& e : fs::directory_iterator(arg))
-    if (e.is_regular_file() && e.path().extension() == ".png") found.push_back(e.path());
-  std::sort(found.begin(), found.end());
-  out.insert(out.end(), found.begin(), found.end());
-}
-
 Args parse(int argc, char** argv) {
   Args a;
   bool check = false;
@@ -70,7 +58,7 @@ Args parse(int argc, char** argv) {
     } else if (!s.empty() && s[0] == '-') {
       throw std::invalid_argument("unknown option " + s);
     } else {
-      add_images(s, check ? a.check : a.train);
+      pupwave::bench::add_images(s, check ? a.check : a.train);
     }
   }
   if (a.train.empty())

@@ -15,8 +15,6 @@
 namespace pupwave {
 namespace {
 
-// Activity contexts: 0 for all-zero neighbours, then two per octave of the weighted sum.
-constexpr int kActivityContexts = 32;
 // Bit lengths 1 .. kMaxBitPlanes index the length and mantissa models.
 constexpr int kLengths = kMaxBitPlanes + 1;
 // Magnitudes are capped here in the context planes, so the weighted sums fit 32 bits.
@@ -26,42 +24,16 @@ constexpr std::int64_t kValueLimit = std::int64_t(1) << 30;
 // Padding of the context planes: two columns each side, two rows above.
 constexpr std::size_t kPad = 2;
 
-// Adaptive probability of a 0: the mean of a fast (settling at 1/64) and a slow (1/1024)
-// estimate, both starting count-based (whole bands are one block, so the statistics are
-// nearly stationary: on the test photographs these rates beat 1/16 and 1/128 by 1.1%).
-struct Model {
-  std::uint16_t fast = 16384, slow = 16384;
-  std::uint16_t count = 0;
-
-  std::uint32_t p0() const { return (std::uint32_t(fast) + slow + 1) >> 1; }
-  void update(int bit) {
-    const int warm = int(std::bit_width(unsigned(count) + 1u));
-    step(fast, std::min(warm, 6), bit);
-    step(slow, std::min(warm, 10), bit);
-    if (count < 1023) ++count;
-  }
-  // p stays inside [1, 32767]: p >> s is 0 at p = 1 and (32768 - p) >> s is 0 at 32767.
-  static void step(std::uint16_t& p, int shift, int bit) {
-    p = std::uint16_t(bit ? p - (p >> shift) : p + ((kProbabilityOne - p) >> shift));
-  }
-};
+using Model = LcModel;  // lc_blocks.h: shared with the bench estimate
 
 struct Models {
-  std::array<Model, kActivityContexts> zero{};
-  std::array<std::array<Model, kLengths>, kActivityContexts> length{};  // "bit length > n"
-  std::array<std::array<Model, kLengths>, kActivityContexts> first{};   // bit below the leading one
-  std::array<std::array<std::array<Model, 2>, kLengths>, kActivityContexts>
+  std::array<Model, kLcActivityContexts> zero{};
+  std::array<std::array<Model, kLengths>, kLcActivityContexts> length{};  // "bit length > n"
+  std::array<std::array<Model, kLengths>, kLcActivityContexts> first{};   // bit below the leading one
+  std::array<std::array<std::array<Model, 2>, kLengths>, kLcActivityContexts>
       second{};                  // the next, by the first
   std::array<Model, 27> sign{};  // by the signs of W and N (and of the guide's residual)
 };
-
-// Context of a weighted neighbour-magnitude sum: 0, then two per octave, capped.
-inline int activity_context(std::uint32_t s) {
-  if (s == 0) return 0;
-  const int n = int(std::bit_width(s));
-  const int q = n < 2 ? 1 : 2 * n - 2 + int((s >> (n - 2)) & 1u);
-  return std::min(q, kActivityContexts - 1);
-}
 
 struct EncoderIo {
   static constexpr bool kEncoding = true;
@@ -158,7 +130,7 @@ std::uint32_t code_symbols(Io& io, std::int32_t* symbols, std::size_t stride, st
         const std::int32_t p = prow[std::min((parent.x0 + x) >> 1, parent.width - 1)];
         s += 2 * std::min(std::uint32_t(p < 0 ? -std::int64_t(p) : p), kMagnitudeCap);
       }
-      const int ctx = activity_context(s);
+      const int ctx = lc_activity_context(s);
       const std::int32_t value = Io::kEncoding ? row[x] : 0;
       const auto magnitude = std::uint32_t(value < 0 ? -std::int64_t(value) : value);
       const std::uint32_t v = code_magnitude(io, m, ctx, magnitude, planes);
@@ -314,7 +286,7 @@ std::uint32_t code_predicted(Io& io, std::int32_t* v, std::size_t stride, std::s
         s += std::uint32_t(16 * std::min<std::int64_t>(e < 0 ? -e : e, kMagnitudeCap));
       }
       const std::int64_t pred = (p8 + (1 << (kFrac - 1))) >> kFrac;
-      const int ctx = activity_context(s);
+      const int ctx = lc_activity_context(s);
       const std::int64_t r = Io::kEncoding ? std::int64_t(row[x]) - pred : 0;
       const auto magnitude = std::uint32_t(std::min<std::int64_t>(r < 0 ? -r : r, 0xFFFFFFFFll));
       const std::uint32_t u = code_magnitude(io, m, ctx, magnitude, planes);

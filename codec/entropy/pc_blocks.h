@@ -9,15 +9,50 @@
 // Measured with bench/nonembedded_rd (coefp): with greedy RDOQ, -3.3% BD-rate against the
 // default bit-plane coder on the four test photographs and -5.3% on nine held-out ones.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
+#include "codec/entropy/coef_contexts.h"
 #include "codec/entropy/coef_encoder.h"
 #include "codec/entropy/lc_blocks.h"
 
 namespace pupwave {
+
+// A block's contexts as the codeword goes: causal magnitudes and signs (padded by one column
+// each side and one row above) and the parent band. The coder's weights are 1 and 1; the bench
+// estimate (bench/nonembedded_coef.h) tries others.
+class PcContext {
+ public:
+  PcContext(std::size_t w, std::size_t h, const LcParent& parent, int parent_weight = 1, int scale = 1)
+      : nx_(w + 2),
+        a_((h + 1) * nx_, 0u),
+        sg_((h + 1) * nx_, 0),
+        parent_(parent),
+        weight_(parent_weight),
+        scale_(scale) {}
+
+  // Activity class and sign context of coefficient (x, y): the in-band sum 2 (W + N) + NW + NE
+  // (the volume coder's), with a parent multiplied by 2 x scale and plus weight x the parent's
+  // magnitude (the coder: 1 and 1, heavier weights measured worse); the sign context by the
+  // signs of W, N and the parent.
+  std::pair<int, std::size_t> at(std::size_t x, std::size_t y) const;
+  void set(std::size_t x, std::size_t y, std::int32_t v) {
+    const std::size_t p = (y + 1) * nx_ + x + 1;
+    a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
+    sg_[p] = std::int8_t(v == 0 ? 0 : (v < 0 ? -1 : 1));
+  }
+
+ private:
+  std::size_t nx_;
+  std::vector<std::uint32_t> a_;
+  std::vector<std::int8_t> sg_;
+  LcParent parent_;
+  int weight_, scale_;
+};
 
 // Greedy rate-distortion optimised quantization inside the encoder: each index starts at the
 // reconstruction point nearest its coefficient and takes the one of {nearest, nearest - 1, 0}
@@ -40,5 +75,36 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
 // decoded index has bit length `bits`.
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
                      const LcParent& parent, std::int32_t* out, std::size_t stride);
+
+// The coders under any context (`ctx` fresh): pc_encode_block's loop (no empty-block rules),
+// returning the codeword and the largest magnitude coded, and pc_decode_block's (magnitudes
+// clamped to `limit`), returning the largest magnitude decoded.
+std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vector<std::int32_t>& q,
+                                                                      std::size_t width, std::size_t height,
+                                                                      PcContext ctx, const PcRdoq* rdoq);
+std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uint64_t limit,
+                                std::size_t width, std::size_t height, PcContext ctx, std::int32_t* out,
+                                std::size_t stride);
+
+// Greedy RDOQ of one index: `v` (the signed nearest point of coefficient u, in index units)
+// becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x the bits
+// models m would spend on it now. 0 stays 0.
+std::int32_t pc_rdoq_index(CoefModels& m, int cls, std::size_t sign_ctx, float u, std::int32_t v,
+                           double lambda, double delta);
+
+// Visits a block in coding order: `code(x, y, cls, sign_ctx)` codes coefficient (x, y) and
+// returns its signed index, which joins the contexts. Returns the largest magnitude.
+template <class Code>
+std::uint32_t pc_visit(std::size_t width, std::size_t height, PcContext& ctx, Code code) {
+  std::uint32_t largest = 0;
+  for (std::size_t y = 0; y < height; ++y)
+    for (std::size_t x = 0; x < width; ++x) {
+      const auto [cls, sc] = ctx.at(x, y);
+      const std::int32_t v = code(x, y, cls, sc);
+      ctx.set(x, y, v);
+      largest = std::max(largest, std::uint32_t(v < 0 ? -std::int64_t(v) : v));
+    }
+  return largest;
+}
 
 }  // namespace pupwave
