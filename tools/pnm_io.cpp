@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tools/image_io.h"
@@ -236,18 +239,80 @@ void write_binary_pnm(const Image& image, const fs::path& file) {
     throw std::runtime_error("cannot write " + file.string());
 }
 
+namespace {
+
+// Writes strips on its own thread while the caller decodes the next one: packing and the
+// copy into the page cache were a serial tenth of a strip decode's CPU, idle time for the
+// decoder's other threads. One strip waits at most, so memory stays two strips.
+class OverlappedStripWriter {
+ public:
+  explicit OverlappedStripWriter(std::FILE* f) : f_(f), thread_([this] { loop(); }) {}
+  ~OverlappedStripWriter() {
+    finish();
+    thread_.join();
+  }
+  // Queues a strip once the previous one is written; false when a write has failed.
+  bool put(Image strip) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return !pending_ || failed_; });
+    if (failed_) return false;
+    strip_ = std::move(strip);
+    pending_ = true;
+    changed_.notify_all();
+    return true;
+  }
+  // Waits for the queued strip; false when any write failed.
+  bool finish() {
+    std::unique_lock lock(mutex_);
+    done_ = true;
+    changed_.notify_all();
+    changed_.wait(lock, [&] { return !pending_ || failed_; });
+    return !failed_;
+  }
+
+ private:
+  void loop() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      changed_.wait(lock, [&] { return pending_ || done_; });
+      if (!pending_) return;
+      lock.unlock();
+      const bool ok = write_raster(strip_, f_);
+      lock.lock();
+      strip_ = Image{};
+      pending_ = false;
+      failed_ = failed_ || !ok;
+      changed_.notify_all();
+      if (failed_) return;
+    }
+  }
+
+  std::FILE* f_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  Image strip_;
+  bool pending_ = false, done_ = false, failed_ = false;
+  std::thread thread_;  // last: starts after the members it reads
+};
+
+}  // namespace
+
 void write_binary_pnm_rows(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
                            SampleType type, const std::function<Image()>& next_strip) {
   if ((channels != 1 && channels != 3) || !is_integer(type))
     throw std::invalid_argument("write_binary_pnm_rows: needs 1 or 3 channels of 8- or 16-bit samples");
   File f = open_pnm(file, width, height, channels, type == SampleType::u16);
-  for (std::size_t rows = 0; rows < height;) {
-    const Image strip = next_strip();
-    if (strip.height == 0 || strip.width != width || strip.channels != channels || strip.type != type ||
-        rows + strip.height > height)
-      throw std::runtime_error("write_binary_pnm_rows: a strip does not fit the image");
-    if (!write_raster(strip, f.get())) throw std::runtime_error("cannot write " + file.string());
-    rows += strip.height;
+  {
+    OverlappedStripWriter writer(f.get());
+    for (std::size_t rows = 0; rows < height;) {
+      Image strip = next_strip();
+      if (strip.height == 0 || strip.width != width || strip.channels != channels || strip.type != type ||
+          rows + strip.height > height)
+        throw std::runtime_error("write_binary_pnm_rows: a strip does not fit the image");
+      rows += strip.height;
+      if (!writer.put(std::move(strip))) throw std::runtime_error("cannot write " + file.string());
+    }
+    if (!writer.finish()) throw std::runtime_error("cannot write " + file.string());
   }
   if (std::fclose(f.release()) != 0) throw std::runtime_error("cannot write " + file.string());
 }

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "tools/image_io.h"
+#include "tools/pnm_io.h"
 
 namespace pupwave::cli {
 namespace {
@@ -184,6 +185,44 @@ TEST(ImageIo, BinaryPnmLayoutAndBadHeaders) {
   EXPECT_THROW(read_image(dir / "huge.pgm"), std::runtime_error);
   std::ofstream(dir / "bad.pgm", std::ios::binary) << "P5\n12 x\n255\n";
   EXPECT_THROW(read_image(dir / "bad.pgm"), std::runtime_error);
+}
+
+// Strip-by-strip PGM writing (the writer runs on its own thread): strips land in order, a
+// strip of the wrong shape, a producer that throws and a full device are errors, not hangs.
+TEST(ImageIo, PnmRowsWriterKeepsOrderAndReportsFailures) {
+  const fs::path dir = temp_dir();
+  const std::size_t width = 7, height = 50;
+  Image whole(width, height, 1, SampleType::u8);
+  for (std::size_t i = 0; i < whole.samples.size(); ++i) whole.samples[i] = float((i * 37) % 251);
+  auto strips_of = [&](std::size_t rows) {
+    return [&whole, rows, y = std::size_t(0)]() mutable {
+      const std::size_t n = std::min(rows, whole.height - y);
+      Image strip(whole.width, n, 1, SampleType::u8);
+      std::copy_n(whole.plane(0) + y * whole.width, n * whole.width, strip.plane(0));
+      y += n;
+      return strip;
+    };
+  };
+  write_binary_pnm_rows(dir / "rows.pgm", width, height, 1, SampleType::u8, strips_of(3));
+  write_image(whole, dir / "whole.pgm");
+  auto bytes = [](const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(bytes(dir / "rows.pgm"), bytes(dir / "whole.pgm"));
+
+  EXPECT_THROW(write_binary_pnm_rows(dir / "short.pgm", width, height + 1, 1, SampleType::u8, strips_of(4)),
+               std::runtime_error);  // the producer ends early: an empty strip
+  int calls = 0;
+  EXPECT_THROW(write_binary_pnm_rows(dir / "throws.pgm", width, height, 1, SampleType::u8,
+                                     [&]() -> Image {
+                                       if (++calls == 3) throw std::logic_error("decoder failed");
+                                       return strips_of(2)();
+                                     }),
+               std::logic_error);
+  EXPECT_THROW(write_binary_pnm_rows("/dev/full", 4096, 4096, 1, SampleType::u8,
+                                     [] { return Image(4096, 64, 1, SampleType::u8); }),
+               std::runtime_error);  // every write fails: the device is full
 }
 
 }  // namespace
