@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "codec/entropy/block_encoder.h"
 #include "codec/error.h"
 #include "codec/rate/quantizer.h"
 #include "codec/volume/volume_encoder_plan.h"
@@ -423,8 +424,11 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::spa
   return encode_volumes(grids, views, options, nullptr);
 }
 
-VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
-                                  const VolumeEncodeOptions& given, const StreamWriter& write) {
+namespace {
+
+VolumeEncodeResult encode_volumes_unchecked(const std::vector<VolumeGrid>& grids,
+                                            std::span<const VolumeView> views,
+                                            const VolumeEncodeOptions& given, const StreamWriter& write) {
   VolumeEncodeOptions options = given;
   const bool exact = only_exact(grids, options);
   if (exact) code_lossless(options);
@@ -465,6 +469,22 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::spa
   r.psnr =
       mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
   return r;
+}
+
+}  // namespace
+
+VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                  const VolumeEncodeOptions& options, const StreamWriter& write) {
+  try {
+    return encode_volumes_unchecked(grids, views, options, write);
+  } catch (const IndexRangeError&) {
+    // Unstable banks (pups:cinpact-c3) amplify the coarse band level after level; a streamed
+    // encode cannot retry with fewer levels, so the message says what to change.
+    throw IndexRangeError("transform '" + options.transform +
+                          "': quantization indices beyond the coder's range at this target; the bank "
+                          "amplifies its coarse band at every level: use fewer --levels, a looser target or "
+                          "another --transform");
+  }
 }
 
 }  // namespace pupwave

@@ -99,6 +99,26 @@ TEST(VolumeCodec, MaxErrorIsNeverExceededOnWmag91) {
   }
 }
 
+// An unstable bank (coarse-band gain above 1 per level) at a tight bound: a refusal that says
+// what to change, and a working encode with the fewer levels it suggests.
+TEST(VolumeCodec, UnstableBankRefusalNamesTheTransformAndTheRemedy) {
+  const Volume v = read_wmag91();
+  VolumeEncodeOptions o;
+  o.transform = "pups:cinpact-c3";
+  o.target = 1e-4 * range_of(v);
+  try {
+    encode_volumes({grid_of(v)}, o);
+    ADD_FAILURE() << "pups:cinpact-c3 at 1e-4 of the range was expected to leave the coder's range";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("pups:cinpact-c3"), std::string::npos) << what;
+    EXPECT_NE(what.find("--levels"), std::string::npos) << what;
+  }
+  o.levels = 2;
+  const auto r = encode_volumes({grid_of(v)}, o);
+  EXPECT_LE(worst_error(v, decode_volumes(r.bytes)[0].volume), o.target);
+}
+
 TEST(VolumeCodec, MaxErrorIsNeverExceededOnAGeneratedField) {
   const Volume v = test::smooth_volume({40, 33, 29}, VoxelType::f32, 1000.0, 11);
   for (double rel : {1e-2, 1e-4}) {
