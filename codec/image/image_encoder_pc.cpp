@@ -210,9 +210,10 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     auto best = search(plan, std::log(std::max(guess, plan.peak * kFinestStep)), std::log(budget),
                        -std::log1p(-kSizeTolerance), true, kSizeSlope, finest, coarsest,
                        [](const Pass& p) { return std::log(double(p.bytes)); });
-    if (!best)
-      throw TargetRangeError("budget of " + format_number(budget) + " bytes is below the smallest pc stream");
-    return result_of(image, plan, *best, std::nullopt);
+    if (best) return result_of(image, plan, *best, std::nullopt);
+    // Under the smallest stream (header and steps alone): that stream, as the other coders do.
+    Pass smallest = code_pass(plan, coarsest);
+    return result_of(image, plan, smallest, std::nullopt);
   }
   const double mse = plan.peak * plan.peak / std::pow(10.0, options.target / 10.0);
   const double t0 = std::log(std::sqrt(12.0 * mse));  // a uniform quantizer's error step^2 / 12

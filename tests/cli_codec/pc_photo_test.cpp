@@ -165,6 +165,17 @@ TEST(PcPhotos, BandsOverTheBlockSizeSplitAndStillRoundTrip) {
   EXPECT_EQ(decode_image(r.bytes, 1).samples, lower_level_of_full_decode(r.bytes, 1).samples);
 }
 
+// A budget under the header's own size gives the smallest stream (every index zero), as the
+// other coders do, not an error.
+TEST(PcPhotos, BudgetUnderTheSmallestStreamGivesTheSmallestStream) {
+  const Image img = crop(photo("astronaut.png"), 24, 20);
+  const EncodeResult r = encode_image(img, pc(RateMode::bpp, 1.0));
+  EXPECT_GT(double(r.bytes.size()), 1.0 * 24 * 20 / 8);
+  const ParsedStream s = parse_container(r.bytes);
+  for (const BlockEntry& e : s.index) EXPECT_EQ(e.passes, 0);
+  EXPECT_NEAR(decoded_psnr(img, r.bytes), r.psnr, 1e-9);
+}
+
 TEST(PcPhotos, LosslessIsRefusedAndTheCliNamesTheCoder) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("pupwave_pc_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
