@@ -129,15 +129,18 @@ std::optional<Pass> scored_pass(ImagePlan& plan, double t, const Score& score) {
 }
 
 // The next log step aiming the score at `aim`: the secant through the bracket's ends (kept in
-// its inner 80%), else from the nearest pass along `slope`.
-double next_t(const std::optional<Pass>& fine, const std::optional<Pass>& coarse, double aim, double slope) {
+// its inner 80%), else the secant through the last two passes (`last`, `before`; slope within
+// 1/4 .. 4 times `slope`), else `slope` from the last pass.
+double next_t(const std::optional<Pass>& fine, const std::optional<Pass>& coarse, const Pass& last,
+              const std::optional<Pass>& before, double aim, double slope) {
   if (fine && coarse) {
     const double ds = coarse->score - fine->score, dt = coarse->t - fine->t;
     double t = ds < 0.0 ? fine->t + (aim - fine->score) * dt / ds : 0.5 * (fine->t + coarse->t);
     return std::clamp(t, fine->t + 0.1 * dt, coarse->t - 0.1 * dt);
   }
-  const Pass& p = fine ? *fine : *coarse;
-  return p.t + std::clamp((aim - p.score) / slope, -4.0 * std::numbers::ln2, 4.0 * std::numbers::ln2);
+  if (before && before->t != last.t)
+    slope = std::clamp((last.score - before->score) / (last.t - before->t), 4.0 * slope, 0.25 * slope);
+  return last.t + std::clamp((aim - last.score) / slope, -4.0 * std::numbers::ln2, 4.0 * std::numbers::ln2);
 }
 
 // The pass closest to `goal` on the side where ok(score) holds: coarser passes score lower, and
@@ -150,6 +153,7 @@ std::optional<Pass> search(ImagePlan& plan, double t, double goal, double tolera
   const auto close = [&](double s) { return below ? s >= goal - tolerance : s <= goal + tolerance; };
   const double aim = below ? goal - 0.5 * tolerance : goal + 0.5 * tolerance;
   std::optional<Pass> fine, coarse, best;  // fine: smaller step, higher score
+  std::optional<Pass> before;              // the pass before the last (its t and score)
   for (int n = 0;; ++n) {
     t = std::clamp(t, finest, coarsest);
     std::optional<Pass> p = scored_pass(plan, t, score);
@@ -157,13 +161,16 @@ std::optional<Pass> search(ImagePlan& plan, double t, double goal, double tolera
       if (!below) return best;
       finest = t + std::numbers::ln2;
       if (finest > coarsest) return best;
-      t = coarse ? next_t(std::nullopt, coarse, aim, slope) : finest;
+      t = finest;
       continue;
     }
     const bool fits = ok(p->score);
     if (fits && (!best || std::abs(p->score - goal) < std::abs(best->score - goal))) best = *p;
     if (fits && close(p->score)) return best;
     // The pass on the side it lies of the goal (the bracket narrows).
+    Pass last;
+    last.t = p->t;
+    last.score = p->score;
     if (p->score > goal)
       fine = std::move(p);
     else
@@ -172,7 +179,8 @@ std::optional<Pass> search(ImagePlan& plan, double t, double goal, double tolera
     const std::optional<Pass>& miss = below ? fine : coarse;
     if (!best && miss && (below ? miss->t >= coarsest : miss->t <= finest)) return best;
     if (n + 1 >= kMaxTrials && best) return best;
-    const double next = next_t(fine, coarse, aim, slope);
+    const double next = next_t(fine, coarse, last, before, aim, slope);
+    before = last;
     // Past the trial budget with nothing fitting yet: an octave towards fitting at least.
     if (n + 1 >= kMaxTrials)
       t = below ? std::max(next, t + std::numbers::ln2) : std::min(next, t - std::numbers::ln2);
