@@ -35,8 +35,8 @@ struct BenchOptions {
   std::string levels = "1..5";
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   std::string out;
-  std::string cli;  // pupwave binary driving our codec; default: this very program
-  int effort = 1;   // pupwave compress --effort for every pupwave encode
+  std::string cli;                  // pupwave binary driving our codec; default: this very program
+  int effort = 1;                   // pupwave compress --effort for every pupwave encode
   std::string entropy = "default";  // comma list of entropy coders ("default": no --entropy)
 };
 
@@ -218,9 +218,10 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
     cmd->add_option("--effort", o.effort, "pupwave compress --effort for every pupwave encode (1 or 2)")
         ->capture_default_str()
         ->check(CLI::Range(1, 2));
-    cmd->add_option("--entropy", o.entropy,
-                    "comma list of pupwave entropy coders, each a curve per transform (SPEC+CODER): 'default' "
-                    "(the CLI's choice), ebcot, ht, zstd or pc")
+    cmd->add_option(
+           "--entropy", o.entropy,
+           "comma list of pupwave entropy coders, each a curve per transform (SPEC+CODER): 'default' "
+           "(the CLI's choice), ebcot, ht, zstd or pc")
         ->capture_default_str();
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();
