@@ -35,8 +35,9 @@ struct BenchOptions {
   std::string levels = "1..5";
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   std::string out;
-  std::string cli;  // pupwave binary driving our codec; default: this very program
-  int effort = 1;   // pupwave compress --effort for every pupwave encode
+  std::string cli;                  // pupwave binary driving our codec; default: this very program
+  int effort = 1;                   // pupwave compress --effort for every pupwave encode
+  std::string entropy = "default";  // comma list of entropy coders ("default": no --entropy)
 };
 
 // Splits at commas outside parentheses, so custom specs such as
@@ -105,7 +106,8 @@ std::string command_line(const std::string& sub, const BenchOptions& o, bool rd,
       "pupwave bench " + sub + " --images " + join(o.images, " ") + " --transforms " + o.transforms;
   if (rd)
     c += " --bpp " + o.bpps + " --anchors " + o.anchors +
-         (o.effort != 1 ? " --effort " + std::to_string(o.effort) : "");
+         (o.effort != 1 ? " --effort " + std::to_string(o.effort) : "") +
+         (o.entropy != "default" ? " --entropy " + o.entropy : "");
   if (coarse) c += " --levels " + o.levels;
   return c + " --jobs " + std::to_string(o.jobs) + " --out " + o.out;
 }
@@ -125,7 +127,9 @@ std::vector<RdCodecPtr> build_codecs(const BenchOptions& o, const std::vector<st
                                      std::vector<std::string>& notes) {
   const fs::path cli = o.cli.empty() ? fs::read_symlink("/proc/self/exe") : fs::path(o.cli);
   std::vector<RdCodecPtr> codecs;
-  for (const std::string& spec : specs) codecs.push_back(make_pupwave_codec(cli, spec, o.effort));
+  for (const std::string& spec : specs)
+    for (const std::string& coder : split_list(o.entropy))
+      codecs.push_back(make_pupwave_codec(cli, spec, o.effort, coder == "default" ? "" : coder));
   const auto anchors = o.anchors == "none" ? std::vector<std::string>{} : split_list(o.anchors);
   for (const std::string& name : anchors) {
     std::string missing;
@@ -214,6 +218,11 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
     cmd->add_option("--effort", o.effort, "pupwave compress --effort for every pupwave encode (1 or 2)")
         ->capture_default_str()
         ->check(CLI::Range(1, 2));
+    cmd->add_option(
+           "--entropy", o.entropy,
+           "comma list of pupwave entropy coders, each a curve per transform (SPEC+CODER): 'default' "
+           "(the CLI's choice), ebcot, ht, zstd or pc")
+        ->capture_default_str();
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();
   cmd->add_option("--jobs", o.jobs, "parallel jobs")->capture_default_str()->check(CLI::Range(1u, 256u));

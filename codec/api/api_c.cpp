@@ -20,6 +20,7 @@ struct pupwave_options {
   std::size_t brick = 64;
   bool zstd = false;
   bool ht = false;
+  bool pc = false;
   int effort = 1;
 };
 
@@ -111,6 +112,7 @@ pupwave::api::ImageOptions image_options(const pupwave_options* o) {
   out.threads = o->threads;
   out.zstd = o->zstd;
   out.ht = o->ht;
+  out.pc = o->pc;
   out.effort = o->effort;
   return out;
 }
@@ -209,6 +211,13 @@ pupwave_status pupwave_options_set_ht(pupwave_options* options, int ht) {
   return guarded([&] {
     require(options != nullptr, "options is null");
     options->ht = ht != 0;
+  });
+}
+
+pupwave_status pupwave_options_set_pc(pupwave_options* options, int pc) {
+  return guarded([&] {
+    require(options != nullptr, "options is null");
+    options->pc = pc != 0;
   });
 }
 

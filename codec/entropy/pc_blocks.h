@@ -1,13 +1,12 @@
 #pragma once
-// The parent-context coefficient coder: the candidate for a lossy non-embedded entropy coder
-// (entropy coder 4 in the design of bench/results/rd_issue20.md; NOT yet part of the stream
-// format, nothing calls it but its tests). One pass over a detail block's quantization indices
-// with the volume coefficient coder's binarisation and models (coef_contexts.h: Rice class from
-// the causal neighbour magnitudes, unary high part with models, modelled top low bits, raw rest,
-// sign by neighbour signs), the index of the parent (the next coarser band of the same
-// orientation, already decoded) added to the activity sum and the sign context (ECECOW-style).
-// Measured with bench/nonembedded_rd (coefp): with greedy RDOQ, -3.3% BD-rate against the
-// default bit-plane coder on the four test photographs and -5.3% on nine held-out ones.
+// The parent-context coefficient coder: entropy coder 4 of lossy image streams (`--entropy pc`,
+// docs/bitstream.md; codec/image/image_encoder_pc.cpp and pc_decoder.cpp use it). One pass
+// over a detail block's quantization indices with the volume coefficient coder's binarisation and models
+// (coef_contexts.h: Rice class from the causal neighbour magnitudes, unary high part with models, modelled
+// top low bits, raw rest, sign by neighbour signs), the index of the parent (the next coarser band of the
+// same orientation, already decoded) added to the activity sum and the sign context (ECECOW-style). Measured
+// with bench/nonembedded_rd (coefp): with greedy RDOQ, -3.3% BD-rate against the default bit-plane coder on
+// the four test photographs and -5.3% on nine held-out ones.
 
 #include <algorithm>
 #include <cstddef>

@@ -33,8 +33,9 @@ inline constexpr std::size_t kMaxSpecLength = 4096;
 inline constexpr std::uint32_t kMaxChannels = 64;
 
 // ebcot: bit-plane (block_encoder.h); zstd: zstd_blocks.h; ht: high-throughput (ht_blocks.h);
-// lc: lossless context coder (lc_blocks.h), reversible streams only.
-enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1, ht = 2, lc = 3 };
+// lc: lossless context coder (lc_blocks.h), reversible streams only; pc: parent-context
+// coefficient coder (pc_blocks.h), irreversible streams only.
+enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1, ht = 2, lc = 3, pc = 4 };
 const char* to_string(EntropyCoder coder);
 
 // Domain the samples are coded in (float images): see codec/image/transfer.h.

@@ -18,6 +18,7 @@
 #include "codec/image/image_plan.h"
 #include "codec/image/image_strips.h"
 #include "codec/image/lc_parent.h"
+#include "codec/image/pc_decoder.h"
 #include "codec/image/transfer.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
@@ -34,7 +35,8 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   std::vector<T> values(b.count(), T(0));
   if (e.passes == 0) return values;
   // lc blocks read their parent band: decode_lc_into decodes them, never one at a time here.
-  if (h.entropy == EntropyCoder::lc) throw std::logic_error("lc blocks decode with their parent bands");
+  if (h.entropy == EntropyCoder::lc || h.entropy == EntropyCoder::pc)
+    throw std::logic_error("lc and pc blocks decode with their parent bands");
   if (h.entropy != EntropyCoder::ebcot) {
     std::vector<std::int32_t> q(b.count());
     if (h.entropy == EntropyCoder::zstd)
@@ -170,6 +172,8 @@ void decode_into(const ParsedStream& s, const Extent& region, const Executor& ex
                  const std::vector<T*>& planes) {
   if constexpr (std::is_same_v<T, std::int32_t>)
     if (s.header.entropy == EntropyCoder::lc) return decode_lc_into(s, region, ex, planes);
+  if constexpr (std::is_same_v<T, float>)
+    if (s.header.entropy == EntropyCoder::pc) return decode_pc_into(s, region, ex, planes);
   ex.run(s.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
     if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed

@@ -22,6 +22,7 @@
 #include "codec/image/image_codec.h"
 #include "codec/image/image_encoder_ht.h"
 #include "codec/image/image_encoder_lc.h"
+#include "codec/image/image_encoder_pc.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/image_strip_encoder.h"
 #include "codec/image/kept_block.h"
@@ -831,7 +832,9 @@ struct CodedDomain {
 EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& options,
                                 const CodedDomain& domain) {
   EncodeOptions planned = options;
-  if (options.entropy == EntropyCoder::lc) planned.block_size = kLcBlockSize;
+  // lc and pc code every band of up to 1024 x 1024 as one block (their models learn over it).
+  if (options.entropy == EntropyCoder::lc || options.entropy == EntropyCoder::pc)
+    planned.block_size = kLcBlockSize;
   ImagePlan plan = plan_image(image, planned);
   plan.header.transfer = domain.transfer;
   plan.header.nonnegative = domain.nonnegative;
@@ -839,6 +842,7 @@ EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& opt
   if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
   if (options.entropy == EntropyCoder::ht) return encode_ht(image, plan, options);
   if (options.entropy == EntropyCoder::lc) return encode_lc(image, plan);
+  if (options.entropy == EntropyCoder::pc) return encode_pc(image, plan, options);
   switch (options.mode) {
     case RateMode::lossless: {
       return make_encode_result(image, plan, *code_every_pass(plan), 1.0);
@@ -887,6 +891,8 @@ std::optional<EncodeResult> encode_exact(const ImageView& image, const EncodeOpt
   exact.transform = "cdf53";
   exact.target = 0.0;
   exact.measure_psnr = false;
+  // The pc coder is lossy only: its lossless alternative is the bit-plane coder's, as the default's.
+  if (exact.entropy == EntropyCoder::pc) exact.entropy = EntropyCoder::ebcot;
   ImagePlan plan = plan_image(image, exact);
   EncodeResult r;
   if (exact.entropy == EntropyCoder::zstd) {
@@ -943,6 +949,8 @@ EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) 
   if (options.effort < 1 || options.effort > 2) throw std::invalid_argument("effort must be 1 or 2");
   if (options.entropy == EntropyCoder::lc && options.mode != RateMode::lossless)
     throw std::invalid_argument("the lc coder codes lossless only (--lossless)");
+  if (options.entropy == EntropyCoder::pc && options.mode == RateMode::lossless)
+    throw std::invalid_argument("the pc coder codes lossy only (--bpp, --psnr or --step)");
   if (is_integer(image.type)) {
     if (options.mode != RateMode::lossless) return encode_capped(image, options);
     return encode_in_domain(image, options, CodedDomain{});

@@ -261,8 +261,9 @@ std::unique_ptr<ImageStripDecoder> ImageStripDecoder::open(std::span<const std::
   const ParsedStream& s = st->stream;
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
-  if (!is_integer(h.type)) return nullptr;            // float images go through the coded-domain transfer
-  if (h.entropy == EntropyCoder::lc) return nullptr;  // its blocks need their parent bands decoded first
+  if (!is_integer(h.type)) return nullptr;  // float images go through the coded-domain transfer
+  // lc and pc blocks need their parent bands decoded first.
+  if (h.entropy == EntropyCoder::lc || h.entropy == EntropyCoder::pc) return nullptr;
   st->transform = make_stream_transform(h);
   const std::size_t reach = synthesis_reach(*st->transform);
   if (reach == 0) return nullptr;

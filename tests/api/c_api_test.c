@@ -97,6 +97,12 @@ static void test_image_rates(void) {
   CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
   CHECK(s && pupwave_stream_size(s) > 0);
   pupwave_stream_destroy(s);
+  CHECK(pupwave_options_set_pc(o, 1) == PUPWAVE_OK); /* with ht: one coder only */
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_ERROR_ARGUMENT);
+  CHECK(pupwave_options_set_ht(o, 0) == PUPWAVE_OK); /* the parent-context coder (entropy coder 4) */
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
+  CHECK(s && pupwave_stream_size(s) > 15 && pupwave_stream_data(s)[5 + 8 + 15] == 4);
+  pupwave_stream_destroy(s);
   pupwave_options_destroy(o);
   free(rgb);
 }

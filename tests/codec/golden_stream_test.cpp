@@ -8,6 +8,7 @@
 // Version 4 (issue 20: the priors retrained on other photographs, a weight per context) changed
 // all six (the zstd one by its version byte only).
 // Issue 20's size-target encoder (base-step family per band, RDOQ) is effort 2 and has its own value.
+// Entropy coder 4 (pc, issue 20) has its own value: coder, RDOQ and its rate search.
 #include <gtest/gtest.h>
 
 #include "codec/format/crc32.h"
@@ -48,6 +49,12 @@ TEST(GoldenStream, LossyStreamsAreUnchanged) {
             3463478866u);
   EXPECT_EQ(stream_crc(testing::synthetic_image(50, 30, 1, SampleType::u8, 25), RateMode::step, 4.0, "cdf53"),
             2608761890u);
+}
+
+TEST(GoldenStream, PcStreamIsUnchanged) {
+  EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97",
+                       EntropyCoder::pc),
+            3741300495u);
 }
 
 }  // namespace

@@ -216,5 +216,73 @@ TEST(HostileStream, LcCoderOnlyInReversibleStreams) {
   EXPECT_THROW(decode_image(with_header_edit(bytes, [](std::uint8_t* p) { p[16] = 0; })), DecodeError);
 }
 
+// A lossy stream of the pc coder (entropy coder 4): every band one block, parents across levels.
+std::vector<std::uint8_t> pc_stream() {
+  EncodeOptions o;
+  o.mode = RateMode::bpp;
+  o.target = 2.0;
+  o.levels = 3;
+  o.entropy = EntropyCoder::pc;
+  return encode_image(testing::synthetic_image(70, 50, 3, SampleType::u8), o).bytes;
+}
+
+TEST(HostileStream, PcTruncationsAreRejected) {
+  const auto bytes = pc_stream();
+  for (std::size_t cut = 0; cut < bytes.size(); cut += 1 + cut / 16) {
+    const std::vector<std::uint8_t> head(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
+    EXPECT_THROW(decode_image(head), DecodeError) << "cut at " << cut;
+  }
+}
+
+// pc code-blocks with flipped bits behind valid chunk CRCs: an error (the index's plane count)
+// or an image of the right shape, at every reduced level, never a crash, overrun or hang.
+TEST(HostileStream, CorruptPcBlocksBehindValidCrcsAreContained) {
+  int errors = 0;
+  const int trials = for_each_data_flip(pc_stream(), 29, 40, [&](const std::vector<std::uint8_t>& bad) {
+    for (int level : {0, 1}) {
+      try {
+        const Image out = decode_image(bad, level);
+        EXPECT_EQ(out.width, level == 0 ? 70u : 35u);
+      } catch (const DecodeError&) {
+        ++errors;
+      }
+    }
+  });
+  EXPECT_GT(trials, 0);
+  EXPECT_GT(errors, 0);  // some flips change a block's largest index: its plane count catches them
+}
+
+// The index's plane count P must be the bit length of the largest decoded index: the same
+// codewords under an index that claims one plane more are refused.
+TEST(HostileStream, PcPlaneCountMismatchIsCaught) {
+  const auto bytes = pc_stream();
+  const ParsedStream s = parse_container(bytes);
+  std::vector<std::vector<std::uint8_t>> data;
+  for (const auto& d : s.resolution_data) data.emplace_back(d.begin(), d.end());
+  EXPECT_EQ(write_container(s.header, s.index, data), bytes);  // the rebuild itself is faithful
+  int checked = 0;
+  for (std::size_t i = 0; i < s.index.size(); ++i) {
+    if (s.index[i].passes == 0 || s.index[i].planes >= 30) continue;
+    auto index = s.index;
+    ++index[i].planes;
+    EXPECT_THROW(decode_image(write_container(s.header, index, data)), DecodeError) << "block " << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 3);
+}
+
+TEST(HostileStream, PcCoderOnlyInLossyStreams) {
+  const auto bytes = pc_stream();
+  EXPECT_EQ(decode_image(bytes).width, 70u);
+  // pc with the reversible flag (HEAD offset 16) set; lc (coder 3) in this lossy stream.
+  EXPECT_THROW(decode_image(with_header_edit(bytes, [](std::uint8_t* p) { p[16] = 1; })), DecodeError);
+  EXPECT_THROW(decode_image(with_header_edit(bytes, [](std::uint8_t* p) { p[15] = 3; })), DecodeError);
+  EncodeOptions o;
+  o.mode = RateMode::lossless;
+  o.transform = "cdf53";
+  o.entropy = EntropyCoder::pc;
+  EXPECT_THROW(encode_image(testing::synthetic_image(20, 20, 1, SampleType::u8), o), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pupwave

@@ -1,4 +1,4 @@
-// The parent-context coefficient coder (codec/entropy/pc_blocks.*, not yet in the stream format):
+// The parent-context coefficient coder (codec/entropy/pc_blocks.*, entropy coder 4):
 // exact round trips with and without a parent and with a block offset inside its band, greedy
 // RDOQ (the decoder gets exactly the re-chosen indices, each one of nearest / nearest - 1 / 0),
 // the worth of the parent on correlated bands, and bounded decoding of corrupt codewords.

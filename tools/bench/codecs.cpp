@@ -26,9 +26,9 @@ std::string format_number(double v, const char* fmt = "%.6g") {
 
 class PupwaveCodec final : public RdCodec {
  public:
-  PupwaveCodec(fs::path cli, std::string spec, int effort)
-      : cli_(std::move(cli)), spec_(std::move(spec)), effort_(effort) {}
-  std::string name() const override { return spec_; }
+  PupwaveCodec(fs::path cli, std::string spec, int effort, std::string entropy)
+      : cli_(std::move(cli)), spec_(std::move(spec)), effort_(effort), entropy_(std::move(entropy)) {}
+  std::string name() const override { return entropy_.empty() ? spec_ : spec_ + "+" + entropy_; }
   std::string kind() const override { return "pupwave"; }
   std::string extension() const override { return ".pw"; }
 
@@ -38,9 +38,11 @@ class PupwaveCodec final : public RdCodec {
     std::vector<std::string> args{cli_.string(), "compress", q.input.string(), q.output.string(),
                                   "--transform", spec_,      "--bpp",          bpp};
     if (effort_ != 1) args.insert(args.end(), {"--effort", std::to_string(effort_)});
+    if (!entropy_.empty()) args.insert(args.end(), {"--entropy", entropy_});
     out.seconds = run_checked(args, q.log, q.output);
     out.bytes = fs::file_size(q.output);
-    out.setting = "--bpp " + bpp + (effort_ != 1 ? " --effort " + std::to_string(effort_) : "");
+    out.setting = "--bpp " + bpp + (effort_ != 1 ? " --effort " + std::to_string(effort_) : "") +
+                  (entropy_.empty() ? "" : " --entropy " + entropy_);
     return out;
   }
 
@@ -52,6 +54,7 @@ class PupwaveCodec final : public RdCodec {
   fs::path cli_;
   std::string spec_;
   int effort_ = 1;
+  std::string entropy_;  // empty: the CLI's default coder
 };
 
 // JPEG 2000 through OpenJPEG: irreversible 9/7 (-I), 6 resolutions (-n 6, fewer for images too
@@ -114,8 +117,9 @@ class JxlAnchor final : public RdCodec {
 
 }  // namespace
 
-RdCodecPtr make_pupwave_codec(const fs::path& cli, const std::string& spec, int effort) {
-  return std::make_shared<PupwaveCodec>(cli, spec, effort);
+RdCodecPtr make_pupwave_codec(const fs::path& cli, const std::string& spec, int effort,
+                              const std::string& entropy) {
+  return std::make_shared<PupwaveCodec>(cli, spec, effort, entropy);
 }
 
 const std::vector<std::string>& anchor_names() {

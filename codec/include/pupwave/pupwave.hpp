@@ -76,6 +76,7 @@ struct ImageOptions {
   int levels = -1;        // decomposition levels, -1: from the image size
   bool zstd = false;      // entropy coder: true = zstd; neither this nor ht: the bit-plane coder, lc for lossless
   bool ht = false;        // entropy coder: high-throughput block coder (not with zstd)
+  bool pc = false;        // entropy coder: parent-context coder, lossy only (not with zstd or ht)
   unsigned threads = 0;   // most worker threads (0: all cores, 1: the calling thread)
   // Encoder effort for bpp targets: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
   // and more memory (same format; other rates ignore it).

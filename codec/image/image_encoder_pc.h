@@ -1,0 +1,18 @@
+#pragma once
+// encode_image with the parent-context coefficient coder (`--entropy pc`, entropy coder 4,
+// codec/entropy/pc_blocks.h): lossy only, every band one block, greedy RDOQ while coding.
+
+#include "codec/image/image_plan.h"
+
+namespace pupwave {
+
+// RDOQ slope (squared index-unit error per bit) and reconstruction offset, measured best in
+// bench/results/rd_issue20.md (the estimate bench/nonembedded_rd, coefp + RDOQ).
+inline constexpr double kPcLambda = 0.1;
+inline constexpr double kPcDelta = 0.05;
+
+// Codes an irreversible plan (planned with kLcBlockSize) with the pc coder: --step in one pass,
+// --bpp and --psnr by a search of the base step over whole coding passes.
+EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOptions& options);
+
+}  // namespace pupwave

@@ -1,0 +1,28 @@
+#pragma once
+// Decoding of entropy coder 4 (the parent-context coefficient coder, codec/entropy/pc_blocks.h):
+// its blocks read the decoded integer indices of their parent band, so they are decoded one
+// resolution at a time into index planes and dequantized afterwards (docs/bitstream.md).
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "codec/format/container.h"
+#include "transforms/executor.h"
+
+namespace pupwave {
+
+// sign(q) x (|q| + delta) x step for q != 0, 0 for q = 0: the pc coder's dequantisation, shared
+// by the decoder and the encoder's PSNR so both give the same floats.
+inline float pc_dequantize(std::int32_t q, float step, float delta) {
+  if (q == 0) return 0.0f;
+  const float r = (float(q < 0 ? -std::int64_t(q) : q) + delta) * step;
+  return q < 0 ? -r : r;
+}
+
+// Decodes every block of the read resolutions of a pc stream (planes[c]: `region`-sized and
+// zeroed, the low corner of the Mallat layout) and dequantizes them into the planes.
+void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
+                    const std::vector<float*>& planes);
+
+}  // namespace pupwave

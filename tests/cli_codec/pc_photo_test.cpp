@@ -1,0 +1,196 @@
+// The parent-context coder (`--entropy pc`, entropy coder 4) on the test photographs: the
+// decoder gets exactly the encoder's indices (its reported PSNR is the decoded image's), reduced
+// levels are the lower levels of a full decode and read only their own chunks, byte budgets
+// and PSNR targets are met, streams do not depend on the thread count, bands over 1024 split.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "codec/error.h"
+#include "codec/format/container.h"
+#include "codec/image/image_codec.h"
+#include "codec/image/image_components.h"
+#include "codec/image/pc_decoder.h"
+#include "codec/rate/metrics.h"
+#include "photo_crops.h"
+#include "tools/atomic_file.h"
+#include "tools/image_io.h"
+#include "transforms/executor.h"
+#include "transforms/separable.h"
+
+namespace pupwave {
+namespace {
+
+using test::crop;
+using test::photo;
+
+EncodeOptions pc(RateMode mode, double target) {
+  EncodeOptions o;
+  o.mode = mode;
+  o.target = target;
+  o.entropy = EntropyCoder::pc;
+  return o;
+}
+
+double decoded_psnr(const Image& img, const std::vector<std::uint8_t>& bytes) {
+  return compare_images(img, decode_image(bytes)).overall.psnr;
+}
+
+// The grey image of an RGB one: its first channel.
+Image first_channel(const Image& in) {
+  Image out(in.width, in.height, 1, in.type);
+  for (std::size_t y = 0; y < in.height; ++y)
+    for (std::size_t x = 0; x < in.width; ++x) out.at(0, x, y) = in.at(0, x, y);
+  return out;
+}
+
+TEST(PcPhotos, DecodedImageIsTheEncodersOnEveryPhotograph) {
+  for (const char* name : {"astronaut.png", "camera.png", "chelsea.png", "coffee.png"}) {
+    const Image img = photo(name);
+    const EncodeResult r = encode_image(img, pc(RateMode::bpp, 0.5));
+    const StreamHeader h = parse_container(r.bytes).header;
+    EXPECT_EQ(h.entropy, EntropyCoder::pc) << name;
+    EXPECT_FALSE(h.reversible);
+    EXPECT_EQ(h.delta, 3277.0 / 65536.0);  // the encoder's RDOQ offset, 0.05
+    // The encoder's PSNR comes from its own indices: equal only if the decoder gets them all.
+    EXPECT_NEAR(decoded_psnr(img, r.bytes), r.psnr, 1e-9) << name;
+    EXPECT_GT(r.psnr, 25.0) << name;
+  }
+}
+
+TEST(PcPhotos, ByteBudgetsAreMetFromBelowOnRgbAndGrey) {
+  const Image rgb = photo("coffee.png");
+  for (const Image& img : {rgb, first_channel(rgb), photo("camera.png")})
+    for (double bpp : {0.125, 0.5, 2.0}) {
+      const EncodeResult r = encode_image(img, pc(RateMode::bpp, bpp));
+      const double budget = std::floor(bpp * double(img.plane_size()) / 8.0);
+      EXPECT_LE(double(r.bytes.size()), budget) << img.channels << " channels at " << bpp;
+      EXPECT_GE(double(r.bytes.size()), 0.98 * budget) << img.channels << " channels at " << bpp;
+      EXPECT_NEAR(decoded_psnr(img, r.bytes), r.psnr, 1e-9);
+    }
+}
+
+TEST(PcPhotos, PsnrTargetsAreReachedJustAbove) {
+  for (const char* name : {"camera.png", "astronaut.png"})
+    for (double target : {30.0, 40.0}) {
+      const Image img = photo(name);
+      const EncodeResult r = encode_image(img, pc(RateMode::psnr, target));
+      const double got = decoded_psnr(img, r.bytes);
+      EXPECT_NEAR(got, r.psnr, 1e-9) << name;
+      EXPECT_GE(got, target) << name;
+      EXPECT_LE(got, target + 0.1) << name;
+    }
+}
+
+TEST(PcPhotos, FixedStepCodesOncePerStepAndFinerStepsCostMore) {
+  const Image img = photo("chelsea.png");
+  const EncodeResult fine = encode_image(img, pc(RateMode::step, 4.0));
+  const EncodeResult coarse = encode_image(img, pc(RateMode::step, 16.0));
+  EXPECT_GT(fine.bytes.size(), coarse.bytes.size());
+  EXPECT_GT(fine.psnr, coarse.psnr + 3.0);
+  EXPECT_NEAR(decoded_psnr(img, fine.bytes), fine.psnr, 1e-9);
+}
+
+// Level k of a full decode: every block decoded, dequantized, the inverse stopped at level k.
+Image lower_level_of_full_decode(const std::vector<std::uint8_t>& bytes, int k) {
+  const ParsedStream s = parse_container(bytes);
+  const StreamHeader& h = s.header;
+  std::vector<std::vector<float>> planes(h.channels, std::vector<float>(h.dims[0] * h.dims[1], 0.0f));
+  std::vector<float*> pointers;
+  for (auto& p : planes) pointers.push_back(p.data());
+  decode_pc_into(s, h.dims, serial_executor(), pointers);
+  const auto t = make_stream_transform(h);
+  for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, k);
+  return image_from_components(planes, h.dims, level_extent(h.dims, k), h.type, h.colour,
+                               coarse_gain(*t, h.dims, k));
+}
+
+// The stream cut after the DATA chunk of resolution `last` (chunks: 5-byte signature, then
+// 12 bytes of framing + payload each).
+std::vector<std::uint8_t> cut_after_resolution(const std::vector<std::uint8_t>& bytes, int last) {
+  std::size_t pos = 5;
+  int data = -1;
+  while (pos + 12 <= bytes.size()) {
+    const std::string tag(bytes.begin() + std::ptrdiff_t(pos), bytes.begin() + std::ptrdiff_t(pos) + 4);
+    const std::size_t length =
+        bytes[pos + 4] | (bytes[pos + 5] << 8) | (bytes[pos + 6] << 16) | (std::size_t(bytes[pos + 7]) << 24);
+    pos += 12 + length;
+    if (tag == "DATA" && ++data == last) break;
+  }
+  return {bytes.begin(), bytes.begin() + std::ptrdiff_t(pos)};
+}
+
+TEST(PcPhotos, ReducedLevelsAreTheLowerLevelsOfAFullDecodeAndReadOnlyTheirChunks) {
+  const Image img = crop(photo("coffee.png"), 451, 299);  // odd sizes: every level's line ends
+  const EncodeResult r = encode_image(img, pc(RateMode::bpp, 1.0));
+  const int levels = parse_container(r.bytes).header.levels;
+  for (int k = 1; k <= 3; ++k) {
+    const Image reduced = decode_image(r.bytes, k);
+    EXPECT_EQ(reduced.width, level_extent({451, 299, 1}, k)[0]);
+    EXPECT_EQ(reduced.samples, lower_level_of_full_decode(r.bytes, k).samples) << "level " << k;
+    // The finer resolutions' chunks are not needed at all.
+    EXPECT_EQ(decode_image(cut_after_resolution(r.bytes, levels - k), k).samples, reduced.samples);
+    EXPECT_THROW(decode_image(cut_after_resolution(r.bytes, levels - k), 0), DecodeError);
+  }
+}
+
+TEST(PcPhotos, StreamsAndImagesDoNotDependOnTheThreadCount) {
+  const Image img = photo("astronaut.png");
+  const auto two = make_pool_executor(2), four = make_pool_executor(4);
+  for (RateMode mode : {RateMode::bpp, RateMode::psnr}) {
+    EncodeOptions o = pc(mode, mode == RateMode::bpp ? 0.75 : 33.0);
+    o.executor = &serial_executor();
+    const auto serial = encode_image(img, o).bytes;
+    o.executor = two.get();
+    EXPECT_EQ(encode_image(img, o).bytes, serial);
+    o.executor = four.get();
+    EXPECT_EQ(encode_image(img, o).bytes, serial);
+    EXPECT_EQ(decode_image(serial, 0, serial_executor()).samples, decode_image(serial, 0, *four).samples);
+  }
+}
+
+// Bands wider than 1024 split into 1024-blocks, each reading its parent at its offset.
+TEST(PcPhotos, BandsOverTheBlockSizeSplitAndStillRoundTrip) {
+  const Image camera = photo("camera.png");
+  Image wide(2200, 40, 1, camera.type);
+  for (std::size_t y = 0; y < 40; ++y)
+    for (std::size_t x = 0; x < 2200; ++x) wide.at(0, x, y) = camera.at(0, (x * 7) % 512, 200 + y);
+  const EncodeResult r = encode_image(wide, pc(RateMode::bpp, 1.5));
+  const ParsedStream s = parse_container(r.bytes);
+  EXPECT_GT(s.blocks.size(), s.bands.size());  // the first level's bands hold two blocks each
+  EXPECT_NEAR(decoded_psnr(wide, r.bytes), r.psnr, 1e-9);
+  EXPECT_EQ(decode_image(r.bytes, 1).samples, lower_level_of_full_decode(r.bytes, 1).samples);
+}
+
+// A budget under the header's own size gives the smallest stream (every index zero), as the
+// other coders do, not an error.
+TEST(PcPhotos, BudgetUnderTheSmallestStreamGivesTheSmallestStream) {
+  const Image img = crop(photo("astronaut.png"), 24, 20);
+  const EncodeResult r = encode_image(img, pc(RateMode::bpp, 1.0));
+  EXPECT_GT(double(r.bytes.size()), 1.0 * 24 * 20 / 8);
+  const ParsedStream s = parse_container(r.bytes);
+  for (const BlockEntry& e : s.index) EXPECT_EQ(e.passes, 0);
+  EXPECT_NEAR(decoded_psnr(img, r.bytes), r.psnr, 1e-9);
+}
+
+TEST(PcPhotos, LosslessIsRefusedAndTheCliNamesTheCoder) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("pupwave_pc_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::create_directories(dir);
+  const std::string cli = PUPWAVE_CLI, src = std::string(PUPWAVE_TESTIMAGES_DIR) + "/camera.png";
+  const std::string pw = (dir / "c.pw").string(), png = (dir / "c.png").string();
+  EXPECT_NE(
+      std::system((cli + " compress " + src + " " + pw + " --entropy pc --lossless 2>/dev/null").c_str()), 0);
+  ASSERT_EQ(std::system((cli + " compress " + src + " " + pw + " --entropy pc --bpp 1 >/dev/null").c_str()),
+            0);
+  EXPECT_EQ(parse_container(cli::read_file_bytes(pw)).header.entropy, EntropyCoder::pc);
+  ASSERT_EQ(std::system((cli + " decompress " + pw + " " + png + " --level 1 >/dev/null").c_str()), 0);
+  EXPECT_EQ(cli::read_image(png).width, 256u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pupwave
