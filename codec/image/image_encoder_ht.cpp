@@ -563,6 +563,13 @@ std::optional<std::pair<double, Sample>> survey_stripes(const ImagePlan& plan, c
                                    std::move(sample)};
 }
 
+// The rate model's step and the sample of a streamed size search: by stripes where the image
+// allows, else from every block.
+std::pair<double, Sample> survey_any(const ImagePlan& plan, const EncodeOptions& options, double budget) {
+  auto surveyed = survey_stripes(plan, options, budget);
+  return surveyed ? std::move(*surveyed) : survey(plan, budget);
+}
+
 // Every block of a streamed pass coded at two base steps, exp(t) (fine) and kPairRatio times
 // that (coarse), with the output squared error of each; the stream takes, per (component,
 // band), either (the header stores a step per band).
@@ -685,8 +692,7 @@ struct Mixed {
 std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& plan,
                                                                   const EncodeOptions& options,
                                                                   double budget) {
-  auto surveyed = survey_stripes(plan, options, budget);
-  auto [model, sample] = surveyed ? std::move(*surveyed) : survey(plan, budget);
+  auto [model, sample] = survey_any(plan, options, budget);
   const double coarsest = std::log(plan.peak * 4.0);
   model = std::clamp(model, plan.peak * kFinestStep, plan.peak * 4.0);
   // The fine step aims a little over the budget: the coarse one then falls under it.
@@ -694,6 +700,11 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
   t = std::min(t, coarsest);
   std::optional<Mixed> best;  // within the budget
   for (int n = 0;; ++n) {
+    // The sample is not held while the pass runs (issue 16: its coefficients were a third of
+    // a 2 bpp encode's heap): its size at t is taken first, and it is surveyed again (the same
+    // blocks, the same values) only where another pass follows.
+    const double predicted = sampled_size(plan, sample, t);
+    sample = Sample{};
     CodedPair p = code_pair(plan, t);
     const double fine = double(file_size(plan, p.fine));
     if (const auto size = mix_pair(plan, p, budget)) {
@@ -704,10 +715,11 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
     // Nothing fits even with every index zero: the coarse file is the smallest there is.
     if (!best && t >= coarsest) {
       p.fine = Coded{};
-      sample = Sample{};
       return {assemble_freeing(plan, p.coarse), std::exp(t) * kPairRatio};
     }
-    const double miss = std::log(fine) - std::log(sampled_size(plan, sample, t));
+    const double miss = std::log(fine) - std::log(predicted);
+    p = CodedPair{};  // its codewords are kept in best where they fit: the survey may take their place
+    sample = survey_any(plan, options, budget).second;
     // Passes after the first aim the fine step just within the budget (the miss is known now),
     // so a pair whose mix fell short by a band's worth needs no mixing the next time.
     const double aim = budget * (1.0 - 0.5 * kSizeTolerance);
@@ -715,8 +727,7 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
     // Past the pass budget with nothing within it yet: an octave coarser at least.
     t = std::min(n + 1 >= kMaxPairPasses && !best ? std::max(next, t + std::numbers::ln2) : next, coarsest);
   }
-  sample = Sample{};  // the last pair is freed already: the stream takes their place
-  plan.header.steps = best->steps;
+  plan.header.steps = best->steps;  // the sample and the last pair are freed already
   return {assemble_freeing(plan, best->coded), std::exp(best->t)};
 }
 
