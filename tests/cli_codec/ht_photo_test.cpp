@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codec/format/container.h"
+#include "codec/format/crc32.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "photo_crops.h"
@@ -67,6 +68,38 @@ TEST(HtPhotos, CliCompressesAndDecompresses) {
   const Image half = cli::read_image(png);
   EXPECT_EQ(half.width, (photo("coffee.png").width + 1) / 2);
   std::filesystem::remove_all(dir);
+}
+
+// Camera tiled `copies` times downwards (2048 rows or more: surveyed by stripes).
+Image tiled_down(const Image& in, std::size_t copies) {
+  Image out(in.width, in.height * copies, in.channels, in.type);
+  for (std::size_t k = 0; k < copies; ++k)
+    for (std::size_t c = 0; c < in.channels; ++c)
+      for (std::size_t y = 0; y < in.height; ++y)
+        for (std::size_t x = 0; x < in.width; ++x) out.at(c, x, y + k * in.height) = in.at(c, x, y);
+  return out;
+}
+
+// Streamed byte budgets pinned where the search needs one pass and where it needs two or three
+// (the sample is freed during a pass and surveyed again for the next: issue 16): the CRC-32 of
+// each stream as the encoder gave it when the sample was held throughout (main before that).
+TEST(HtPhotos, StreamedSearchesGiveTheStreamsTheHeldSampleGave) {
+  const Image camera = photo("camera.png"), tall = tiled_down(camera, 5);
+  const struct {
+    const Image* image;
+    double bpp;
+    std::uint32_t crc;
+  } cases[] = {
+      {&camera, 0.5, 2314872886u},  // two passes (the whole-image survey again)
+      {&tall, 0.5, 4104319899u},    // one pass
+      {&tall, 1.0, 1641079138u},    // two passes (the stripes surveyed again)
+      {&tall, 2.0, 1502570293u},    // three passes
+  };
+  for (const auto& k : cases)
+    EXPECT_EQ(crc32(encode_image(*k.image, ht(RateMode::bpp, k.bpp)).bytes), k.crc)
+        << k.image->height << " rows at " << k.bpp << " bpp";
+  const Image astronaut = photo("astronaut.png");  // RGB, two passes
+  EXPECT_EQ(crc32(encode_image(astronaut, ht(RateMode::bpp, 2.0)).bytes), 180385559u);
 }
 
 }  // namespace
