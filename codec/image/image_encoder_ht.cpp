@@ -62,6 +62,10 @@ constexpr double kSampleClose = 0.003;
 constexpr double kPairRatio = 1.0905;  // 2^(1/8)
 constexpr double kPairAim = 1.015;
 constexpr int kMaxPairPasses = 4;
+// A sample of more bytes than this is freed while a pass runs and surveyed again where another
+// pass follows (issue 16: the grey 4096^2 mosaic's took 8.7 MB, a third of its 2 bpp encode's
+// heap); a smaller one is held (a survey again costs a quarter of a pass's transform or more).
+constexpr std::size_t kHeldSampleBytes = std::size_t(1) << 20;
 // Trial encodes (each decoded and measured) for a PSNR target, met within kPsnrTolerance dB above.
 constexpr int kMaxPsnrTrials = 12;
 constexpr double kPsnrTolerance = 0.05;
@@ -349,6 +353,13 @@ struct Sample {
   std::vector<std::size_t> units;
   std::vector<std::array<std::size_t, 2>> sizes;
 };
+
+// Bytes of the coefficients a sample holds (streamed encodes).
+std::size_t sample_bytes(const Sample& s) {
+  std::size_t n = 0;
+  for (const auto& v : s.values) n += v.size() * sizeof(float);
+  return n;
+}
 
 Sample sample_blocks(const ImagePlan& plan, std::size_t every = kSampleEvery) {
   std::vector<std::vector<std::size_t>> groups(plan.header.channels * plan.bands.size());
@@ -700,11 +711,11 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
   t = std::min(t, coarsest);
   std::optional<Mixed> best;  // within the budget
   for (int n = 0;; ++n) {
-    // The sample is not held while the pass runs (issue 16: its coefficients were a third of
-    // a 2 bpp encode's heap): its size at t is taken first, and it is surveyed again (the same
-    // blocks, the same values) only where another pass follows.
+    // Its size at t is taken first: a large sample is not held while the pass runs, and is
+    // surveyed again (the same blocks, the same values) only where another pass follows.
     const double predicted = sampled_size(plan, sample, t);
-    sample = Sample{};
+    const bool freed = sample_bytes(sample) > kHeldSampleBytes;
+    if (freed) sample = Sample{};
     CodedPair p = code_pair(plan, t);
     const double fine = double(file_size(plan, p.fine));
     if (const auto size = mix_pair(plan, p, budget)) {
@@ -715,11 +726,12 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
     // Nothing fits even with every index zero: the coarse file is the smallest there is.
     if (!best && t >= coarsest) {
       p.fine = Coded{};
+      sample = Sample{};
       return {assemble_freeing(plan, p.coarse), std::exp(t) * kPairRatio};
     }
     const double miss = std::log(fine) - std::log(predicted);
     p = CodedPair{};  // its codewords are kept in best where they fit: the survey may take their place
-    sample = survey_any(plan, options, budget).second;
+    if (freed) sample = survey_any(plan, options, budget).second;
     // Passes after the first aim the fine step just within the budget (the miss is known now),
     // so a pair whose mix fell short by a band's worth needs no mixing the next time.
     const double aim = budget * (1.0 - 0.5 * kSizeTolerance);
@@ -727,7 +739,8 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
     // Past the pass budget with nothing within it yet: an octave coarser at least.
     t = std::min(n + 1 >= kMaxPairPasses && !best ? std::max(next, t + std::numbers::ln2) : next, coarsest);
   }
-  plan.header.steps = best->steps;  // the sample and the last pair are freed already
+  sample = Sample{};  // the last pair is freed already: the stream takes their place
+  plan.header.steps = best->steps;
   return {assemble_freeing(plan, best->coded), std::exp(best->t)};
 }
 
