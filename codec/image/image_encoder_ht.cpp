@@ -62,6 +62,10 @@ constexpr double kSampleClose = 0.003;
 constexpr double kPairRatio = 1.0905;  // 2^(1/8)
 constexpr double kPairAim = 1.015;
 constexpr int kMaxPairPasses = 4;
+// A sample of more bytes than this is freed while a pass runs and surveyed again where another
+// pass follows (issue 16: the grey 4096^2 mosaic's took 8.7 MB, a third of its 2 bpp encode's
+// heap); a smaller one is held (a survey again costs a quarter of a pass's transform or more).
+constexpr std::size_t kHeldSampleBytes = std::size_t(1) << 20;
 // Trial encodes (each decoded and measured) for a PSNR target, met within kPsnrTolerance dB above.
 constexpr int kMaxPsnrTrials = 12;
 constexpr double kPsnrTolerance = 0.05;
@@ -350,6 +354,13 @@ struct Sample {
   std::vector<std::array<std::size_t, 2>> sizes;
 };
 
+// Bytes of the coefficients a sample holds (streamed encodes).
+std::size_t sample_bytes(const Sample& s) {
+  std::size_t n = 0;
+  for (const auto& v : s.values) n += v.size() * sizeof(float);
+  return n;
+}
+
 Sample sample_blocks(const ImagePlan& plan, std::size_t every = kSampleEvery) {
   std::vector<std::vector<std::size_t>> groups(plan.header.channels * plan.bands.size());
   for (std::size_t i = 0; i < plan.blocks.size(); ++i)
@@ -563,6 +574,13 @@ std::optional<std::pair<double, Sample>> survey_stripes(const ImagePlan& plan, c
                                    std::move(sample)};
 }
 
+// The rate model's step and the sample of a streamed size search: by stripes where the image
+// allows, else from every block.
+std::pair<double, Sample> survey_any(const ImagePlan& plan, const EncodeOptions& options, double budget) {
+  auto surveyed = survey_stripes(plan, options, budget);
+  return surveyed ? std::move(*surveyed) : survey(plan, budget);
+}
+
 // Every block of a streamed pass coded at two base steps, exp(t) (fine) and kPairRatio times
 // that (coarse), with the output squared error of each; the stream takes, per (component,
 // band), either (the header stores a step per band).
@@ -685,8 +703,7 @@ struct Mixed {
 std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& plan,
                                                                   const EncodeOptions& options,
                                                                   double budget) {
-  auto surveyed = survey_stripes(plan, options, budget);
-  auto [model, sample] = surveyed ? std::move(*surveyed) : survey(plan, budget);
+  auto [model, sample] = survey_any(plan, options, budget);
   const double coarsest = std::log(plan.peak * 4.0);
   model = std::clamp(model, plan.peak * kFinestStep, plan.peak * 4.0);
   // The fine step aims a little over the budget: the coarse one then falls under it.
@@ -694,6 +711,11 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
   t = std::min(t, coarsest);
   std::optional<Mixed> best;  // within the budget
   for (int n = 0;; ++n) {
+    // Its size at t is taken first: a large sample is not held while the pass runs, and is
+    // surveyed again (the same blocks, the same values) only where another pass follows.
+    const double predicted = sampled_size(plan, sample, t);
+    const bool freed = sample_bytes(sample) > kHeldSampleBytes;
+    if (freed) sample = Sample{};
     CodedPair p = code_pair(plan, t);
     const double fine = double(file_size(plan, p.fine));
     if (const auto size = mix_pair(plan, p, budget)) {
@@ -707,7 +729,9 @@ std::pair<std::vector<std::uint8_t>, double> search_size_streamed(ImagePlan& pla
       sample = Sample{};
       return {assemble_freeing(plan, p.coarse), std::exp(t) * kPairRatio};
     }
-    const double miss = std::log(fine) - std::log(sampled_size(plan, sample, t));
+    const double miss = std::log(fine) - std::log(predicted);
+    p = CodedPair{};  // its codewords are kept in best where they fit: the survey may take their place
+    if (freed) sample = survey_any(plan, options, budget).second;
     // Passes after the first aim the fine step just within the budget (the miss is known now),
     // so a pair whose mix fell short by a band's worth needs no mixing the next time.
     const double aim = budget * (1.0 - 0.5 * kSizeTolerance);

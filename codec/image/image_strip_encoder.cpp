@@ -1,6 +1,7 @@
 #include "codec/image/image_strip_encoder.h"
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -13,8 +14,10 @@ namespace pupwave {
 namespace {
 
 // Rows of coefficients (interleaved) produced per level at a time: the column analysis of a
-// window costs its 2 * reach overlap rows once per chunk.
-constexpr std::size_t kChunk = 64;
+// window costs its 2 * reach overlap rows once per chunk, and each level holds a window and a
+// chunk of output rows. 32, not 64: 1.3 MiB less peak resident memory for a 4096-wide grey
+// encode (issue 16: 24 MiB); the overlap it adds costs at most ~2.5% of an ht encode's CPU.
+constexpr std::size_t kChunk = 32;
 // Most rows read, or handed from a level to the next or to a band, at a time: every receiver
 // holds what it needs plus one delivery, so small deliveries keep the buffers near their
 // least (a whole chunk at a time held 3.7 MB more for a 4096-wide image).
@@ -24,12 +27,23 @@ constexpr std::size_t kColumnChunk = 128;
 // Samples per colour-conversion task: a strip of a 4096-wide image in four.
 constexpr std::size_t kTaskSamples = std::size_t(1) << 14;
 
-// Takes rows top to bottom: `count` rows of the receiver's width, row i at rows + i * stride.
+// Takes rows top to bottom, either copied in (add: `count` rows of the receiver's width, row i
+// at rows + i * stride) or written in place (append, then appended: a level's column analysis
+// writes its output rows straight into its receivers, with no full-width staging copy).
 template <class T>
 class RowSink {
  public:
   virtual ~RowSink() = default;
-  virtual void add(const T* rows, std::size_t stride, std::size_t count) = 0;
+  virtual std::size_t width() const = 0;
+  // Room for `count` more rows (width() apart), valid until appended(count) is called.
+  virtual T* append(std::size_t count) = 0;
+  // The rows append gave are written: takes them.
+  virtual void appended(std::size_t count) = 0;
+  void add(const T* rows, std::size_t stride, std::size_t count) {
+    T* to = append(count);
+    for (std::size_t r = 0; r < count; ++r) std::copy_n(rows + r * stride, width(), to + r * width());
+    appended(count);
+  }
 };
 
 // One subband of the component: keeps its rows until a block row is complete, then hands its
@@ -52,10 +66,14 @@ class BandBlocks final : public RowSink<T> {
     data_.reserve((tallest + kPiece) * width_);
   }
 
-  void add(const T* rows, std::size_t stride, std::size_t count) override {
+  std::size_t width() const override { return width_; }
+
+  T* append(std::size_t count) override {
     data_.resize((hi_ + count - lo_) * width_);
-    for (std::size_t r = 0; r < count; ++r)
-      std::copy_n(rows + r * stride, width_, data_.data() + (hi_ + r - lo_) * width_);
+    return data_.data() + (hi_ - lo_) * width_;
+  }
+
+  void appended(std::size_t count) override {
     hi_ += count;
     while (next_ < block_rows_.size() && hi_ >= block_rows_[next_].y1) emit_row(block_rows_[next_++]);
   }
@@ -111,10 +129,15 @@ class LevelAnalysis final : public RowSink<T> {
     data_.reserve(std::min(height_, kChunk + 2 * reach_ + 2 + kPiece) * width_);
   }
 
-  void add(const T* rows, std::size_t stride, std::size_t count) override {
+  std::size_t width() const override { return width_; }
+
+  T* append(std::size_t count) override {
     data_.resize((hi_ + count - lo_) * width_);
+    return data_.data() + (hi_ - lo_) * width_;
+  }
+
+  void appended(std::size_t count) override {
     T* first = data_.data() + (hi_ - lo_) * width_;
-    for (std::size_t r = 0; r < count; ++r) std::copy_n(rows + r * stride, width_, first + r * width_);
     if (width_ > 1)
       ex_.run(count, [&](std::size_t r) { t_.analyze(std::span<T>(first + r * width_, width_)); });
     hi_ += count;
@@ -149,8 +172,15 @@ class LevelAnalysis final : public RowSink<T> {
     }
     const std::size_t w0 = window_start(p_), w1 = window_end(p1), n = w1 - w0;
     const std::size_t c0 = p_ / 2, c1 = (p1 + 1) / 2, d1 = p1 / 2, nc = coarse_size(n);
-    // Not zeroed: every row is written below. Freed after delivery, so levels do not hold them.
-    RowBuffer<T> coarse((c1 - c0) * width_), detail((d1 > c0 ? d1 - c0 : 0) * width_);
+    // The rows go straight into the receivers (a full-width copy of a chunk, nested over the
+    // levels, was 1 MiB of a 4096-wide grey encode's peak: issue 16), handed on in the order
+    // deliver gave them: coarse low and high halves, then detail (one piece each: kChunk / 2
+    // rows at most).
+    const std::size_t nd = d1 > c0 ? d1 - c0 : 0;
+    const std::array<std::size_t, 4> rows{c1 - c0, c1 - c0, nd, nd};
+    std::array<T*, 4> to{};
+    for (std::size_t o = 0; o < 4; ++o)
+      if (out_[o] != nullptr && rows[o] > 0) to[o] = out_[o]->append(rows[o]);
     const std::size_t chunks = (width_ + kColumnChunk - 1) / kColumnChunk;
     ex_.run(chunks, [&](std::size_t k) {
       const std::size_t x0 = k * kColumnChunk, nb = std::min(kColumnChunk, width_ - x0);
@@ -158,13 +188,22 @@ class LevelAnalysis final : public RowSink<T> {
       for (std::size_t i = 0; i < n; ++i)
         std::copy_n(data_.data() + (w0 + i - lo_) * width_ + x0, nb, g + i * nb);
       t_.analyze_columns(std::span<T>(g, n * nb), nb);
-      for (std::size_t j = c0; j < c1; ++j)
-        std::copy_n(g + (j - w0 / 2) * nb, nb, coarse.data() + (j - c0) * width_ + x0);
+      for (std::size_t j = c0; j < c1; ++j) scatter(g + (j - w0 / 2) * nb, x0, nb, wc, j - c0, to[0], to[1]);
       for (std::size_t j = c0; j < d1; ++j)
-        std::copy_n(g + (nc + j - w0 / 2) * nb, nb, detail.data() + (j - c0) * width_ + x0);
+        scatter(g + (nc + j - w0 / 2) * nb, x0, nb, wc, j - c0, to[2], to[3]);
     });
-    deliver(coarse.data(), c1 - c0, true, wc);
-    if (d1 > c0) deliver(detail.data(), d1 - c0, false, wc);
+    for (std::size_t o = 0; o < 4; ++o)
+      if (out_[o] != nullptr && rows[o] > 0) out_[o]->appended(rows[o]);
+  }
+
+  // Columns [x0, x0 + nb) of an output row to row `r` of the receivers: those left of `wc` to
+  // `low` (width wc), the rest to `high` (width width_ - wc); a null receiver takes nothing.
+  void scatter(const T* row, std::size_t x0, std::size_t nb, std::size_t wc, std::size_t r, T* low,
+               T* high) const {
+    const std::size_t split = std::clamp(wc, x0, x0 + nb);
+    if (low != nullptr && split > x0) std::copy_n(row, split - x0, low + r * wc + x0);
+    if (high != nullptr && x0 + nb > split)
+      std::copy_n(row + (split - x0), x0 + nb - split, high + r * (width_ - wc) + (split - wc));
   }
 
   void deliver(const T* rows, std::size_t count, bool coarse, std::size_t wc) {

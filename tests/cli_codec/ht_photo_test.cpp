@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codec/format/container.h"
+#include "codec/format/crc32.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "photo_crops.h"
@@ -67,6 +68,39 @@ TEST(HtPhotos, CliCompressesAndDecompresses) {
   const Image half = cli::read_image(png);
   EXPECT_EQ(half.width, (photo("coffee.png").width + 1) / 2);
   std::filesystem::remove_all(dir);
+}
+
+// `in` tiled `across` times by `down` times (2048 rows or more: surveyed by stripes).
+Image tiled(const Image& in, std::size_t across, std::size_t down) {
+  Image out(in.width * across, in.height * down, in.channels, in.type);
+  for (std::size_t c = 0; c < in.channels; ++c)
+    for (std::size_t y = 0; y < out.height; ++y)
+      for (std::size_t x = 0; x < out.width; ++x) out.at(c, x, y) = in.at(c, x % in.width, y % in.height);
+  return out;
+}
+
+// Streamed byte budgets pinned where the search takes one pass and where it takes two or three:
+// a sample over 1 MiB (the 1536 x 2560 tiling's) is freed during a pass and surveyed again for
+// the next (issue 16), a smaller one held. CRC-32 of each stream as the encoder gave it when
+// every sample was held throughout (main before that change).
+TEST(HtPhotos, StreamedSearchesGiveTheStreamsTheHeldSampleGave) {
+  const Image camera = photo("camera.png"), tall = tiled(camera, 1, 5), wide = tiled(camera, 3, 5);
+  const struct {
+    const Image* image;
+    double bpp;
+    std::uint32_t crc;
+  } cases[] = {
+      {&camera, 0.5, 2314872886u},  // two passes, the whole-image survey's sample held
+      {&tall, 0.5, 4104319899u},    // one pass
+      {&tall, 2.0, 1502570293u},    // three passes, the stripes' sample held
+      {&wide, 1.0, 1795309358u},    // two passes, the stripes surveyed again
+      {&wide, 1.5, 3301775392u},    // three passes, the stripes surveyed again twice
+  };
+  for (const auto& k : cases)
+    EXPECT_EQ(crc32(encode_image(*k.image, ht(RateMode::bpp, k.bpp)).bytes), k.crc)
+        << k.image->width << " x " << k.image->height << " at " << k.bpp << " bpp";
+  const Image astronaut = photo("astronaut.png");  // RGB, two passes
+  EXPECT_EQ(crc32(encode_image(astronaut, ht(RateMode::bpp, 2.0)).bytes), 180385559u);
 }
 
 }  // namespace
