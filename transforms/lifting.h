@@ -107,7 +107,8 @@ inline constexpr std::ptrdiff_t kLiftLanes = std::ptrdiff_t(64 / sizeof(T));
 // from 0 in tap order, exactly as boundary_sum forms it, with the taps outermost so the columns
 // are independent lanes (rows(k) is the source run tap k reads).
 template <class T, class Rows>
-inline void filter_lanes(Rows rows, const T* taps, std::ptrdiff_t nk, T* t, std::ptrdiff_t m, T sign) {
+[[gnu::always_inline]] inline void filter_lanes(Rows rows, const T* taps, std::ptrdiff_t nk, T* t,
+                                                std::ptrdiff_t m, T sign) {
   constexpr std::ptrdiff_t L = kLiftLanes<T>;
   T acc[L] = {};
   if (m == L) {
@@ -130,12 +131,26 @@ inline void filter_lanes(Rows rows, const T* taps, std::ptrdiff_t nk, T* t, std:
 // target[i] += sign * sum_k taps[k] * src[i + k] for i in [0, count), src holding every sample
 // the filter reaches (no index checks), a block of lanes at a time.
 template <class T>
-void filter_run(const T* src, T* target, std::ptrdiff_t count, const T* taps, std::ptrdiff_t nk, T sign) {
+[[gnu::always_inline]] inline void filter_run(const T* src, T* target, std::ptrdiff_t count, const T* taps,
+                                              std::ptrdiff_t nk, T sign) {
   constexpr std::ptrdiff_t L = kLiftLanes<T>;
   for (std::ptrdiff_t i0 = 0; i0 < count; i0 += L)
     filter_lanes([&](std::ptrdiff_t k) { return src + i0 + k; }, taps, nk, target + i0,
                  std::min(L, count - i0), sign);
 }
+
+// filter_run and columns::filter_rows for float and double, compiled in lifting_kernels.cpp
+// once per instruction set where the compiler can pick one at load time (x86-64: AVX2 and the
+// baseline); every version performs the same IEEE operations in the same order (no FMA), so
+// results do not depend on the machine.
+void run_filter(const float* src, float* target, std::ptrdiff_t count, const float* taps, std::ptrdiff_t nk,
+                float sign);
+void run_filter(const double* src, double* target, std::ptrdiff_t count, const double* taps,
+                std::ptrdiff_t nk, double sign);
+void run_filter_rows(const float* const* rows, const float* taps, std::ptrdiff_t nk, float* t,
+                     std::size_t width, float sign);
+void run_filter_rows(const double* const* rows, const double* taps, std::ptrdiff_t nk, double* t,
+                     std::size_t width, double sign);
 
 // A per-thread buffer of at least n samples for the extended source wire of apply_general.
 template <class T>
@@ -169,7 +184,7 @@ template <class T>
   for (std::ptrdiff_t q = 0; q < in0; ++q) ext[q] = source[reflect_index(q + f.offset, source.size(), b)];
   std::copy(source.data() + (in0 + f.offset), source.data() + (in1 + f.offset), ext + in0);
   for (std::ptrdiff_t q = in1; q < len; ++q) ext[q] = source[reflect_index(q + f.offset, source.size(), b)];
-  filter_run(ext, target.data(), mt, taps, nk, sign);
+  run_filter(ext, target.data(), mt, taps, nk, sign);
 }
 
 // target[i] += sign * (filtered source)[i]; sign = +1 lifts, -1 undoes the lift. The sum is

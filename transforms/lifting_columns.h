@@ -48,7 +48,8 @@ void merge(T* block, std::size_t n, std::size_t width, T* scratch) {
 // in tap order (boundary_sum's operations), a block of columns at a time with the taps
 // outermost (detail::filter_lanes), so the columns are vector lanes.
 template <class T>
-void filter_rows(const T* const* rows, const T* taps, std::ptrdiff_t nk, T* t, std::size_t width, T sign) {
+[[gnu::always_inline]] inline void filter_rows(const T* const* rows, const T* taps, std::ptrdiff_t nk, T* t,
+                                               std::size_t width, T sign) {
   constexpr auto L = detail::kLiftLanes<T>;
   const auto w = static_cast<std::ptrdiff_t>(width);
   for (std::ptrdiff_t c0 = 0; c0 < w; c0 += L)
@@ -81,7 +82,7 @@ template <class T>
     rows[k] = source + (interior ? std::size_t(j) : reflect_index(j, ms, b)) * width;
     taps[k] = static_cast<T>(f.taps[std::size_t(k)]);
   }
-  filter_rows(rows, taps, nk, t, width, sign);
+  detail::run_filter_rows(rows, taps, nk, t, width, sign);
 }
 
 // Row i of lifting::detail::apply per column: target row i += sign * filtered source rows
@@ -127,7 +128,8 @@ void apply(const T* source, std::size_t ms, Boundary b, T* target, std::size_t m
   const T** rows = detail::extension_buffer<const T*>(len);
   for (std::size_t q = 0; q < len; ++q)
     rows[q] = source + reflect_index(std::ptrdiff_t(q) + f.offset, ms, b) * width;
-  for (std::size_t i = 0; i < mt; ++i) filter_rows(rows + i, taps, nk, target + i * width, width, sign);
+  for (std::size_t i = 0; i < mt; ++i)
+    detail::run_filter_rows(rows + i, taps, nk, target + i * width, width, sign);
 }
 
 template <class T>
