@@ -2,6 +2,7 @@
 
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -9,6 +10,7 @@
 #include "transforms/lifting.h"
 #include "transforms/lifting_columns.h"
 #include "transforms/pups/design.h"
+#include "transforms/pups/stored_presets.h"
 #include "transforms/scratch.h"
 
 namespace pupwave {
@@ -170,7 +172,11 @@ Transform1DPtr make_pups_transform_from_spec(std::string_view body) {
     const std::lock_guard lock(mutex);
     if (auto it = cache.find(body); it != cache.end()) return it->second;
   }
-  const pups::FilterBank bank = pups::design(parsed);
+  // A preset's bank is stored (the same bits as its design), sparing every encoder and decoder
+  // of a stream naming it the least-squares design.
+  std::optional<pups::FilterBank> stored;
+  if (!parsed.preset.empty()) stored = pups::stored_preset_bank(parsed.preset);
+  const pups::FilterBank bank = stored ? *stored : pups::design(parsed);
   const std::string canonical = pups::canonical_spec_body(bank, parsed.boundary);
   Transform1DPtr t = make_pups_transform(bank, "pups:" + canonical, parsed.boundary);
   const std::lock_guard lock(mutex);
