@@ -5,7 +5,8 @@
 #include "transforms/lifting.h"
 #include "transforms/lifting_columns.h"
 
-#if defined(__x86_64__) && defined(__GNUC__) && defined(__ELF__) && (!defined(__clang__) || __clang_major__ >= 14)
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__ELF__) && \
+    (!defined(__clang__) || __clang_major__ >= 14)
 #define PUPWAVE_LIFTING_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define PUPWAVE_LIFTING_CLONES
