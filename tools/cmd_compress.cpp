@@ -132,7 +132,8 @@ double largest_range(const VolumeInput& in) {
 }
 
 // Volume rate flags to the library's mode. Default: lossless for integer volumes, otherwise
-// a point-wise bound of 1e-3 of the value range.
+// a point-wise bound of 1e-3 of the value range. The max-error mode's default transform is
+// kMaxErrorVolumeTransform.
 void set_volume_rate(const CompressOptions& opt, const VolumeInput& in, VolumeEncodeOptions& enc) {
   const std::vector<VolumeGrid>& grids = in.grids;
   if (opt.bpp > 0.0) throw std::invalid_argument("use --bpv (bits per voxel) for volumes, not --bpp");
@@ -154,6 +155,7 @@ void set_volume_rate(const CompressOptions& opt, const VolumeInput& in, VolumeEn
     enc.target = opt.step;
   } else {
     enc.mode = VolumeRateMode::max_error;
+    if (opt.transform.empty()) enc.transform = kMaxErrorVolumeTransform;
     const double range = largest_range(in);
     const double rel = opt.max_error_rel > 0.0 ? opt.max_error_rel : 1e-3;
     enc.target = opt.max_error > 0.0 ? opt.max_error : rel * (range > 0.0 ? range : 1.0);

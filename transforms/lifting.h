@@ -23,6 +23,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace pupwave::lifting {
 
@@ -94,8 +95,104 @@ T boundary_sum(std::span<const T> source, Boundary b, const Taps& f, std::ptrdif
   return s;
 }
 
+// Longest filter the fast paths below hold on the stack; longer ones (no design makes them)
+// take boundary_sum at every sample.
+inline constexpr std::ptrdiff_t kMaxFastTaps = 64;
+// Samples filtered per accumulator block: one cache line, few enough for the accumulators to
+// stay in vector registers. A fixed count lets the compiler unroll and vectorize the block.
+template <class T>
+inline constexpr std::ptrdiff_t kLiftLanes = std::ptrdiff_t(64 / sizeof(T));
+
+// t[c] += sign * sum_k taps[k] * rows(k)[c] for c in [0, m), m <= kLiftLanes<T>: each sum formed
+// from 0 in tap order, exactly as boundary_sum forms it, with the taps outermost so the columns
+// are independent lanes (rows(k) is the source run tap k reads).
+template <class T, class Rows>
+[[gnu::always_inline]] inline void filter_lanes(Rows rows, const T* taps, std::ptrdiff_t nk, T* t,
+                                                std::ptrdiff_t m, T sign) {
+  constexpr std::ptrdiff_t L = kLiftLanes<T>;
+  T acc[L] = {};
+  if (m == L) {
+    for (std::ptrdiff_t k = 0; k < nk; ++k) {
+      const T tk = taps[k];
+      const T* r = rows(k);
+      for (std::ptrdiff_t c = 0; c < L; ++c) acc[c] += tk * r[c];
+    }
+    for (std::ptrdiff_t c = 0; c < L; ++c) t[c] += sign * acc[c];
+    return;
+  }
+  for (std::ptrdiff_t k = 0; k < nk; ++k) {
+    const T tk = taps[k];
+    const T* r = rows(k);
+    for (std::ptrdiff_t c = 0; c < m; ++c) acc[c] += tk * r[c];
+  }
+  for (std::ptrdiff_t c = 0; c < m; ++c) t[c] += sign * acc[c];
+}
+
+// target[i] += sign * sum_k taps[k] * src[i + k] for i in [0, count), src holding every sample
+// the filter reaches (no index checks), a block of lanes at a time.
+template <class T>
+[[gnu::always_inline]] inline void filter_run(const T* src, T* target, std::ptrdiff_t count, const T* taps,
+                                              std::ptrdiff_t nk, T sign) {
+  constexpr std::ptrdiff_t L = kLiftLanes<T>;
+  for (std::ptrdiff_t i0 = 0; i0 < count; i0 += L)
+    filter_lanes([&](std::ptrdiff_t k) { return src + i0 + k; }, taps, nk, target + i0,
+                 std::min(L, count - i0), sign);
+}
+
+// filter_run and columns::filter_rows for float and double, compiled in lifting_kernels.cpp
+// once per instruction set where the compiler can pick one at load time (x86-64: AVX2 and the
+// baseline); every version performs the same IEEE operations in the same order (no FMA), so
+// results do not depend on the machine.
+void run_filter(const float* src, float* target, std::ptrdiff_t count, const float* taps, std::ptrdiff_t nk,
+                float sign);
+void run_filter(const double* src, double* target, std::ptrdiff_t count, const double* taps,
+                std::ptrdiff_t nk, double sign);
+void run_filter_rows(const float* const* rows, const float* taps, std::ptrdiff_t nk, float* t,
+                     std::size_t width, float sign);
+void run_filter_rows(const double* const* rows, const double* taps, std::ptrdiff_t nk, double* t,
+                     std::size_t width, double sign);
+
+// A per-thread buffer of at least n samples for the extended source wire of apply_general.
+template <class T>
+T* extension_buffer(std::size_t n) {
+  thread_local std::vector<T> buffer;
+  if (buffer.size() < n) buffer.resize(n);
+  return buffer.data();
+}
+
+// apply for filters of other than two taps: the source samples the targets read, reflected
+// ones included, are copied once into an extended wire (reflect_index per sample near the
+// ends, not per tap), and every target is filtered from it by filter_run without index
+// checks. Each sum gets boundary_sum's operations in its order. Not inlined, so that apply
+// (two-tap steps, the CDF hot path) stays small enough to inline into its callers.
+template <class T>
+[[gnu::noinline]] void apply_general(std::span<const T> source, Boundary b, std::span<T> target,
+                                     const Taps& f, T sign) {
+  const auto ms = static_cast<std::ptrdiff_t>(source.size());
+  const auto mt = static_cast<std::ptrdiff_t>(target.size());
+  const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
+  if (nk > kMaxFastTaps) {
+    for (std::ptrdiff_t i = 0; i < mt; ++i) target[i] += sign * boundary_sum(source, b, f, i);
+    return;
+  }
+  T taps[kMaxFastTaps];
+  for (std::ptrdiff_t k = 0; k < nk; ++k) taps[k] = static_cast<T>(f.taps[std::size_t(k)]);
+  const std::ptrdiff_t len = mt + nk - 1;  // ext[q] = the source sample at index q + offset
+  T* ext = extension_buffer<T>(std::size_t(len));
+  const std::ptrdiff_t in0 = std::clamp<std::ptrdiff_t>(-f.offset, 0, len);  // first q inside the wire
+  const std::ptrdiff_t in1 = std::clamp<std::ptrdiff_t>(ms - f.offset, in0, len);
+  for (std::ptrdiff_t q = 0; q < in0; ++q) ext[q] = source[reflect_index(q + f.offset, source.size(), b)];
+  std::copy(source.data() + (in0 + f.offset), source.data() + (in1 + f.offset), ext + in0);
+  for (std::ptrdiff_t q = in1; q < len; ++q) ext[q] = source[reflect_index(q + f.offset, source.size(), b)];
+  run_filter(ext, target.data(), mt, taps, nk, sign);
+}
+
 // target[i] += sign * (filtered source)[i]; sign = +1 lifts, -1 undoes the lift. The sum is
-// formed identically in both directions so the mirror step cancels to rounding.
+// formed identically in both directions so the mirror step cancels to rounding. The interior
+// (filter inside the source wire) runs without index checks; the samples within reach of an
+// end read the reflected source. Every sample gets boundary_sum's operations in its order,
+// except the interior of a two-tap step: a0 * x + a1 * y with a = sign * tap (the same sum,
+// negation being exact).
 template <class T>
 void apply(std::span<const T> source, Boundary b, std::span<T> target, const Taps& f, T sign) {
   if (source.empty() || target.empty() || f.taps.empty()) return;
@@ -105,18 +202,11 @@ void apply(std::span<const T> source, Boundary b, std::span<T> target, const Tap
   // Interior: i + offset >= 0 and i + offset + nk - 1 <= ms - 1.
   const std::ptrdiff_t lo = std::min(mt, std::max<std::ptrdiff_t>(0, -f.offset));
   const std::ptrdiff_t hi = std::max(lo, std::min(mt, ms - nk - f.offset + 1));
+  if (nk != 2) return apply_general(source, b, target, f, sign);
   for (std::ptrdiff_t i = 0; i < lo; ++i) target[i] += sign * boundary_sum(source, b, f, i);
   const T* src = source.data() + f.offset;
-  if (nk == 2) {  // the common two-tap step (CDF, Kobbelt K2), kept simple to vectorize
-    const T a0 = sign * static_cast<T>(f.taps[0]), a1 = sign * static_cast<T>(f.taps[1]);
-    for (std::ptrdiff_t i = lo; i < hi; ++i) target[i] += a0 * src[i] + a1 * src[i + 1];
-  } else {
-    for (std::ptrdiff_t i = lo; i < hi; ++i) {
-      T s = 0;
-      for (std::ptrdiff_t k = 0; k < nk; ++k) s += static_cast<T>(f.taps[k]) * src[i + k];
-      target[i] += sign * s;
-    }
-  }
+  const T a0 = sign * static_cast<T>(f.taps[0]), a1 = sign * static_cast<T>(f.taps[1]);
+  for (std::ptrdiff_t i = lo; i < hi; ++i) target[i] += a0 * src[i] + a1 * src[i + 1];
   for (std::ptrdiff_t i = hi; i < mt; ++i) target[i] += sign * boundary_sum(source, b, f, i);
 }
 

@@ -44,12 +44,54 @@ void merge(T* block, std::size_t n, std::size_t width, T* scratch) {
   for (std::size_t j = 0; j < no; ++j) copy_row(block + (2 * j + 1) * width, scratch + j * width, width);
 }
 
+// t[c] += sign * sum_k taps[k] * rows[k][c] for c in [0, width): each column's sum formed from 0
+// in tap order (boundary_sum's operations), a block of columns at a time with the taps
+// outermost (detail::filter_lanes), so the columns are vector lanes.
+template <class T>
+[[gnu::always_inline]] inline void filter_rows(const T* const* rows, const T* taps, std::ptrdiff_t nk, T* t,
+                                               std::size_t width, T sign) {
+  constexpr auto L = detail::kLiftLanes<T>;
+  const auto w = static_cast<std::ptrdiff_t>(width);
+  for (std::ptrdiff_t c0 = 0; c0 < w; c0 += L)
+    detail::filter_lanes([&](std::ptrdiff_t k) { return rows[k] + c0; }, taps, nk, t + c0,
+                         std::min(L, w - c0), sign);
+}
+
+// apply_row for every filter but the interior of a two-tap one: the source rows each tap reads
+// (reflected near the ends), then filter_rows. Kept out of apply_row so that stays inlinable.
+template <class T>
+[[gnu::noinline]] void apply_row_general(const T* source, std::size_t ms, Boundary b, T* t, std::ptrdiff_t i,
+                                         bool interior, const Taps& f, T sign, std::size_t width) {
+  const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
+  if (nk > detail::kMaxFastTaps) {  // longer than any design: one column at a time
+    for (std::size_t c = 0; c < width; ++c) {
+      T s = 0;
+      for (std::ptrdiff_t k = 0; k < nk; ++k) {
+        const std::ptrdiff_t j = i + f.offset + k;
+        const std::size_t jj = interior ? std::size_t(j) : reflect_index(j, ms, b);
+        s += static_cast<T>(f.taps[std::size_t(k)]) * source[jj * width + c];
+      }
+      t[c] += sign * s;
+    }
+    return;
+  }
+  const T* rows[detail::kMaxFastTaps];
+  T taps[detail::kMaxFastTaps];
+  for (std::ptrdiff_t k = 0; k < nk; ++k) {
+    const std::ptrdiff_t j = i + f.offset + k;
+    rows[k] = source + (interior ? std::size_t(j) : reflect_index(j, ms, b)) * width;
+    taps[k] = static_cast<T>(f.taps[std::size_t(k)]);
+  }
+  detail::run_filter_rows(rows, taps, nk, t, width, sign);
+}
+
 // Row i of lifting::detail::apply per column: target row i += sign * filtered source rows
 // [0, ms) (mt: rows of the target wire). One row at a time lets a transform run its steps
 // pipelined down the block (each row lifted while the rows it reads are still in cache).
 template <class T>
-void apply_row(const T* source, std::size_t ms, Boundary b, T* target, std::size_t mt, std::ptrdiff_t i,
-               const Taps& f, T sign, std::size_t width) {
+[[gnu::always_inline]] inline void apply_row(const T* source, std::size_t ms, Boundary b, T* target,
+                                             std::size_t mt, std::ptrdiff_t i, const Taps& f, T sign,
+                                             std::size_t width) {
   const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
   const auto sm = static_cast<std::ptrdiff_t>(ms), tm = static_cast<std::ptrdiff_t>(mt);
   const std::ptrdiff_t lo = std::min(tm, std::max<std::ptrdiff_t>(0, -f.offset));
@@ -64,39 +106,30 @@ void apply_row(const T* source, std::size_t ms, Boundary b, T* target, std::size
     return;
   }
   // The general form (interior of longer filters, and boundary_sum near the ends).
-  if (nk > 8) {  // long filters: one column at a time, as the 1-D code does
-    for (std::size_t c = 0; c < width; ++c) {
-      T s = 0;
-      for (std::ptrdiff_t k = 0; k < nk; ++k) {
-        const std::ptrdiff_t j = i + f.offset + k;
-        const std::size_t jj = interior ? std::size_t(j) : reflect_index(j, ms, b);
-        s += static_cast<T>(f.taps[std::size_t(k)]) * source[jj * width + c];
-      }
-      t[c] += sign * s;
-    }
-    return;
-  }
-  const T* rows[8];
-  T taps[8];
-  for (std::ptrdiff_t k = 0; k < nk; ++k) {
-    const std::ptrdiff_t j = i + f.offset + k;
-    rows[k] = source + (interior ? std::size_t(j) : reflect_index(j, ms, b)) * width;
-    taps[k] = static_cast<T>(f.taps[std::size_t(k)]);
-  }
-  for (std::size_t c = 0; c < width; ++c) {
-    T s = 0;
-    for (std::ptrdiff_t k = 0; k < nk; ++k) s += taps[k] * rows[k][c];
-    t[c] += sign * s;
-  }
+  apply_row_general(source, ms, b, t, i, interior, f, sign, width);
 }
 
 // lifting::detail::apply per column: target rows [0, mt) += sign * filtered source rows [0, ms).
+// Filters of other than two taps find the source row of every position they reach once (the
+// rows table, reflected near the ends), so each target row is filter_rows over a window of it.
 template <class T>
 void apply(const T* source, std::size_t ms, Boundary b, T* target, std::size_t mt, const Taps& f, T sign,
            std::size_t width) {
   if (ms == 0 || mt == 0 || f.taps.empty()) return;
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(mt); ++i)
-    apply_row(source, ms, b, target, mt, i, f, sign, width);
+  const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
+  if (nk == 2 || nk > detail::kMaxFastTaps) {
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(mt); ++i)
+      apply_row(source, ms, b, target, mt, i, f, sign, width);
+    return;
+  }
+  T taps[detail::kMaxFastTaps];
+  for (std::ptrdiff_t k = 0; k < nk; ++k) taps[k] = static_cast<T>(f.taps[std::size_t(k)]);
+  const std::size_t len = mt + std::size_t(nk) - 1;  // rows[q]: source row at index q + offset
+  const T** rows = detail::extension_buffer<const T*>(len);
+  for (std::size_t q = 0; q < len; ++q)
+    rows[q] = source + reflect_index(std::ptrdiff_t(q) + f.offset, ms, b) * width;
+  for (std::size_t i = 0; i < mt; ++i)
+    detail::run_filter_rows(rows + i, taps, nk, target + i * width, width, sign);
 }
 
 template <class T>

@@ -78,8 +78,10 @@ VolumeEncodeOptions encode_options(const VolumeOptions& options, const pupwave::
     case VolumeRate::lossless: enc.mode = VolumeRateMode::lossless; break;
     default: detail::fail("unknown volume rate mode " + std::to_string(int(options.rate)));
   }
+  const bool max_error = options.rate == VolumeRate::max_error || options.rate == VolumeRate::max_error_rel;
   enc.transform = !options.transform.empty()             ? options.transform
                   : options.rate == VolumeRate::lossless ? "cdf53"
+                  : max_error                            ? kMaxErrorVolumeTransform  // as the CLI
                                                          : "cdf97";
   return enc;
 }

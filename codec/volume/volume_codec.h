@@ -32,6 +32,13 @@ enum class VolumeRateMode : std::uint8_t {
               // integer grids a target below 1 allows no error at all: coded lossless instead
 };
 
+// The transform the CLI and the C/C++/Python API use for max-error volumes when none is named:
+// whole volumes are 1.7-3.5% smaller than with cdf97 (wmag91, turbulence 256^3, 1e-2..1e-4 of the
+// range) at 1.1-1.2x the encode CPU (bench/results/volume_ratio.md, session 10).
+// VolumeEncodeOptions itself keeps cdf97: the HDF5 filter's zero-padded 64^3 chunks are up to
+// 3.6% larger with this bank.
+inline constexpr const char* kMaxErrorVolumeTransform = "pups:cinpact-interp-vm4";
+
 struct VolumeEncodeOptions {
   std::string transform = "cdf97";  // spec for make_transform; lossless needs a reversible one
   int levels = -1;                  // per brick; -1: default_levels of a full brick

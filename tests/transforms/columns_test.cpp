@@ -1,7 +1,7 @@
 // Transform1D::analyze_columns / synthesize_columns: the column-block form the separable
 // engine uses gives bit-identically the results of transforming each column as a line, for
-// the transforms that override it with row-wise lifting (CDF 9/7 and 5/3) and for the
-// default (copy each column out) used by the other families.
+// the transforms that override it with row-wise lifting (CDF 9/7 and 5/3, PUPs) and for the
+// default (copy each column out) used by the other families (Kobbelt).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -45,7 +45,7 @@ template <class T>
 void expect_columns_match(const std::string& spec) {
   const auto t = make_transform(spec);
   for (std::size_t n = 1; n <= 37; ++n)
-    for (std::size_t width : {1u, 3u, 32u}) {
+    for (std::size_t width : {1u, 3u, 17u, 32u}) {
       const auto input = random_block<T>(n * width, unsigned(n * 100 + width));
       for (bool analysis : {true, false}) {
         auto block = input;
@@ -72,10 +72,15 @@ TEST(Columns, Cdf53MatchesLinesInEveryType) {
   expect_columns_match<std::int32_t>("cdf53");
 }
 
-TEST(Columns, DefaultFormMatchesLines) {
-  expect_columns_match<float>("pups:chaikin");
-  expect_columns_match<double>("kobbelt:k2");
+TEST(Columns, PupsMatchesLines) {
+  for (const char* spec :
+       {"pups:chaikin", "pups:cinpact-interp-vm4", "pups:poly16-vm4-cg", "pups:cinpact-c3-ext"}) {
+    expect_columns_match<float>(spec);
+    expect_columns_match<double>(spec);
+  }
 }
+
+TEST(Columns, DefaultFormMatchesLines) { expect_columns_match<double>("kobbelt:k2"); }
 
 }  // namespace
 }  // namespace pupwave

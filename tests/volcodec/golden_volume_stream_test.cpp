@@ -75,6 +75,18 @@ TEST(GoldenVolumeStream, ErrorBoundedStreamsAreUnchanged) {
             3636893177u);
 }
 
+// A PUPs bank through the generic lifting (6- and 9-tap steps, whole-sample boundaries, bricks
+// of 1 to 16 samples a side): values from main's build before the fast lifting paths, which
+// must leave every coefficient, hence the stream, unchanged.
+TEST(GoldenVolumeStream, PupsErrorBoundedStreamsAreUnchanged) {
+  EXPECT_EQ(stream_crc(test::smooth_volume({21, 17, 9}, VoxelType::f32, 10.0), VolumeRateMode::max_error,
+                       1e-2, "pups:cinpact-interp-vm4"),
+            3930162573u);
+  EXPECT_EQ(stream_crc(test::sphere_level_set({24, 24, 24}, 7.0, 2.5, 0.3), VolumeRateMode::max_error, 1e-3,
+                       "pups:cinpact-interp-vm4"),
+            2618069886u);
+}
+
 TEST(GoldenVolumeStream, StepStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(test::smooth_volume({19, 13, 11}, VoxelType::f64, 1.0, 3), VolumeRateMode::step, 1e-3,
                        "cdf53"),

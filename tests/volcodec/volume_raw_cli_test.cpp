@@ -54,6 +54,25 @@ TEST_F(VolumeRawCli, U8RawRoundTripsByteForByte) {
   EXPECT_EQ(cli::read_file_bytes(path("stdout.raw")), original);
 }
 
+// The CLI's max-error mode codes float volumes with pups:cinpact-interp-vm4 unless --transform
+// says otherwise: the default stream is the explicit vm4 one, not the cdf97 one.
+TEST_F(VolumeRawCli, MaxErrorDefaultsToTheVm4Bank) {
+  const Volume v = test::smooth_volume({37, 21, 11}, VoxelType::f32, 10.0);
+  cli::write_raw_volume(v, path("in.raw"));
+  auto encode = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"compress", path("in.raw"), path(out), "--dims",
+                                     "37,21,11", "--dtype",      "f32",     "--max-error-rel",
+                                     "1e-3",     "--brick",      "16",      "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return cli::read_file_bytes(path(out));
+  };
+  const auto by_default = encode("d.pw", {});
+  EXPECT_EQ(by_default, encode("vm4.pw", {"--transform", "pups:cinpact-interp-vm4"}));
+  EXPECT_NE(by_default, encode("cdf97.pw", {"--transform", "cdf97"}));
+}
+
 // An integer volume's errors are whole numbers: a bound below 1 allows none, and the CLI codes
 // the lossless stream (smaller than transform coding plus a correction for most voxels) and says
 // so; --max-error-rel 1e-3 of a u8 range (0.255) is such a bound.

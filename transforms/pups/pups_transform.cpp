@@ -2,12 +2,15 @@
 
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Dense>
 
 #include "transforms/lifting.h"
+#include "transforms/lifting_columns.h"
 #include "transforms/pups/design.h"
+#include "transforms/pups/stored_presets.h"
 #include "transforms/scratch.h"
 
 namespace pupwave {
@@ -43,7 +46,7 @@ template <class T>
 void PupsTransform::analyze_impl(std::span<T> line) const {
   const std::size_t n = line.size();
   if (n <= 1) return;  // one coarse sample, no detail: the identity (interface contract)
-  lifting::split(line, thread_scratch<T>(n / 2));
+  lifting::split(line, thread_scratch<T>(n));  // n: the vectorized split
   const std::span<T> even = line.first((n + 1) / 2), odd = line.subspan((n + 1) / 2);
   const lifting::WireBoundaries rules = wire_rules(boundary_, n);
   for (const Step& s : steps_) {
@@ -72,13 +75,65 @@ void PupsTransform::synthesize_impl(std::span<T> line) const {
     else
       lifting::undo_update<T>(odd, rules.odd, even, taps);
   }
-  lifting::merge(line, thread_scratch<T>(n / 2));
+  lifting::merge(line, thread_scratch<T>(n));  // n: the vectorized merge
+}
+
+// analyze_impl on every column of a block of rows: the same steps, each applied to whole rows
+// (lifting::columns), so every sample gets the line form's operations in the same order.
+template <class T>
+void PupsTransform::analyze_columns_impl(std::span<T> block, std::size_t width) const {
+  namespace col = lifting::columns;
+  const std::size_t n = width ? block.size() / width : 0;
+  if (n <= 1) return;
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  col::split(block.data(), n, width, thread_scratch<T>(no * width).data());
+  T* even = block.data();
+  T* odd = even + ne * width;
+  const lifting::WireBoundaries rules = wire_rules(boundary_, n);
+  for (const Step& s : steps_) {
+    const lifting::Taps taps{s.taps, s.offset};
+    if (s.predict)
+      col::apply<T>(even, ne, rules.even, odd, no, taps, T(1), width);
+    else
+      col::apply<T>(odd, no, rules.odd, even, ne, taps, T(1), width);
+  }
+  col::scale(even, ne * width, lifting_.even_scale);
+  col::scale(odd, no * width, lifting_.odd_scale);
+}
+
+template <class T>
+void PupsTransform::synthesize_columns_impl(std::span<T> block, std::size_t width) const {
+  namespace col = lifting::columns;
+  const std::size_t n = width ? block.size() / width : 0;
+  if (n <= 1) return;
+  const std::size_t ne = (n + 1) / 2, no = n / 2;
+  T* even = block.data();
+  T* odd = even + ne * width;
+  col::undo_scale(even, ne * width, lifting_.even_scale);
+  col::undo_scale(odd, no * width, lifting_.odd_scale);
+  const lifting::WireBoundaries rules = wire_rules(boundary_, n);
+  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
+    const lifting::Taps taps{it->taps, it->offset};
+    if (it->predict)
+      col::apply<T>(even, ne, rules.even, odd, no, taps, T(-1), width);
+    else
+      col::apply<T>(odd, no, rules.odd, even, ne, taps, T(-1), width);
+  }
+  col::merge(block.data(), n, width, thread_scratch<T>(no * width).data());
 }
 
 void PupsTransform::analyze(std::span<double> line) const { analyze_impl(line); }
 void PupsTransform::synthesize(std::span<double> line) const { synthesize_impl(line); }
 void PupsTransform::analyze(std::span<float> line) const { analyze_impl(line); }
 void PupsTransform::synthesize(std::span<float> line) const { synthesize_impl(line); }
+void PupsTransform::analyze_columns(std::span<float> b, std::size_t w) const { analyze_columns_impl(b, w); }
+void PupsTransform::synthesize_columns(std::span<float> b, std::size_t w) const {
+  synthesize_columns_impl(b, w);
+}
+void PupsTransform::analyze_columns(std::span<double> b, std::size_t w) const { analyze_columns_impl(b, w); }
+void PupsTransform::synthesize_columns(std::span<double> b, std::size_t w) const {
+  synthesize_columns_impl(b, w);
+}
 
 }  // namespace pups
 
@@ -117,7 +172,11 @@ Transform1DPtr make_pups_transform_from_spec(std::string_view body) {
     const std::lock_guard lock(mutex);
     if (auto it = cache.find(body); it != cache.end()) return it->second;
   }
-  const pups::FilterBank bank = pups::design(parsed);
+  // A preset's bank is stored (the same bits as its design), sparing every encoder and decoder
+  // of a stream naming it the least-squares design.
+  std::optional<pups::FilterBank> stored;
+  if (!parsed.preset.empty()) stored = pups::stored_preset_bank(parsed.preset);
+  const pups::FilterBank bank = stored ? *stored : pups::design(parsed);
   const std::string canonical = pups::canonical_spec_body(bank, parsed.boundary);
   Transform1DPtr t = make_pups_transform(bank, "pups:" + canonical, parsed.boundary);
   const std::lock_guard lock(mutex);

@@ -28,6 +28,15 @@ class PupsTransform final : public Transform1D {
   void synthesize(std::span<double> line) const override;
   void analyze(std::span<float> line) const override;
   void synthesize(std::span<float> line) const override;
+  // Row-wise lifting of every column (lifting_columns.h), bit-identical to the line form.
+  void analyze_columns(std::span<float> block, std::size_t width) const override;
+  void synthesize_columns(std::span<float> block, std::size_t width) const override;
+  void analyze_columns(std::span<double> block, std::size_t width) const override;
+  void synthesize_columns(std::span<double> block, std::size_t width) const override;
+  using Transform1D::analyze;
+  using Transform1D::analyze_columns;
+  using Transform1D::synthesize;
+  using Transform1D::synthesize_columns;
 
   // The design the transform was built from.
   const FilterBank& bank() const { return bank_; }
@@ -40,6 +49,10 @@ class PupsTransform final : public Transform1D {
   void analyze_impl(std::span<T> line) const;
   template <class T>
   void synthesize_impl(std::span<T> line) const;
+  template <class T>
+  void analyze_columns_impl(std::span<T> block, std::size_t width) const;
+  template <class T>
+  void synthesize_columns_impl(std::span<T> block, std::size_t width) const;
 
   struct Step {
     bool predict = true;

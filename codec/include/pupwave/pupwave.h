@@ -57,7 +57,8 @@ typedef enum pupwave_rate {
 } pupwave_rate;
 
 /* Encoding parameters. Defaults: images PSNR 40 dB, volumes MAX_ERROR_REL 1e-3 (the mode is
- * checked against the data kind when compressing); transform "" (cdf97, cdf53 for lossless);
+ * checked against the data kind when compressing); transform "" (cdf97, cdf53 for lossless,
+ * pups:cinpact-interp-vm4 for volumes in a max-error mode);
  * levels -1 (from the size); 64^3 bricks; zstd off; all cores. */
 typedef struct pupwave_options pupwave_options;
 pupwave_options* pupwave_options_create(void); /* NULL when out of memory */

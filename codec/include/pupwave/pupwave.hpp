@@ -74,10 +74,10 @@ struct ImageOptions {
   double target = 40.0;   // dB, bits per pixel or step; ignored for lossless
   std::string transform;  // transform spec (cdf97, cdf53, pups:..., kobbelt:...); "": cdf97, cdf53 lossless
   int levels = -1;        // decomposition levels, -1: from the image size
-  bool zstd = false;      // entropy coder: true = zstd; neither this nor ht: the bit-plane coder, lc for lossless
-  bool ht = false;        // entropy coder: high-throughput block coder (not with zstd)
-  bool pc = false;        // entropy coder: parent-context coder, lossy only (not with zstd or ht)
-  unsigned threads = 0;   // most worker threads (0: all cores, 1: the calling thread)
+  bool zstd = false;  // entropy coder: true = zstd; neither this nor ht: the bit-plane coder, lc for lossless
+  bool ht = false;    // entropy coder: high-throughput block coder (not with zstd)
+  bool pc = false;    // entropy coder: parent-context coder, lossy only (not with zstd or ht)
+  unsigned threads = 0;  // most worker threads (0: all cores, 1: the calling thread)
   // Encoder effort for bpp targets: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
   // and more memory (same format; other rates ignore it).
   int effort = 1;
@@ -134,7 +134,7 @@ enum class VolumeRate : std::uint8_t {
 struct VolumeOptions {
   VolumeRate rate = VolumeRate::max_error_rel;
   double target = 1e-3;
-  std::string transform;   // "": cdf97, cdf53 for lossless
+  std::string transform;   // "": pups:cinpact-interp-vm4 for max error, cdf53 lossless, else cdf97
   int levels = -1;         // per brick, -1: default
   std::size_t brick = 64;  // brick edge (power of two, 8..256)
   unsigned threads = 0;    // as ImageOptions::threads
