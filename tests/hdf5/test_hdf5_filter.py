@@ -148,6 +148,18 @@ def test_h5dump_and_h5ls_show_and_decode_the_filter(tmp_path, wmag91):
     assert "pupwave" in listing and "Filter-0" in listing
 
 
+def test_max_error_chunks_use_the_cli_default_bank(tmp_path, wmag91):
+    """Max-error chunks carry the bank `pupwave compress --max-error` uses (one default everywhere)."""
+    import pupwave
+    bound = 1e-3 * value_range(wmag91)
+    write(tmp_path / "t.h5", wmag91, (64, 64, 64), **hdf5_filter(max_error=bound))
+    with h5py.File(tmp_path / "t.h5", "r") as f:
+        _, chunk = f["x"].id.read_direct_chunk((0, 0, 0))
+    assert chunk[:2] == b"PW" and chunk[2] == 1  # a coded chunk (docs/hdf5.md, "Chunk format")
+    assert pupwave.info(chunk[4:])["transform"] == pupwave.info(pupwave.compress_volume(wmag91, max_error=bound))[
+        "transform"] == "pups:cinpact-interp-vm4"
+
+
 def test_hdf5_filter_is_on_the_package():
     import pupwave
 

@@ -61,7 +61,10 @@ VolumeEncodeResult encode_grid(const ChunkParams& p, std::span<const std::uint8_
 VolumeEncodeOptions volume_options(const ChunkParams& p) {
   VolumeEncodeOptions o;
   switch (p.mode) {
-    case Mode::max_error: o.mode = VolumeRateMode::max_error; break;
+    case Mode::max_error:
+      o.mode = VolumeRateMode::max_error;
+      o.transform = kMaxErrorVolumeTransform;  // as the CLI and the APIs (docs/volumes.md)
+      break;
     case Mode::bpv: o.mode = VolumeRateMode::bpv; break;
     case Mode::lossless:
       o.mode = VolumeRateMode::lossless;
