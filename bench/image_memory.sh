@@ -77,6 +77,10 @@ EOF
   rm -f "$work/big.pgm" "$work/big_pw.pgm"
 fi
 
+# Hand-written notes after this marker in the results file survive a rerun (as in codec_speed.sh).
+marker='<!-- notes: kept by image_memory.sh -->'
+notes=$( [[ -f $out ]] && sed -n "/^$marker\$/,\$p" "$out" || true)
+
 {
   echo "# Image codec memory: peak resident memory of whole processes"
   echo
@@ -101,6 +105,10 @@ fi
   else
     echo
     echo "The 32768 x 32768 part was skipped (BIG=0); see the memory section of codec_speed.md."
+  fi
+  if [[ -n $notes ]]; then
+    echo
+    echo "$notes"
   fi
 } >"$out"
 cat "$out"
