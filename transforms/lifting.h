@@ -199,10 +199,10 @@ void apply(std::span<const T> source, Boundary b, std::span<T> target, const Tap
   const auto ms = static_cast<std::ptrdiff_t>(source.size());
   const auto mt = static_cast<std::ptrdiff_t>(target.size());
   const auto nk = static_cast<std::ptrdiff_t>(f.taps.size());
+  if (nk != 2) return apply_general(source, b, target, f, sign);
   // Interior: i + offset >= 0 and i + offset + nk - 1 <= ms - 1.
   const std::ptrdiff_t lo = std::min(mt, std::max<std::ptrdiff_t>(0, -f.offset));
   const std::ptrdiff_t hi = std::max(lo, std::min(mt, ms - nk - f.offset + 1));
-  if (nk != 2) return apply_general(source, b, target, f, sign);
   for (std::ptrdiff_t i = 0; i < lo; ++i) target[i] += sign * boundary_sum(source, b, f, i);
   const T* src = source.data() + f.offset;
   const T a0 = sign * static_cast<T>(f.taps[0]), a1 = sign * static_cast<T>(f.taps[1]);

@@ -96,20 +96,15 @@ Pass code_pass(ImagePlan& plan, double t) {
 }
 
 // PSNR of the image the pass decodes to: its indices dequantized as the decoder does
-// (pc_dequantize), inverse transformed, compared as measure_psnr compares.
+// (pc_dequantize_block), inverse transformed, compared as measure_psnr compares.
 double pass_psnr(const ImageView& image, const ImagePlan& plan, const Pass& p) {
   const Extent& dims = plan.header.dims;
   const float delta = float(plan.header.delta);
   std::vector<std::vector<float>> planes(p.q.size(), std::vector<float>(dims[0] * dims[1], 0.0f));
   plan.executor->run(plan.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = plan.blocks[i];
-    const float step = p.steps[b.component * plan.bands.size() + b.band];
-    const std::size_t at = b.offset[0] + dims[0] * b.offset[1];
-    for (std::size_t y = 0; y < b.size[1]; ++y)
-      for (std::size_t x = 0; x < b.size[0]; ++x) {
-        const std::size_t k = at + y * dims[0] + x;
-        planes[b.component][k] = pc_dequantize(p.q[b.component][k], step, delta);
-      }
+    pc_dequantize_block(b, p.q[b.component].data(), planes[b.component].data(), dims[0],
+                        p.steps[b.component * plan.bands.size() + b.band], delta);
   });
   for (auto& c : planes) inverse(*plan.transform, c.data(), dims, plan.header.levels, 0, *plan.executor);
   return components_psnr(image, planes, plan.header.colour, plan.header.nonnegative);

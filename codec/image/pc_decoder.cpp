@@ -8,6 +8,14 @@
 
 namespace pupwave {
 
+void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* plane, std::size_t stride,
+                         float step, float delta) {
+  const std::size_t at = b.offset[0] + stride * b.offset[1];
+  for (std::size_t y = 0; y < b.size[1]; ++y)
+    for (std::size_t x = 0; x < b.size[0]; ++x)
+      plane[at + y * stride + x] = pc_dequantize(index[at + y * stride + x], step, delta);
+}
+
 void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
                     const std::vector<float*>& planes) {
   const std::size_t samples = region[0] * region[1];
@@ -33,13 +41,8 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
   ex.run(s.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = s.blocks[i];
     if (s.index[i].passes == 0) return;
-    const float step = s.header.steps[b.component * s.bands.size() + b.band];
-    const std::size_t at = b.offset[0] + region[0] * b.offset[1];
-    const std::int32_t* in = index[b.component].data() + at;
-    float* out = planes[b.component] + at;
-    for (std::size_t y = 0; y < b.size[1]; ++y)
-      for (std::size_t x = 0; x < b.size[0]; ++x)
-        out[y * region[0] + x] = pc_dequantize(in[y * region[0] + x], step, delta);
+    pc_dequantize_block(b, index[b.component].data(), planes[b.component], region[0],
+                        s.header.steps[b.component * s.bands.size() + b.band], delta);
   });
 }
 

@@ -20,6 +20,11 @@ inline float pc_dequantize(std::int32_t q, float step, float delta) {
   return q < 0 ? -r : r;
 }
 
+// Block b of the index plane `index` dequantized into `plane` (both `stride` samples a row, b at
+// its offset in each): the one dequantisation loop of the decoder and the encoder's PSNR.
+void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* plane, std::size_t stride,
+                         float step, float delta);
+
 // Decodes every block of the read resolutions of a pc stream (planes[c]: `region`-sized and
 // zeroed, the low corner of the Mallat layout) and dequantizes them into the planes.
 void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
