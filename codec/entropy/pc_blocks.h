@@ -18,27 +18,38 @@
 #include "codec/entropy/coef_contexts.h"
 #include "codec/entropy/coef_encoder.h"
 #include "codec/entropy/lc_blocks.h"
+#include "codec/entropy/pc_index.h"
 
 namespace pupwave {
 
+// A chroma block's second parent: the co-located luma indices (row y at origin + y * stride),
+// decoded before it. Null origin: none.
+struct PcLuma {
+  const std::int32_t* origin = nullptr;
+  std::size_t stride = 0;
+};
+
 // A block's contexts as the codeword goes: causal magnitudes and signs (padded by one column
-// each side and one row above) and the parent band. The coder's weights are 1 and 1; the bench
-// estimate (bench/nonembedded_coef.h) tries others.
+// each side and one row above), the parent band and, for chroma, the luma parent. The coder's
+// weights are 1 and 1; the bench estimate (bench/nonembedded_coef.h) tries others.
 class PcContext {
  public:
-  PcContext(std::size_t w, std::size_t h, const LcParent& parent, int parent_weight = 1, int scale = 1)
+  PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma = {}, int parent_weight = 1,
+            int scale = 1)
       : nx_(w + 2),
         a_((h + 1) * nx_, 0u),
         sg_((h + 1) * nx_, 0),
         parent_(parent),
+        luma_(luma),
         weight_(parent_weight),
         scale_(scale) {}
 
-  // Activity class and sign context of coefficient (x, y): the in-band sum 2 (W + N) + NW + NE
-  // (the volume coder's), with a parent multiplied by 2 x scale and plus weight x the parent's
-  // magnitude (the coder: 1 and 1, heavier weights measured worse); the sign context by the
-  // signs of W, N and the parent.
-  std::pair<int, std::size_t> at(std::size_t x, std::size_t y) const;
+  // Activity class and sign context of coefficient (x, y). Activity: the in-band sum
+  // 2 (W + N) + NW + NE (the volume coder's), with a parent doubled (x scale) plus weight x |P|
+  // plus the mean of P's three neighbours towards the child (horizontal, vertical, diagonal: the
+  // parent band's values nearest the child's position), plus |L| (the co-located luma index) for
+  // chroma; rounded to an integer. Sign context: the signs of W, N, the parent and the luma parent.
+  PcCtx at(std::size_t x, std::size_t y) const;
   void set(std::size_t x, std::size_t y, std::int32_t v) {
     const std::size_t p = (y + 1) * nx_ + x + 1;
     a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
@@ -50,6 +61,7 @@ class PcContext {
   std::vector<std::uint32_t> a_;
   std::vector<std::int8_t> sg_;
   LcParent parent_;
+  PcLuma luma_;
   int weight_, scale_;
 };
 
@@ -67,13 +79,13 @@ struct PcRdoq {
 // With `rdoq`, q is first re-chosen (and rewritten) as PcRdoq says. Throws IndexRangeError for an
 // index of 2^kCoefMaxBits or more.
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq = nullptr);
+                             const LcParent& parent, const PcRdoq* rdoq = nullptr, const PcLuma& luma = {});
 
 // Decodes a codeword of `bits` (the largest index's bit length, 1 .. kCoefMaxBits) into `width` x
 // `height` indices at `out` (row y at out + y * stride). Throws DecodeError unless the largest
 // decoded index has bit length `bits`.
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
-                     const LcParent& parent, std::int32_t* out, std::size_t stride);
+                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma = {});
 
 // The coders under any context (`ctx` fresh): pc_encode_block's loop (no empty-block rules),
 // returning the codeword and the largest magnitude coded, and pc_decode_block's (magnitudes
@@ -88,18 +100,16 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
 // Greedy RDOQ of one index: `v` (the signed nearest point of coefficient u, in index units)
 // becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x the bits
 // models m would spend on it now. 0 stays 0.
-std::int32_t pc_rdoq_index(CoefModels& m, int cls, std::size_t sign_ctx, float u, std::int32_t v,
-                           double lambda, double delta);
+std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& c, float u, std::int32_t v, double lambda, double delta);
 
-// Visits a block in coding order: `code(x, y, cls, sign_ctx)` codes coefficient (x, y) and
+// Visits a block in coding order: `code(x, y, ctx)` codes coefficient (x, y) and
 // returns its signed index, which joins the contexts. Returns the largest magnitude.
 template <class Code>
 std::uint32_t pc_visit(std::size_t width, std::size_t height, PcContext& ctx, Code code) {
   std::uint32_t largest = 0;
   for (std::size_t y = 0; y < height; ++y)
     for (std::size_t x = 0; x < width; ++x) {
-      const auto [cls, sc] = ctx.at(x, y);
-      const std::int32_t v = code(x, y, cls, sc);
+      const std::int32_t v = code(x, y, ctx.at(x, y));
       ctx.set(x, y, v);
       largest = std::max(largest, std::uint32_t(v < 0 ? -std::int64_t(v) : v));
     }

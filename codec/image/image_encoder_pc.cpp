@@ -14,6 +14,7 @@
 
 #include "codec/entropy/block_encoder.h"
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_groups.h"
 #include "codec/error.h"
 #include "codec/format/container.h"
 #include "codec/image/image_components.h"
@@ -58,8 +59,8 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   std::vector<std::int32_t> v(b.count());
   const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
   std::int32_t* plane = q[b.component].data();
-  CoefCodeword w =
-      pc_encode_block(v, b.size[0], b.size[1], lc_parent(plan.bands, b, plane, dims[0], nullptr), &rdoq);
+  CoefCodeword w = pc_encode_block(v, b.size[0], b.size[1], lc_parent(plan.bands, b, plane, dims[0], nullptr),
+                                   &rdoq, pc_luma(b, q, dims[0]));
   copy_block_in(v.data(), dims, b, plane);
   out.entries[i] = {w.bits, w.bits > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
   out.words[i] = std::move(w.bytes);
@@ -75,10 +76,10 @@ Pass code_pass(ImagePlan& plan, double t) {
   p.entries.resize(plan.blocks.size());
   p.words.resize(plan.blocks.size());
   p.q.assign(plan.header.channels, std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1], 0));
-  for (int r = 0; r <= plan.header.levels; ++r) {
+  for (int g = 0; g < 2 * (plan.header.levels + 1); ++g) {  // pc_group order: luma before chroma
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
-      if (plan.blocks[i].resolution == r) ids.push_back(i);
+      if (pc_group(plan.blocks[i], p.q.size()) == g) ids.push_back(i);
     std::atomic<bool> out_of_range{false};
     plan.executor->run(ids.size(), [&](std::size_t k) {
       try {

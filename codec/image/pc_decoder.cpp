@@ -3,6 +3,7 @@
 #include "codec/image/pc_decoder.h"
 
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_groups.h"
 #include "codec/error.h"
 #include "codec/image/lc_parent.h"
 
@@ -25,16 +26,21 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
   while (first < s.blocks.size()) {
     std::size_t end = first;
     while (end < s.blocks.size() && s.blocks[end].resolution == s.blocks[first].resolution) ++end;
-    ex.run(end - first, [&](std::size_t k) {
-      const std::size_t i = first + k;
-      const CodeBlock& b = s.blocks[i];
-      if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
-      require_stream(s.index[i].passes == 1, "pc code-block: pass count");
-      std::int32_t* plane = index[b.component].data();
-      pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
-                      lc_parent(s.bands, b, plane, region[0], nullptr),
-                      plane + b.offset[0] + region[0] * b.offset[1], region[0]);
-    });
+    for (int luma_parent = 0; luma_parent < 2; ++luma_parent) {  // pc_group's order
+      std::vector<std::size_t> ids;
+      for (std::size_t i = first; i < end; ++i)
+        if (pc_has_luma(s.blocks[i], index.size()) == bool(luma_parent)) ids.push_back(i);
+      ex.run(ids.size(), [&](std::size_t k) {
+        const std::size_t i = ids[k];
+        const CodeBlock& b = s.blocks[i];
+        if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
+        require_stream(s.index[i].passes == 1, "pc code-block: pass count");
+        std::int32_t* plane = index[b.component].data();
+        pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
+                        lc_parent(s.bands, b, plane, region[0], nullptr),
+                        plane + b.offset[0] + region[0] * b.offset[1], region[0], pc_luma(b, index, region[0]));
+      });
+    }
     first = end;
   }
   const float delta = float(s.header.delta);
