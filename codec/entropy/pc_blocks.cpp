@@ -17,40 +17,33 @@
 
 namespace pupwave {
 
-namespace {
-
-std::uint64_t magnitude(std::int32_t v) { return std::uint64_t(v < 0 ? -std::int64_t(v) : v); }
-int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
-
-}  // namespace
-
-PcCtx PcContext::at(std::size_t x, std::size_t y) const {
-  const std::size_t p = (y + 1) * nx_ + x + 1;
-  const std::uint64_t in = 2 * (std::uint64_t(a_[p - 1]) + a_[p - nx_]) + a_[p - 1 - nx_] + a_[p + 1 - nx_];
-  std::uint64_t s3 = 3 * in;  // three times the activity (the parent's neighbours count a third)
-  int ps = 0, ls = 0;
-  if (parent_.origin) {
-    s3 *= 2 * std::uint64_t(scale_);
-    const std::size_t cx = parent_.x0 + x, cy = parent_.y0 + y;
-    const std::size_t px = std::min(cx >> 1, parent_.width - 1), py = std::min(cy >> 1, parent_.height - 1);
-    // The parent's neighbour on the child's side in each direction (clamped to the band).
-    const std::size_t nx = (cx & 1u) ? std::min(px + 1, parent_.width - 1) : (px > 0 ? px - 1 : 0);
-    const std::size_t ny = (cy & 1u) ? std::min(py + 1, parent_.height - 1) : (py > 0 ? py - 1 : 0);
-    const std::int32_t* row = parent_.origin + py * parent_.stride;
-    const std::int32_t* side = parent_.origin + ny * parent_.stride;
-    const std::int32_t c = row[px];
-    s3 += 3 * std::uint64_t(weight_) * magnitude(c) + magnitude(row[nx]) + magnitude(side[px]) + magnitude(side[nx]);
-    ps = sign_of(c);
+PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma, int parent_weight,
+                     int scale)
+    : nx_(w + 2),
+      a_((h + 1) * nx_, 0u),
+      sg_((h + 1) * nx_, 0),
+      parent_(parent),
+      luma_(luma),
+      in_weight_(parent.origin ? 6 * std::uint64_t(scale) : 3),
+      parent_weight_(3 * std::uint64_t(parent_weight)) {
+  if (!parent_.origin) return;
+  // The parent of child c is c / 2 (clamped); its neighbour towards c is one further on c's side.
+  const auto own_and_side = [](std::size_t c, std::size_t extent) {
+    const std::size_t p = std::min(c >> 1, extent - 1);
+    return std::pair{p, (c & 1u) ? std::min(p + 1, extent - 1) : (p > 0 ? p - 1 : 0)};
+  };
+  parent_rows_.resize(2 * h);
+  for (std::size_t y = 0; y < h; ++y) {
+    const auto [py, ny] = own_and_side(parent_.y0 + y, parent_.height);
+    parent_rows_[2 * y] = parent_.origin + py * parent_.stride;
+    parent_rows_[2 * y + 1] = parent_.origin + ny * parent_.stride;
   }
-  if (luma_.origin) {
-    const std::int32_t l = luma_.origin[y * luma_.stride + x];
-    s3 += 3 * magnitude(l);
-    ls = sign_of(l);
+  parent_cols_.resize(2 * w);
+  for (std::size_t x = 0; x < w; ++x) {
+    const auto [px, nx] = own_and_side(parent_.x0 + x, parent_.width);
+    parent_cols_[2 * x] = px;
+    parent_cols_[2 * x + 1] = nx;
   }
-  const std::uint64_t s = (2 * s3 + 3) / 6;  // s3 / 3 rounded
-  const int w = int(std::bit_width(s));
-  const int cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
-  return {cls, std::size_t(27 * (ls + 1) + 9 * (sg_[p - 1] + 1) + 3 * (sg_[p - nx_] + 1) + (ps + 1))};
 }
 
 std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t v, double lambda,

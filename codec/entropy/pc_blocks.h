@@ -35,34 +35,56 @@ struct PcLuma {
 class PcContext {
  public:
   PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma = {}, int parent_weight = 1,
-            int scale = 1)
-      : nx_(w + 2),
-        a_((h + 1) * nx_, 0u),
-        sg_((h + 1) * nx_, 0),
-        parent_(parent),
-        luma_(luma),
-        weight_(parent_weight),
-        scale_(scale) {}
+            int scale = 1);
 
   // Activity class and sign context of coefficient (x, y). Activity: the in-band sum
   // 2 (W + N) + NW + NE (the volume coder's), with a parent doubled (x scale) plus weight x |P|
   // plus the mean of P's three neighbours towards the child (horizontal, vertical, diagonal: the
   // parent band's values nearest the child's position), plus |L| (the co-located luma index) for
   // chroma; rounded to an integer. Sign context: the signs of W, N, the parent and the luma parent.
-  PcCtx at(std::size_t x, std::size_t y) const;
+  PcCtx at(std::size_t x, std::size_t y) const {
+    const std::size_t p = (y + 1) * nx_ + x + 1;
+    const std::uint64_t in = 2 * (std::uint64_t(a_[p - 1]) + a_[p - nx_]) + a_[p - 1 - nx_] + a_[p + 1 - nx_];
+    std::uint64_t s3 = in_weight_ * in;  // three times the activity (P's neighbours count a third)
+    int ps = 0, ls = 0;
+    if (parent_.origin) {
+      const std::int32_t* row = parent_rows_[2 * y];
+      const std::int32_t* side = parent_rows_[2 * y + 1];
+      const std::size_t px = parent_cols_[2 * x], nx = parent_cols_[2 * x + 1];
+      const std::int32_t c = row[px];
+      s3 += parent_weight_ * magnitude(c) + magnitude(row[nx]) + magnitude(side[px]) + magnitude(side[nx]);
+      ps = sign_of(c);
+    }
+    if (luma_.origin) {
+      const std::int32_t l = luma_.origin[y * luma_.stride + x];
+      s3 += 3 * magnitude(l);
+      ls = sign_of(l);
+    }
+    const std::uint64_t s = (2 * s3 + 3) / 6;  // s3 / 3 rounded
+    const int w = int(std::bit_width(s));
+    const int cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
+    return {cls, std::size_t(27 * (ls + 1) + 9 * (sg_[p - 1] + 1) + 3 * (sg_[p - nx_] + 1) + (ps + 1))};
+  }
   void set(std::size_t x, std::size_t y, std::int32_t v) {
     const std::size_t p = (y + 1) * nx_ + x + 1;
     a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
-    sg_[p] = std::int8_t(v == 0 ? 0 : (v < 0 ? -1 : 1));
+    sg_[p] = std::int8_t(sign_of(v));
   }
 
  private:
+  static std::uint64_t magnitude(std::int32_t v) { return std::uint64_t(v < 0 ? -std::int64_t(v) : v); }
+  static int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
+
   std::size_t nx_;
   std::vector<std::uint32_t> a_;
   std::vector<std::int8_t> sg_;
   LcParent parent_;
   PcLuma luma_;
-  int weight_, scale_;
+  std::uint64_t in_weight_, parent_weight_;  // 3 (x 2 x scale with a parent) and 3 x weight
+  // Per child row y: the parent's row and its neighbour row towards y (2y, 2y + 1); per child
+  // column x: the parent's column and its neighbour column towards x (2x, 2x + 1), clamped.
+  std::vector<const std::int32_t*> parent_rows_;
+  std::vector<std::size_t> parent_cols_;
 };
 
 // Greedy rate-distortion optimised quantization inside the encoder: each index starts at the

@@ -2,7 +2,7 @@
 // The parent-context coder's binarisation of one quantization index (entropy coder 4): the
 // volume coefficient coder's (coef_index.h: Rice class, unary high part with kCoefUnaryModels
 // models a class, escape, kCoefModelledLow modelled top low bits, raw rest, sign by context)
-// with pc's own models (pc_mix.h) and sign contexts, so that the volume coder's streams stay
+// with pc's own models (pc_bit.h) and sign contexts, so that the volume coder's streams stay
 // as they are.
 
 #include <algorithm>
@@ -14,7 +14,7 @@
 
 #include "codec/entropy/coef_contexts.h"
 #include "codec/entropy/coef_index.h"
-#include "codec/entropy/pc_mix.h"
+#include "codec/entropy/pc_bit.h"
 #include "codec/entropy/range_decoder.h"
 #include "codec/entropy/range_encoder.h"
 
@@ -35,6 +35,12 @@ struct PcModels {
   std::array<std::array<PcBit, kCoefUnaryModels>, kCoefClasses> unary{};
   std::array<std::array<PcBit, 2 << kCoefModelledLow>, kCoefClasses> low{};  // as CoefModels::low
   std::array<PcBit, 2 * kPcSignContexts> sign{};                             // x2: index 1 / larger
+
+  // Class 0's unary models adapt faster (pc_bit.h).
+  static constexpr int kSilentShift = 5;
+  PcModels() {
+    for (PcBit& b : unary[0]) b.max_shift = kSilentShift;
+  }
 };
 
 // code_coef_index with pc's models: the decisions of q handed to `sink`.
