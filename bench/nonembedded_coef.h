@@ -22,10 +22,10 @@
 
 namespace pupwave::estimate {
 
-// Bits of the band's signed indices q (w x h) in `ctx` (the coder's binarisation, coef_index.h,
-// with pc_blocks' contexts). lambda > 0: greedy RDOQ from the coefficients in index units `u` as
-// in nonembedded_model.h (q rewritten to the chosen indices, pc_rdoq_index), reconstruction
-// offset delta.
+// Bits of the band's signed indices q (w x h) in `ctx` (the pc coder's binarisation and models,
+// pc_index.h, with pc_blocks' contexts; this estimate gives no block a luma parent). lambda > 0: greedy RDOQ
+// from the coefficients in index units `u` as in nonembedded_model.h (q rewritten to the chosen indices,
+// pc_rdoq_index), reconstruction offset delta.
 inline double coef_band_bits(std::vector<std::int32_t>& q, std::size_t w, std::size_t h, PcContext ctx,
                              const std::vector<float>& u, double lambda, double delta) {
   if (lambda > 0.0)

@@ -16,8 +16,8 @@ namespace pupwave {
 
 struct PcBit {
   std::uint16_t p0 = std::uint16_t(kProbabilityOne / 2);  // probability of a 0, 15 bits
-  std::uint8_t count = 0;                                  // bits seen, saturating
-  std::uint8_t max_shift = BitModel::kMaxShift;            // final rate 1 / 2^max_shift
+  std::uint8_t count = 0;                                 // bits seen, saturating
+  std::uint8_t max_shift = BitModel::kMaxShift;           // final rate 1 / 2^max_shift
 
   // As BitModel::update with kMaxShift = max_shift (identical at 6): rate 1 / 2^min(bit_width(
   // count + 1), max_shift), the probability kept inside [kMinP, 2^15 - kMinP].
@@ -25,7 +25,8 @@ struct PcBit {
     const int shift = std::min(int(std::bit_width(unsigned(count) + 1u)), int(max_shift));
     const std::uint32_t p = p0;
     const std::uint32_t down = p - (p >> shift), up = p + ((kProbabilityOne - p) >> shift);
-    p0 = std::uint16_t(std::clamp<std::uint32_t>(bit ? down : up, BitModel::kMinP, kProbabilityOne - BitModel::kMinP));
+    p0 = std::uint16_t(
+        std::clamp<std::uint32_t>(bit ? down : up, BitModel::kMinP, kProbabilityOne - BitModel::kMinP));
     count = std::uint8_t(count + (count < 255 ? 1 : 0));
   }
 };

@@ -17,8 +17,8 @@
 
 namespace pupwave {
 
-PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma, int parent_weight,
-                     int scale)
+PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma,
+                     int parent_weight, int scale)
     : nx_(w + 2),
       a_((h + 1) * nx_, 0u),
       sg_((h + 1) * nx_, 0),
@@ -70,9 +70,11 @@ std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vecto
                                                                       PcContext ctx, const PcRdoq* rdoq) {
   RangeEncoder enc;
   auto models = std::make_unique<PcModels>();
-  const std::uint32_t largest = pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
+  const std::uint32_t largest =
+      pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
         std::int32_t& v = q[y * width + x];
-        if (rdoq) v = pc_rdoq_index(*models, c, rdoq->coefficients[y * width + x], v, rdoq->lambda, rdoq->delta);
+        if (rdoq)
+          v = pc_rdoq_index(*models, c, rdoq->coefficients[y * width + x], v, rdoq->lambda, rdoq->delta);
         put_pc_index(enc, *models, c, std::uint32_t(v < 0 ? -std::int64_t(v) : v), v < 0);
         return v;
       });

@@ -34,8 +34,8 @@ struct PcLuma {
 // weights are 1 and 1; the bench estimate (bench/nonembedded_coef.h) tries others.
 class PcContext {
  public:
-  PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma = {}, int parent_weight = 1,
-            int scale = 1);
+  PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma = {},
+            int parent_weight = 1, int scale = 1);
 
   // Activity class and sign context of coefficient (x, y). Activity: the in-band sum
   // 2 (W + N) + NW + NE (the volume coder's), with a parent doubled (x scale) plus weight x |P|

@@ -26,7 +26,8 @@ inline int pc_group(const CodeBlock& b, std::size_t components) {
 }
 
 // Block b's luma parent in the index planes (rows of `stride` samples), or none.
-inline PcLuma pc_luma(const CodeBlock& b, const std::vector<std::vector<std::int32_t>>& planes, std::size_t stride) {
+inline PcLuma pc_luma(const CodeBlock& b, const std::vector<std::vector<std::int32_t>>& planes,
+                      std::size_t stride) {
   if (!pc_has_luma(b, planes.size())) return {};
   return {planes[0].data() + b.offset[0] + stride * b.offset[1], stride};
 }

@@ -101,7 +101,8 @@ inline std::uint32_t get_pc_index(RangeDecoder& dec, PcModels& m, const PcCtx& c
   const int k = coef_rice_k(c.cls);
   auto& unary = m.unary[std::size_t(c.cls)];
   std::uint64_t h = 0;
-  while (h < kCoefEscape && pc_decode_bit(dec, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]) != 0) ++h;
+  while (h < kCoefEscape && pc_decode_bit(dec, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]) != 0)
+    ++h;
   if (h == kCoefEscape) {
     const int n = int(dec.decode_raw(5));  // at most 31 bits: bounded
     h += get_coef_raw(dec, n);

@@ -38,7 +38,8 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
         std::int32_t* plane = index[b.component].data();
         pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
                         lc_parent(s.bands, b, plane, region[0], nullptr),
-                        plane + b.offset[0] + region[0] * b.offset[1], region[0], pc_luma(b, index, region[0]));
+                        plane + b.offset[0] + region[0] * b.offset[1], region[0],
+                        pc_luma(b, index, region[0]));
       });
     }
     first = end;
