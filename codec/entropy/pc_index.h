@@ -20,8 +20,8 @@
 
 namespace pupwave {
 
-// Sign contexts: the signs of W, N, the parent and the luma parent (each negative, zero or
-// positive; zero where there is none).
+// Sign contexts: the signs of W, N, the parent and the luma parent (Cb for Cr) (each negative,
+// zero or positive; zero where there is none).
 inline constexpr int kPcSignContexts = 81;
 
 // A coefficient's contexts: activity class (coef_rice_k's class) and sign context.

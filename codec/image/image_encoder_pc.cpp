@@ -76,7 +76,7 @@ Pass code_pass(ImagePlan& plan, double t) {
   p.entries.resize(plan.blocks.size());
   p.words.resize(plan.blocks.size());
   p.q.assign(plan.header.channels, std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1], 0));
-  for (int g = 0; g < 2 * (plan.header.levels + 1); ++g) {  // pc_group order: luma before chroma
+  for (int g = 0; g < kPcGroupsPerResolution * (plan.header.levels + 1); ++g) {  // pc_group order
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
       if (pc_group(plan.blocks[i], p.q.size()) == g) ids.push_back(i);

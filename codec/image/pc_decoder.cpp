@@ -26,10 +26,10 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
   while (first < s.blocks.size()) {
     std::size_t end = first;
     while (end < s.blocks.size() && s.blocks[end].resolution == s.blocks[first].resolution) ++end;
-    for (int luma_parent = 0; luma_parent < 2; ++luma_parent) {  // pc_group's order
+    for (int g = 0; g < kPcGroupsPerResolution; ++g) {  // pc_group's order inside the resolution
       std::vector<std::size_t> ids;
       for (std::size_t i = first; i < end; ++i)
-        if (pc_has_luma(s.blocks[i], index.size()) == bool(luma_parent)) ids.push_back(i);
+        if (pc_group(s.blocks[i], index.size()) % kPcGroupsPerResolution == g) ids.push_back(i);
       ex.run(ids.size(), [&](std::size_t k) {
         const std::size_t i = ids[k];
         const CodeBlock& b = s.blocks[i];

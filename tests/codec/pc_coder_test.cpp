@@ -144,6 +144,16 @@ TEST(PcCoder, LumaParentJoinsActivityAndSignContext) {
   EXPECT_EQ(ctx.at(1, 1).sign, 27 + 9 + 3 + 1u);
 }
 
+TEST(PcCoder, CbParentOfCrWeighsEightAndGivesTheSign) {
+  const std::size_t w = 4, h = 4;
+  std::vector<std::int32_t> luma(w * h, 0), cb(w * h, 0);
+  luma[1 * w + 2] = -5;
+  cb[1 * w + 2] = 1;
+  const PcContext ctx(w, h, LcParent{}, PcLuma{luma.data(), w, cb.data()});
+  EXPECT_EQ(ctx.at(2, 1).cls, 2 * 4 - 2 + 1);     // S = 15 + 24, s = 13: bit width 4, next bit 1
+  EXPECT_EQ(ctx.at(2, 1).sign, 54 + 9 + 3 + 1u);  // Cb's sign (+), not luma's
+}
+
 TEST(PcCoder, LumaParentRoundTripsAndShortensCorrelatedChroma) {
   const std::size_t w = 96, h = 80;
   const auto luma = parent_band(w, h, 4.0, 12);  // chroma magnitudes follow the luma indices
