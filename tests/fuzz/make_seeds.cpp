@@ -109,7 +109,8 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < crop.size(); ++i)
     padded[i % 16 + 20 * (i / 16 % 16 + 18 * (i / 256))] = crop[i];
   save(out / "hdf5_chunk" / "seed-f32-trimmed", h5::encode_chunk(t, as_bytes(padded)));
-  save(out / "hdf5_chunk" / "seed-f32-constant", h5::encode_chunk(t, as_bytes(std::vector<float>(t.count(), 2.5f))));
+  save(out / "hdf5_chunk" / "seed-f32-constant",
+       h5::encode_chunk(t, as_bytes(std::vector<float>(t.count(), 2.5f))));
   t.type = h5::ChunkType::u16;
   t.mode = h5::Mode::lossless;
   std::vector<std::uint8_t> u16_padded(t.count() * 2, 0x7f);

@@ -53,7 +53,8 @@ bool codes_in_place(const ChunkParams& p, std::span<const std::uint8_t> raw) {
 }
 
 // The rows of the box [0, box) of the chunk, contiguous (for the copying path of encode_box).
-std::vector<std::uint8_t> gather_box(const ChunkParams& p, std::span<const std::uint8_t> raw, const Extent& box) {
+std::vector<std::uint8_t> gather_box(const ChunkParams& p, std::span<const std::uint8_t> raw,
+                                     const Extent& box) {
   const std::size_t es = element_size(p.type);
   std::vector<std::uint8_t> out(box[0] * box[1] * box[2] * es);
   std::uint8_t* to = out.data();
@@ -70,7 +71,8 @@ VolumeEncodeResult encode_box(const ChunkParams& p, std::span<const std::uint8_t
     if (box == p.dims) return encode_volumes({to_grid(p, box, raw)}, options);
     return encode_volumes({to_grid(p, box, gather_box(p, raw, box))}, options);
   }
-  const VolumeView view = sub_view(contiguous_view(raw.data(), p.dims, stored_voxel_type(p.type)), {0, 0, 0}, box);
+  const VolumeView view =
+      sub_view(contiguous_view(raw.data(), p.dims, stored_voxel_type(p.type)), {0, 0, 0}, box);
   const VolumeView views[] = {view};
   return encode_volumes({describe_view(view, "chunk")}, views, options);
 }
@@ -132,8 +134,8 @@ Extent untrimmed_box(const ChunkParams& p, std::span<const std::uint8_t> raw) {
 
 // Kind 2: the head (extents and c), then the box's stream unless the box is empty. In bpv mode the
 // box gets the whole chunk's budget (bpv counts bits per value of the chunk, docs/hdf5.md).
-std::vector<std::uint8_t> encode_trimmed(const ChunkParams& p, std::span<const std::uint8_t> raw, const Extent& box,
-                                         VolumeEncodeOptions options) {
+std::vector<std::uint8_t> encode_trimmed(const ChunkParams& p, std::span<const std::uint8_t> raw,
+                                         const Extent& box, VolumeEncodeOptions options) {
   std::vector<std::uint8_t> payload;
   for (const std::size_t d : p.dims) put_u32(payload, d);
   for (const std::size_t d : box) put_u32(payload, d);
@@ -219,7 +221,8 @@ std::vector<std::uint8_t> encode_chunk(const ChunkParams& params, std::span<cons
   VolumeEncodeOptions options = volume_options(params);
   options.executor = executor.get();
   // Trimmed only when its decode stays within the default limit, as a volume chunk's must.
-  if (const Extent box = untrimmed_box(params, raw); box != params.dims && params.count() <= kDefaultMaxDecodePixels)
+  if (const Extent box = untrimmed_box(params, raw);
+      box != params.dims && params.count() <= kDefaultMaxDecodePixels)
     return encode_trimmed(params, raw, box, options);
   try {
     coded = encode_box(params, raw, params.dims, options);

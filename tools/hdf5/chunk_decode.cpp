@@ -42,7 +42,8 @@ std::vector<std::uint8_t> decode_grid(std::span<const std::uint8_t> stream, Chun
 }
 
 // Kind 2: every element c, then the decoded box written over the corner [0, box).
-std::vector<std::uint8_t> decode_trimmed(std::span<const std::uint8_t> payload, ChunkType type, unsigned threads) {
+std::vector<std::uint8_t> decode_trimmed(std::span<const std::uint8_t> payload, ChunkType type,
+                                         unsigned threads) {
   const std::size_t es = element_size(type);
   const TrimmedHead h = parse_trimmed_head(payload, es);
   std::vector<std::uint8_t> out(h.count() * es);
@@ -52,7 +53,8 @@ std::vector<std::uint8_t> decode_trimmed(std::span<const std::uint8_t> payload, 
   const std::size_t row = h.box[0] * es;
   for (std::size_t z = 0; z < h.box[2]; ++z)
     for (std::size_t y = 0; y < h.box[1]; ++y)
-      std::memcpy(out.data() + (z * h.chunk[1] + y) * h.chunk[0] * es, box.data() + (z * h.box[1] + y) * row, row);
+      std::memcpy(out.data() + (z * h.chunk[1] + y) * h.chunk[0] * es, box.data() + (z * h.box[1] + y) * row,
+                  row);
   return out;
 }
 

@@ -72,7 +72,8 @@ inline std::size_t get_u32(std::span<const std::uint8_t> in) {
 // stream or non-empty on every axis with one. Throws DecodeError otherwise.
 inline TrimmedHead parse_trimmed_head(std::span<const std::uint8_t> payload, std::size_t element_bytes,
                                       const DecodeLimits& limits = {}) {
-  require_stream(payload.size() >= kTrimmedExtentBytes + element_bytes, "trimmed chunk truncated in its head");
+  require_stream(payload.size() >= kTrimmedExtentBytes + element_bytes,
+                 "trimmed chunk truncated in its head");
   TrimmedHead h;
   std::uint64_t count = 1;
   for (std::size_t a = 0; a < 3; ++a) {
