@@ -1,6 +1,9 @@
 """Trimmed chunks (kind 2, docs/hdf5.md "Chunk format"): HDF5 and Zarr pad edge chunks with the fill
 value; the chunk codec codes only the box holding the data and restores the padding bit for bit."""
+import os
+import re
 import struct
+import subprocess
 
 import h5py
 import numpy as np
@@ -196,3 +199,8 @@ def test_corrupted_trimmed_chunk_fails_the_hdf5_read(tmp_path, wmag91):
         fh.write(struct.pack("<I", 65))
     with pytest.raises(OSError):
         h5_read(path)
+    run = subprocess.run(["h5dump", "--enable-error-stack", "-d", "/x", str(path)], capture_output=True, text=True,
+                         env=os.environ, timeout=60)
+    assert run.returncode != 0
+    assert re.search("pupwave filter: cannot decode chunk: .*trimmed chunk's box is larger than the chunk",
+                     run.stdout + run.stderr)
