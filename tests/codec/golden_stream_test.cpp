@@ -54,7 +54,7 @@ TEST(GoldenStream, LossyStreamsAreUnchanged) {
 TEST(GoldenStream, PcStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97",
                        EntropyCoder::pc),
-            3741300495u);
+            1262570378u);  // pcfast: the model-guided search lands at another step (the coder is unchanged)
 }
 
 }  // namespace
