@@ -3,7 +3,8 @@
 // without process start-up and image reading, which dominate a whole-process time on 512 x 512).
 // Run: build/bench/pc_cpu_bench --benchmark_min_time=1   (CPU column: one thread, so CPU = work)
 // build/bench/pc_cpu_bench --passes: the rate search's coding passes per photograph and target
-// (0.125-2 bpp, as `pupwave bench rd`, and 30-40 dB) with the size against the budget.
+// (0.125-2 bpp, as `pupwave bench rd`, and 30-40 dB) with the size against the budget;
+// `--passes IMAGE...` the same for other images.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -21,8 +22,10 @@ namespace {
 
 const char* const kPhotos[] = {"astronaut.png", "camera.png", "chelsea.png", "coffee.png"};
 
-pupwave::Image photo(const char* name) {
-  return pupwave::cli::read_image(std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name);
+pupwave::Image photo(const std::string& name) {
+  return pupwave::cli::read_image(name.find('/') == std::string::npos
+                                      ? std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name
+                                      : name);
 }
 
 void bm_encode(benchmark::State& state, const char* name, pupwave::EntropyCoder coder) {
@@ -47,10 +50,11 @@ PC_CPU("coffee.png", coffee);
 
 // One line per photograph and target: passes, and the size as a fraction of the budget (bpp)
 // or the PSNR reached (dB).
-int print_passes() {
+int print_passes(std::vector<std::string> names) {
+  if (names.empty()) names.assign(std::begin(kPhotos), std::end(kPhotos));
   std::printf("photo target passes result\n");
   int total = 0, count = 0;
-  for (const char* name : kPhotos) {
+  for (const std::string& name : names) {
     const pupwave::Image image = photo(name);
     const std::vector<double> rates{0.125, 0.25, 0.5, 1.0, 2.0}, psnrs{30.0, 35.0, 40.0};
     for (const bool bpp : {true, false})
@@ -63,7 +67,7 @@ int print_passes() {
         const auto r = pupwave::encode_image(image, o);
         const int passes = pupwave::pc_passes_of_last_encode();
         const double budget = std::floor(target * double(image.plane_size()) / 8.0);
-        std::printf("%s %g%s %d %.5f\n", name, target, bpp ? "bpp" : "dB", passes,
+        std::printf("%s %g%s %d %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes,
                     bpp ? double(r.bytes.size()) / budget : r.psnr);
         if (bpp) total += passes, ++count;
       }
@@ -75,7 +79,8 @@ int print_passes() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::strcmp(argv[1], "--passes") == 0) return print_passes();
+  if (argc > 1 && std::strcmp(argv[1], "--passes") == 0)
+    return print_passes(std::vector<std::string>(argv + 2, argv + argc));
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
