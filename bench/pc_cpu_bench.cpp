@@ -48,12 +48,12 @@ PC_CPU("camera.png", camera);
 PC_CPU("chelsea.png", chelsea);
 PC_CPU("coffee.png", coffee);
 
-// One line per photograph and target: passes, and the size as a fraction of the budget (bpp)
+// One line per photograph and target: passes, trims (pc_trims_of_last_encode), and the size as a fraction of the budget (bpp)
 // or the PSNR reached (dB).
 int print_passes(std::vector<std::string> names) {
   if (names.empty()) names.assign(std::begin(kPhotos), std::end(kPhotos));
-  std::printf("photo target passes result\n");
-  int total = 0, count = 0;
+  std::printf("photo target passes trims result\n");
+  int total = 0, trims_total = 0, count = 0;
   for (const std::string& name : names) {
     const pupwave::Image image = photo(name);
     const std::vector<double> rates{0.125, 0.25, 0.5, 1.0, 2.0}, psnrs{30.0, 35.0, 40.0};
@@ -66,13 +66,14 @@ int print_passes(std::vector<std::string> names) {
         o.measure_psnr = false;
         const auto r = pupwave::encode_image(image, o);
         const int passes = pupwave::pc_passes_of_last_encode();
+        const int trims = pupwave::pc_trims_of_last_encode();
         const double budget = std::floor(target * double(image.plane_size()) / 8.0);
-        std::printf("%s %g%s %d %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes,
+        std::printf("%s %g%s %d %d %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes, trims,
                     bpp ? double(r.bytes.size()) / budget : r.psnr);
-        if (bpp) total += passes, ++count;
+        if (bpp) total += passes, trims_total += trims, ++count;
       }
   }
-  std::printf("mean passes (bpp) %.2f\n", double(total) / count);
+  std::printf("mean passes (bpp) %.2f, trims %.2f\n", double(total) / count, double(trims_total) / count);
   return 0;
 }
 

@@ -46,6 +46,11 @@ constexpr double kBracketMargin = 0.02;
 constexpr double kBytesResidualSlope = -0.08;
 // A bracket narrower than this in log step (a sixth of the byte window's width) ends the search.
 constexpr double kNarrowestBracket = 5e-4;
+// A trim (trim()) moves the steps of a few finest bands by at most this factor (log), in at
+// most kTrimTries codings of those bands, when they hold kTrimShare of the bytes at least.
+constexpr double kTrimReach = 0.1;
+constexpr int kTrimTries = 3;
+constexpr double kTrimShare = 0.1;
 // A band's model is scaled to its real bytes when it estimates at least this many.
 constexpr double kFitBytes = 16.0;
 
@@ -122,6 +127,7 @@ void by_resolution(const ImagePlan& plan, const F& f) {
 // nothing is cleared between passes). Throws IndexRangeError when an index leaves the coder's
 // range.
 thread_local int passes_coded = 0;
+thread_local int trims_coded = 0;
 
 Pass code_pass(Coder& coder, double t) {
   ImagePlan& plan = coder.plan;
@@ -253,6 +259,85 @@ double solve_model(const Calibration<Model>& cal, double aim, double lo, double 
   return 0.5 * (lo + hi);
 }
 
+// The finest detail bands with the most bytes in pass p, up to a quarter of the samples (the
+// luma's three of an RGB image, one of a grey one): the bands a trim codes again.
+std::vector<std::size_t> trim_bands(const ImagePlan& plan, const Pass& p) {
+  const std::size_t per = plan.bands.size();
+  std::vector<double> bytes(plan.header.channels * per, 0.0);
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+    bytes[plan.blocks[i].component * per + plan.blocks[i].band] += double(p.words[i].size());
+  std::vector<std::size_t> finest;
+  for (std::size_t k = 0; k < bytes.size(); ++k)
+    if (plan.bands[k % per].level == 1 && plan.bands[k % per].orientation != 0) finest.push_back(k);
+  std::sort(finest.begin(), finest.end(), [&](std::size_t a, std::size_t b) { return bytes[a] > bytes[b]; });
+  std::vector<std::size_t> chosen;
+  std::size_t samples = 0;
+  for (std::size_t k : finest) {
+    const std::size_t n = plan.bands[k % per].count();
+    if (samples + n > plan.samples / 4 + 1) break;
+    chosen.push_back(k);
+    samples += n;
+  }
+  return chosen;
+}
+
+// Pass p, which missed the byte window by a little, brought into it by coding again only the
+// blocks of a few finest bands (trim_bands: no band is their parent, so nothing else changes)
+// at a step of their own, k x their step in p: a 1D search of log k, its first guess from the
+// bands' share of the bytes. About a quarter of a pass each; the steps stay within kTrimReach (log) of
+// the others', so the allocation barely moves. nullopt when it does not land.
+std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
+  ImagePlan& plan = coder.plan;
+  const std::vector<std::size_t> bands = trim_bands(plan, p);
+  std::vector<std::size_t> blocks;
+  double share = 0.0;
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+    if (std::find(bands.begin(), bands.end(), plan.blocks[i].component * plan.bands.size() +
+                                                  plan.blocks[i].band) != bands.end()) {
+      blocks.push_back(i);
+      share += double(p.words[i].size());
+    }
+  share /= double(p.bytes);
+  const double aim = goal - 0.5 * tolerance;
+  // The bands' bytes ~ 1 / step near these rates (measured 0.75-1.25): the log step factor
+  // that moves the file to the aim.
+  if (share < kTrimShare || std::abs(aim - p.score) > kTrimReach * share) return std::nullopt;
+  const std::vector<float> base = p.steps;
+  double k0 = 0.0, s0 = p.score, k = (p.score - aim) / share;
+  for (int n = 0; n < kTrimTries; ++n) {
+    k = std::clamp(k, -kTrimReach, kTrimReach);
+    plan.header.steps = base;
+    for (std::size_t b : bands) plan.header.steps[b] = float(base[b] * std::exp(k));
+    p.steps = plan.header.steps;
+    coder.held = std::nan("");  // the planes hold no whole pass now
+    std::atomic<bool> out_of_range{false};
+    plan.executor->run(blocks.size(), [&](std::size_t j) {
+      try {
+        code_block(plan, blocks[j], coder.q, p);
+      } catch (const IndexRangeError&) {
+        out_of_range = true;
+      }
+    });
+    ++trims_coded;
+    if (out_of_range) return std::nullopt;
+    std::size_t data = 0;
+    for (const auto& w : p.words) data += w.size();
+    p.bytes = container_size(plan.header, encode_index(p.entries).size(), data);
+    p.score = std::log(double(p.bytes));
+    if (p.score <= goal && p.score >= goal - tolerance) {
+      coder.held = p.t;  // the pass returned: hold() need not decode it
+      return p;
+    }
+    // The secant through the last two tries (the untrimmed pass first), else the first guess's slope.
+    const double next = std::abs(p.score - s0) > 1e-9 ? k + (aim - p.score) * (k - k0) / (p.score - s0)
+                                                      : k + (p.score - aim) / share;
+    k0 = k;
+    s0 = p.score;
+    k = next;
+  }
+  return std::nullopt;
+}
+
 // The pass closest to `goal` on the side where ok(score) holds: coarser passes score lower, and
 // ok holds above the goal (PSNR) or below it (log bytes, `below`). nullopt when no pass between
 // `finest` and `coarsest` is ok. Each next step is where the model, calibrated by the passes so
@@ -283,6 +368,8 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     const bool fits = ok(p->score);
     if (fits && (!best || std::abs(p->score - goal) < std::abs(best->score - goal))) best = *p;
     if (fits && close(p->score)) return best;
+    if (below)  // a byte budget missed by a little: a trim of a few bands may land it
+      if (std::optional<Pass> trimmed = trim(coder, *p, goal, tolerance)) return trimmed;
     // The pass on the side it lies of the goal (the bracket narrows).
     Pass last;
     last.t = p->t;
@@ -334,9 +421,10 @@ EncodeResult result_of(Coder& coder, Pass& p, std::optional<double> psnr) {
 }  // namespace
 
 int pc_passes_of_last_encode() { return passes_coded; }
+int pc_trims_of_last_encode() { return trims_coded; }
 
 EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
-  passes_coded = 0;
+  passes_coded = trims_coded = 0;
   if (plan.header.reversible || options.mode == RateMode::lossless)
     throw std::invalid_argument("the pc coder codes lossy streams only (--bpp, --psnr or --step)");
   plan.header.delta = std::round(kPcDelta * 65536.0) / 65536.0;  // as the header stores it

@@ -18,5 +18,7 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
 // Coding passes (whole-image ones) of the last encode_pc on the calling thread: the rate
 // search's cost, for tests and bench/pc_cpu_bench.
 int pc_passes_of_last_encode();
+// Trims (codings of a few finest bands, about a quarter of a pass each) of the last encode_pc.
+int pc_trims_of_last_encode();
 
 }  // namespace pupwave
