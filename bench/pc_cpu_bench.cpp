@@ -23,9 +23,8 @@ namespace {
 const char* const kPhotos[] = {"astronaut.png", "camera.png", "chelsea.png", "coffee.png"};
 
 pupwave::Image photo(const std::string& name) {
-  return pupwave::cli::read_image(name.find('/') == std::string::npos
-                                      ? std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name
-                                      : name);
+  return pupwave::cli::read_image(
+      name.find('/') == std::string::npos ? std::string(PUPWAVE_TESTIMAGES_DIR) + "/" + name : name);
 }
 
 void bm_encode(benchmark::State& state, const char* name, pupwave::EntropyCoder coder) {
@@ -48,8 +47,8 @@ PC_CPU("camera.png", camera);
 PC_CPU("chelsea.png", chelsea);
 PC_CPU("coffee.png", coffee);
 
-// One line per photograph and target: passes, trims (pc_trims_of_last_encode), and the size as a fraction of the budget (bpp)
-// or the PSNR reached (dB).
+// One line per photograph and target: passes, trims (pc_trims_of_last_encode), and the size as a fraction of
+// the budget (bpp) or the PSNR reached (dB).
 int print_passes(std::vector<std::string> names) {
   if (names.empty()) names.assign(std::begin(kPhotos), std::end(kPhotos));
   std::printf("photo target passes trims result\n");

@@ -139,7 +139,8 @@ Pass code_pass(Coder& coder, double t) {
   p.entries.resize(plan.blocks.size());
   p.words.resize(plan.blocks.size());
   if (coder.q.empty())
-    coder.q.assign(plan.header.channels, std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
+    coder.q.assign(plan.header.channels,
+                   std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
   coder.held = std::nan("");
   std::atomic<bool> out_of_range{false};
   by_resolution(plan, [&](std::size_t i) {
@@ -292,8 +293,8 @@ std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
   std::vector<std::size_t> blocks;
   double share = 0.0;
   for (std::size_t i = 0; i < plan.blocks.size(); ++i)
-    if (std::find(bands.begin(), bands.end(), plan.blocks[i].component * plan.bands.size() +
-                                                  plan.blocks[i].band) != bands.end()) {
+    if (std::find(bands.begin(), bands.end(),
+                  plan.blocks[i].component * plan.bands.size() + plan.blocks[i].band) != bands.end()) {
       blocks.push_back(i);
       share += double(p.words[i].size());
     }
@@ -343,9 +344,9 @@ std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
 // `finest` and `coarsest` is ok. Each next step is where the model, calibrated by the passes so
 // far, meets the aim (inside the bracket once there is one); the secant when it cannot.
 template <class Score, class Model, class Refit>
-std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool below, double slope, double finest,
-                           double coarsest, const Score& score, const Model& model, double prior,
-                           double prior_slope, const Refit& refit) {
+std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool below, double slope,
+                           double finest, double coarsest, const Score& score, const Model& model,
+                           double prior, double prior_slope, const Refit& refit) {
   const auto ok = [&](double s) { return below ? s <= goal : s >= goal; };
   const auto close = [&](double s) { return below ? s >= goal - tolerance : s <= goal + tolerance; };
   const double aim = below ? goal - 0.5 * tolerance : goal + 0.5 * tolerance;
@@ -442,7 +443,9 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     double overhead = double(container_size(plan.header, 4 * plan.blocks.size(), 0));
     std::vector<double> scale(model.band_count());
     for (std::size_t k = 0; k < scale.size(); ++k) scale[k] = prior_scale(plan, k);
-    const auto log_bytes = [&](double t) { return std::log(overhead + model.bits(std::exp(t), &scale) / 8.0); };
+    const auto log_bytes = [&](double t) {
+      return std::log(overhead + model.bits(std::exp(t), &scale) / 8.0);
+    };
     // Each band's model scaled to its bytes in the pass (the bands' ratios differ, and their mix
     // moves with the step); bands the model gives almost nothing keep their bytes as a constant.
     const auto refit = [&](const Pass& p) {
@@ -459,8 +462,9 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
         if (scale[k] == 0.0) overhead += real[k];
       }
     };
-    auto best = search(coder, std::log(budget), -std::log1p(-kSizeTolerance), true, kSizeSlope, finest, coarsest,
-                       [](const Pass& p) { return std::log(double(p.bytes)); }, log_bytes, 0.0, kBytesResidualSlope, refit);
+    auto best = search(
+        coder, std::log(budget), -std::log1p(-kSizeTolerance), true, kSizeSlope, finest, coarsest,
+        [](const Pass& p) { return std::log(double(p.bytes)); }, log_bytes, 0.0, kBytesResidualSlope, refit);
     if (best) return result_of(coder, *best, std::nullopt);
     // Under the smallest stream (header and steps alone): that stream, as the other coders do.
     Pass smallest = code_pass(coder, coarsest);
@@ -471,9 +475,9 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     const double error = model.squared_error(std::exp(t));
     return error > 0.0 ? 10.0 * std::log10(peak2 * samples / error) : 400.0;
   };
-  auto best = search(coder, options.target, kPsnrTolerance, false, kPsnrSlope, finest, coarsest,
-                     [&](const Pass& p) { return pass_psnr(coder, p); }, model_psnr, kPsnrPrior, 0.0,
-                     [](const Pass&) {});
+  auto best = search(
+      coder, options.target, kPsnrTolerance, false, kPsnrSlope, finest, coarsest,
+      [&](const Pass& p) { return pass_psnr(coder, p); }, model_psnr, kPsnrPrior, 0.0, [](const Pass&) {});
   if (!best)
     throw TargetRangeError("PSNR " + format_number(options.target) +
                            " dB is beyond the precision of lossy coding");
