@@ -99,9 +99,12 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   thread_local std::vector<std::int32_t> v;  // RDOQ overwrites every index
   u.resize(b.count());
   v.resize(b.count());
-  copy_block_out(plan.coef[b.component].data(), dims, b, u.data());
   const float inv = 1.0f / plan.header.steps[b.component * plan.bands.size() + b.band];
-  for (float& x : u) x *= inv;
+  for (std::size_t y = 0; y < b.size[1]; ++y) {  // copy_block_out and the scaling in one go
+    const float* row = plan.coef[b.component].data() + b.offset[0] + dims[0] * (b.offset[1] + y);
+    float* to = u.data() + y * b.size[0];
+    for (std::size_t x = 0; x < b.size[0]; ++x) to[x] = row[x] * inv;
+  }
   const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
   std::int32_t* plane = q[b.component].data();
   CoefCodeword w =
