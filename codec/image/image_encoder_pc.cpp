@@ -51,6 +51,7 @@ constexpr double kNarrowestBracket = 5e-4;
 constexpr double kTrimReach = 0.1;
 constexpr int kTrimTries = 3;
 constexpr double kTrimShare = 0.1;
+constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings) before none
 // A band's model is scaled to its real bytes when it estimates at least this many.
 constexpr double kFitBytes = 16.0;
 
@@ -357,6 +358,8 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
   std::optional<Pass> fine, coarse, best;  // fine: smaller step, higher score
   std::optional<Pass> before;              // the pass before the last (its t and score)
   double t = solve_model(cal, aim, finest, coarsest);
+  double bracket = INFINITY;  // the bracket's width before the last pass
+  int trims_left = kTrimSearches;
   for (int n = 0;; ++n) {
     t = std::clamp(t, finest, coarsest);
     std::optional<Pass> p = scored_pass(coder, t, score);
@@ -372,8 +375,11 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     const bool fits = ok(p->score);
     if (fits && (!best || std::abs(p->score - goal) < std::abs(best->score - goal))) best = *p;
     if (fits && close(p->score)) return best;
-    if (below)  // a byte budget missed by a little: a trim of a few bands may land it
+    if (below && trims_left > 0) {  // a budget missed by a little: a trim of a few bands may land it
+      const int coded = trims_coded;
       if (std::optional<Pass> trimmed = trim(coder, *p, goal, tolerance)) return trimmed;
+      if (trims_coded > coded) --trims_left;  // tried and missed: bytes this jumpy (small images) stop trims
+    }
     // The pass on the side it lies of the goal (the bracket narrows).
     Pass last;
     last.t = p->t;
@@ -391,6 +397,10 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     if (fine && coarse) {  // strictly inside the bracket: its ends are coded
       const double dt = hi - lo;
       next = std::clamp(next, lo + kBracketMargin * dt, hi - kBracketMargin * dt);
+      // A bracket the model's last step did not halve (bytes that jump, a model that steps on
+      // small images): bisect, so it shrinks whatever the model says.
+      if (dt > 0.5 * bracket) next = 0.5 * (lo + hi);
+      bracket = dt;
     } else if (next == last.t || next <= lo || next >= hi) {
       next = secant_t(fine, coarse, last, before, aim, slope);
     }
