@@ -250,16 +250,30 @@ struct Calibration {
 };
 
 // The log step in [lo, hi] where model(t) + residual(t) = aim (both fall as t grows), by
-// bisection; an end of the interval when the aim lies beyond it.
+// false position with the Illinois halving (the model is smooth: a few evaluations, each a
+// sum over every band's bins); an end of the interval when the aim lies beyond it.
 template <class Model>
 double solve_model(const Calibration<Model>& cal, double aim, double lo, double hi) {
   const double r = cal.residual(0.0), slope = cal.residual(1.0) - r;  // residual(t) = r + slope t
   const auto f = [&](double t) { return cal.model(t) + r + slope * t - aim; };
-  if (f(lo) <= 0.0) return lo;
-  if (f(hi) >= 0.0) return hi;
-  for (int i = 0; i < 60 && hi - lo > 1e-7; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (f(mid) > 0.0 ? lo : hi) = mid;
+  double flo = f(lo), fhi = f(hi);
+  if (flo <= 0.0) return lo;
+  if (fhi >= 0.0) return hi;
+  int side = 0;
+  for (int i = 0; i < 100 && hi - lo > 1e-5; ++i) {
+    double t = (lo * fhi - hi * flo) / (fhi - flo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    const double ft = f(t);
+    if (std::abs(ft) < 1e-7) return t;  // log bytes or dB: far inside any window
+    if (ft > 0.0) {
+      lo = t, flo = ft;
+      if (side > 0) fhi *= 0.5;
+      side = 1;
+    } else {
+      hi = t, fhi = ft;
+      if (side < 0) flo *= 0.5;
+      side = -1;
+    }
   }
   return 0.5 * (lo + hi);
 }

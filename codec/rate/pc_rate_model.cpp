@@ -26,6 +26,8 @@ constexpr int kFirstOctave = 8;
 // Bins wider than two indices hold a uniform error of a twelfth of a squared step.
 constexpr double kUniformFrom = 2.0 * kBinsPerOctave;
 
+double cube(double x) { return x * x * x; }
+
 // Lower edge of bin k (k >= 1) relative to 2^low.
 double bin_edge(int k) {
   return std::ldexp(1.0 + double(k % kBinsPerOctave) / kBinsPerOctave, k / kBinsPerOctave);
@@ -109,7 +111,7 @@ double PcRateModel::band_error(const Band& band, double step) const {
     double sum = 0.0;
     for (double x = a, q = cell(a); x < b; q += 1.0) {
       const double r = q == 0.0 ? 0.0 : q + delta_, end = std::min(b, upper(q));
-      if (end > x) sum += (std::pow(end - r, 3) - std::pow(x - r, 3)) / 3.0;
+      if (end > x) sum += (cube(end - r) - cube(x - r)) / 3.0;
       x = std::max(x, end);
     }
     error += n * sum / (b - a);
