@@ -1,6 +1,9 @@
 // decode_pc_into: the pc coder's group-wise decode (one resolution at a time, its blocks in
-// parallel, so every block's parent band is decoded before it), then dequantisation.
+// parallel, so every block's parent band is decoded before it) into the output planes, each
+// resolution dequantized in place once its children are decoded.
 #include "codec/image/pc_decoder.h"
+
+#include <cstring>
 
 #include "codec/entropy/pc_blocks.h"
 #include "codec/error.h"
@@ -16,12 +19,41 @@ void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* p
       plane[at + y * stride + x] = pc_dequantize(index[at + y * stride + x], step, delta);
 }
 
+namespace {
+
+// Block b of an index plane dequantized where it lies: the plane's storage holds int32 indices
+// until then and floats after (the same size), each sample read and written through memcpy.
+void dequantize_in_place(const CodeBlock& b, float* plane, std::size_t stride, float step, float delta) {
+  static_assert(sizeof(float) == sizeof(std::int32_t));
+  for (std::size_t y = 0; y < b.size[1]; ++y) {
+    float* row = plane + b.offset[0] + stride * (b.offset[1] + y);
+    for (std::size_t x = 0; x < b.size[0]; ++x) {
+      std::int32_t q;
+      std::memcpy(&q, row + x, sizeof q);
+      const float v = pc_dequantize(q, step, delta);
+      std::memcpy(row + x, &v, sizeof v);
+    }
+  }
+}
+
+}  // namespace
+
+// The planes hold the indices first (zeroed floats are zero indices), one resolution at a time;
+// a resolution is dequantized in place once the next one, whose parents it holds, is decoded,
+// so no second set of planes is needed.
 void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
                     const std::vector<float*>& planes) {
-  const std::size_t samples = region[0] * region[1];
-  // The parents are the decoded integer indices, not the dequantized floats.
-  std::vector<std::vector<std::int32_t>> index(planes.size(), std::vector<std::int32_t>(samples, 0));
-  std::size_t first = 0;
+  const float delta = float(s.header.delta);
+  const auto dequantize = [&](std::size_t first, std::size_t end) {
+    ex.run(end - first, [&](std::size_t k) {
+      const std::size_t i = first + k;
+      const CodeBlock& b = s.blocks[i];
+      if (s.index[i].passes == 0) return;  // zero either way
+      dequantize_in_place(b, planes[b.component], region[0],
+                          s.header.steps[b.component * s.bands.size() + b.band], delta);
+    });
+  };
+  std::size_t previous = 0, first = 0;
   while (first < s.blocks.size()) {
     std::size_t end = first;
     while (end < s.blocks.size() && s.blocks[end].resolution == s.blocks[first].resolution) ++end;
@@ -30,20 +62,17 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
       const CodeBlock& b = s.blocks[i];
       if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
       require_stream(s.index[i].passes == 1, "pc code-block: pass count");
-      std::int32_t* plane = index[b.component].data();
+      // The plane's storage as indices until dequantize_in_place (see there).
+      std::int32_t* plane = reinterpret_cast<std::int32_t*>(planes[b.component]);
       pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
                       lc_parent(s.bands, b, plane, region[0], nullptr),
                       plane + b.offset[0] + region[0] * b.offset[1], region[0]);
     });
+    dequantize(previous, first);  // the parents of this resolution, no longer needed
+    previous = first;
     first = end;
   }
-  const float delta = float(s.header.delta);
-  ex.run(s.blocks.size(), [&](std::size_t i) {
-    const CodeBlock& b = s.blocks[i];
-    if (s.index[i].passes == 0) return;
-    pc_dequantize_block(b, index[b.component].data(), planes[b.component], region[0],
-                        s.header.steps[b.component * s.bands.size() + b.band], delta);
-  });
+  dequantize(previous, first);
 }
 
 }  // namespace pupwave
