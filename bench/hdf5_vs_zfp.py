@@ -8,6 +8,8 @@ ratio lost to chunking against `pupwave compress` of the whole volume. Writes a 
     HDF5_PLUGIN_PATH=build/lib/hdf5/plugins:/usr/lib/x86_64-linux-gnu/hdf5/serial/plugins \
       PYTHONPATH=build/python /usr/bin/python3 bench/hdf5_vs_zfp.py --cli build/tools/pupwave \
       --out bench/results/hdf5_vs_zfp.md
+
+`--volumes wmag91` (or `turbulence`) runs one volume only.
 """
 import argparse
 import os
@@ -54,8 +56,11 @@ def whole_volume_bytes(cli, raw_path, shape, bound, tmp):
     return os.path.getsize(out)
 
 
-def volumes(cli, tmp, images):
-    yield "wmag91", os.path.join(images, "wmag91.float"), (91, 91, 91)
+def volumes(cli, tmp, images, which):
+    if "wmag91" in which:
+        yield "wmag91", os.path.join(images, "wmag91.float"), (91, 91, 91)
+    if "turbulence" not in which:
+        return
     turb = os.path.join(tmp, "turbulence256.raw")
     subprocess.run([cli, "generate-volume", "--kind", "turbulence", "--size", "256", turb], check=True,
                    capture_output=True)
@@ -68,10 +73,11 @@ def main():
     ap.add_argument("--cli", required=True)
     ap.add_argument("--images", default=os.path.join(here, "..", "testimages"))
     ap.add_argument("--out", required=True)
+    ap.add_argument("--volumes", default="wmag91,turbulence", help="comma-separated: wmag91, turbulence")
     args = ap.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for name, raw_path, shape in volumes(args.cli, tmp, args.images):
+        for name, raw_path, shape in volumes(args.cli, tmp, args.images, args.volumes.split(",")):
             data = np.fromfile(raw_path, dtype="<f4").reshape(shape)
             vrange = float(data.max()) - float(data.min())
             mb = data.nbytes / 1e6

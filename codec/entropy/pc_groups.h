@@ -29,12 +29,19 @@ inline int pc_group(const CodeBlock& b, std::size_t components) {
   return kPcGroupsPerResolution * b.resolution + (pc_has_luma(b, components) ? int(b.component) : 0);
 }
 
-// Block b's luma (and Cb) parents in the index planes (rows of `stride` samples), or none.
+// Block b's luma (and Cb) parents, the first and second components' index planes being `first`
+// and `second` (rows of `stride` samples), or none.
+inline PcLuma pc_luma(const CodeBlock& b, std::size_t components, const std::int32_t* first,
+                      const std::int32_t* second, std::size_t stride) {
+  if (!pc_has_luma(b, components)) return {};
+  const std::size_t at = b.offset[0] + stride * b.offset[1];
+  return {first + at, stride, b.component == 2 ? second + at : nullptr};
+}
+
 inline PcLuma pc_luma(const CodeBlock& b, const std::vector<std::vector<std::int32_t>>& planes,
                       std::size_t stride) {
   if (!pc_has_luma(b, planes.size())) return {};
-  return {planes[0].data() + b.offset[0] + stride * b.offset[1], stride,
-          b.component == 2 ? planes[1].data() + b.offset[0] + stride * b.offset[1] : nullptr};
+  return pc_luma(b, planes.size(), planes[0].data(), planes[1].data(), stride);
 }
 
 }  // namespace pupwave

@@ -1,8 +1,10 @@
 // encode_image with the pc back end. The components are transformed once and held; a coding
 // pass quantizes and codes every block at one base step, one resolution at a time (the blocks
 // of a resolution in parallel: their parents, the chosen indices one level coarser, are final),
-// with greedy RDOQ against the models' own costs. Rate targets search the base step with whole
-// passes: a secant on (log bytes or PSNR) against log step, kept inside the bracket found.
+// with greedy RDOQ against the models' own costs, into one set of index planes. Rate targets
+// search the base step with whole passes, each step where a rate model (codec/rate/
+// pc_rate_model.h: per-band magnitude histograms) calibrated by the passes so far meets the
+// target: about 2-3 passes a search where a plain secant took 3-5.
 #include "codec/image/image_encoder_pc.h"
 
 #include <algorithm>
@@ -20,7 +22,7 @@
 #include "codec/image/image_components.h"
 #include "codec/image/lc_parent.h"
 #include "codec/image/pc_decoder.h"
-#include "codec/rate/rate_guess.h"
+#include "codec/rate/pc_rate_model.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -34,17 +36,61 @@ constexpr double kPsnrTolerance = 0.05;
 // Until two points bracket the goal: bytes ~ step^-1.5, PSNR -20 log10(2) dB per octave.
 constexpr double kSizeSlope = -1.5;
 constexpr double kPsnrSlope = -20.0 / std::numbers::ln10;
+// The model's residual (real minus model score) in dB before any pass: its mean on the test
+// photographs. The residual's slope in log step is bounded by
+// kMaxResidualSlope; a step inside a bracket keeps kBracketMargin of its width from its ends.
+constexpr double kPsnrPrior = 0.0;
+constexpr double kMaxResidualSlope = 0.5;
+constexpr double kBracketMargin = 0.02;
+// After the per-band fit the residual still grows as the step gets finer (the bands' ratios
+// themselves drift): its median slope in log bytes per log step on the test photographs.
+constexpr double kBytesResidualSlope = -0.08;
+// A bracket narrower than this in log step (a sixth of the byte window's width) ends the search.
+constexpr double kNarrowestBracket = 5e-4;
+// A trim (trim()) moves the steps of a few finest bands by at most this factor (log), in at
+// most kTrimTries codings of those bands, when they hold kTrimShare of the bytes at least.
+constexpr double kTrimReach = 0.1;
+constexpr int kTrimTries = 3;
+constexpr double kTrimShare = 0.1;
+constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings) before none
+// A band's model is scaled to its real bytes when it estimates at least this many.
+constexpr double kFitBytes = 16.0;
 
-// One coding pass: every block's entry and codeword and the chosen indices (Mallat planes).
+// One coding pass: every block's entry and codeword (its indices stay in the coder's planes
+// until the next pass).
 struct Pass {
   double t = 0.0;  // log base step
   std::vector<float> steps;
   std::vector<BlockEntry> entries;
   std::vector<std::vector<std::uint8_t>> words;
-  std::vector<std::vector<std::int32_t>> q;
   std::size_t bytes = 0;  // the whole file
   double score = 0.0;     // log bytes or PSNR, by the search
 };
+
+// The passes' shared state: one set of index planes (Mallat layout per component), which hold
+// the last pass coded, and the reconstruction planes of the PSNR measurement, reused by every
+// pass that measures.
+struct Coder {
+  const ImageView& image;
+  ImagePlan& plan;
+  std::vector<std::vector<std::int32_t>> q;
+  double held = std::nan("");  // t of the pass q holds
+  std::vector<std::vector<float>> recon;
+};
+
+// Real bytes over the model's estimate in a band before any pass, by its level (1: finest) and
+// whether it is luma or a single component (chroma bands gain more from their contexts): the
+// means of the per-band fits at 1 bpp on the test photographs (0.63-0.76 for the finest luma
+// bands, 1.0-1.1 for the coarsest).
+double prior_scale(const ImagePlan& plan, std::size_t k) {
+  static constexpr double kLuma[] = {0.70, 0.79, 0.88, 0.96, 1.04, 1.09};
+  static constexpr double kChroma[] = {0.58, 0.64, 0.83, 0.95, 1.04, 1.09};
+  const Subband& band = plan.bands[k % plan.bands.size()];
+  const bool chroma = k >= plan.bands.size() && plan.header.colour != ColourTransform::none;
+  if (band.orientation == 0) return chroma ? 0.9 : 1.0;
+  const int level = std::clamp(band.level, 1, 6);
+  return (chroma ? kChroma : kLuma)[level - 1];
+}
 
 // Codes block i at the plan's steps with RDOQ, its parent read from (and its indices written
 // to) the index planes q.
@@ -52,11 +98,15 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   const CodeBlock& b = plan.blocks[i];
   const Extent& dims = plan.header.dims;
   thread_local std::vector<float> u;
+  thread_local std::vector<std::int32_t> v;  // RDOQ overwrites every index
   u.resize(b.count());
-  copy_block_out(plan.coef[b.component].data(), dims, b, u.data());
+  v.resize(b.count());
   const float inv = 1.0f / plan.header.steps[b.component * plan.bands.size() + b.band];
-  for (float& x : u) x *= inv;
-  std::vector<std::int32_t> v(b.count());
+  for (std::size_t y = 0; y < b.size[1]; ++y) {  // copy_block_out and the scaling in one go
+    const float* row = plan.coef[b.component].data() + b.offset[0] + dims[0] * (b.offset[1] + y);
+    float* to = u.data() + y * b.size[0];
+    for (std::size_t x = 0; x < b.size[0]; ++x) to[x] = row[x] * inv;
+  }
   const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
   std::int32_t* plane = q[b.component].data();
   CoefCodeword w = pc_encode_block(v, b.size[0], b.size[1], lc_parent(plan.bands, b, plane, dims[0], nullptr),
@@ -66,57 +116,100 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   out.words[i] = std::move(w.bytes);
 }
 
-// Every block coded at base step exp(t), resolution by resolution. Throws IndexRangeError when
-// an index leaves the coder's range.
-Pass code_pass(ImagePlan& plan, double t) {
+// Runs `f` on the blocks `ids` (all when empty) group by group in pc_group's order (the blocks of
+// one group in parallel), so every block's parent band and luma / Cb parents are final before it.
+template <class F>
+void by_resolution(const ImagePlan& plan, const F& f, const std::vector<std::size_t>& only = {}) {
+  for (int g = 0; g < kPcGroupsPerResolution * (plan.header.levels + 1); ++g) {
+    std::vector<std::size_t> ids;
+    for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+      if (pc_group(plan.blocks[i], plan.header.channels) == g &&
+          (only.empty() || std::find(only.begin(), only.end(), i) != only.end()))
+        ids.push_back(i);
+    plan.executor->run(ids.size(), [&](std::size_t k) { f(ids[k]); });
+  }
+}
+
+// Every block coded at base step exp(t) into the coder's planes (the blocks tile them, so
+// nothing is cleared between passes). Throws IndexRangeError when an index leaves the coder's
+// range.
+thread_local int passes_coded = 0;
+thread_local int trims_coded = 0;
+
+Pass code_pass(Coder& coder, double t) {
+  ImagePlan& plan = coder.plan;
+  ++passes_coded;
   set_base_step(plan, std::exp(t));
   Pass p;
   p.t = t;
   p.steps = plan.header.steps;
   p.entries.resize(plan.blocks.size());
   p.words.resize(plan.blocks.size());
-  p.q.assign(plan.header.channels, std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1], 0));
-  for (int g = 0; g < kPcGroupsPerResolution * (plan.header.levels + 1); ++g) {  // pc_group order
-    std::vector<std::size_t> ids;
-    for (std::size_t i = 0; i < plan.blocks.size(); ++i)
-      if (pc_group(plan.blocks[i], p.q.size()) == g) ids.push_back(i);
-    std::atomic<bool> out_of_range{false};
-    plan.executor->run(ids.size(), [&](std::size_t k) {
-      try {
-        code_block(plan, ids[k], p.q, p);
-      } catch (const IndexRangeError&) {
-        out_of_range = true;
-      }
-    });
-    if (out_of_range) throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
-  }
+  if (coder.q.empty())
+    coder.q.assign(plan.header.channels,
+                   std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
+  coder.held = std::nan("");
+  std::atomic<bool> out_of_range{false};
+  by_resolution(plan, [&](std::size_t i) {
+    if (out_of_range) return;
+    try {
+      code_block(plan, i, coder.q, p);
+    } catch (const IndexRangeError&) {
+      out_of_range = true;
+    }
+  });
+  if (out_of_range) throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
+  coder.held = t;
   std::size_t data = 0;
   for (const auto& w : p.words) data += w.size();
   p.bytes = container_size(plan.header, encode_index(p.entries).size(), data);
   return p;
 }
 
-// PSNR of the image the pass decodes to: its indices dequantized as the decoder does
-// (pc_dequantize_block), inverse transformed, compared as measure_psnr compares.
-double pass_psnr(const ImageView& image, const ImagePlan& plan, const Pass& p) {
+// The coder's planes made to hold pass p again, by decoding its codewords as the decoder does
+// (cheaper than coding it again; the indices are the same).
+void hold(Coder& coder, const Pass& p) {
+  if (coder.held == p.t) return;
+  const ImagePlan& plan = coder.plan;
+  const Extent& dims = plan.header.dims;
+  by_resolution(plan, [&](std::size_t i) {
+    const CodeBlock& b = plan.blocks[i];
+    std::int32_t* plane = coder.q[b.component].data();
+    std::int32_t* at = plane + b.offset[0] + dims[0] * b.offset[1];
+    if (p.entries[i].passes == 0) {
+      for (std::size_t y = 0; y < b.size[1]; ++y) std::fill_n(at + y * dims[0], b.size[0], 0);
+      return;
+    }
+    pc_decode_block(p.words[i], p.entries[i].planes, b.size[0], b.size[1],
+                    lc_parent(plan.bands, b, plane, dims[0], nullptr), at, dims[0],
+                    pc_luma(b, coder.q, dims[0]));
+  });
+  coder.held = p.t;
+}
+
+// PSNR of the image the pass the planes hold decodes to: its indices dequantized as the
+// decoder does (pc_dequantize_block), inverse transformed, compared as measure_psnr compares.
+double pass_psnr(Coder& coder, const Pass& p) {
+  const ImagePlan& plan = coder.plan;
   const Extent& dims = plan.header.dims;
   const float delta = float(plan.header.delta);
-  std::vector<std::vector<float>> planes(p.q.size(), std::vector<float>(dims[0] * dims[1], 0.0f));
+  coder.recon.resize(coder.q.size());
+  for (auto& c : coder.recon) c.resize(dims[0] * dims[1]);  // every sample is written below
   plan.executor->run(plan.blocks.size(), [&](std::size_t i) {
     const CodeBlock& b = plan.blocks[i];
-    pc_dequantize_block(b, p.q[b.component].data(), planes[b.component].data(), dims[0],
+    pc_dequantize_block(b, coder.q[b.component].data(), coder.recon[b.component].data(), dims[0],
                         p.steps[b.component * plan.bands.size() + b.band], delta);
   });
-  for (auto& c : planes) inverse(*plan.transform, c.data(), dims, plan.header.levels, 0, *plan.executor);
-  return components_psnr(image, planes, plan.header.colour, plan.header.nonnegative);
+  for (auto& c : coder.recon) inverse(*plan.transform, c.data(), dims, plan.header.levels, 0, *plan.executor);
+  return components_psnr(coder.image, coder.recon, plan.header.colour, plan.header.nonnegative);
 }
 
 // The pass at log step t scored by `score` (falling as t grows), or nullopt when t is too fine
 // for the coder's index range.
 template <class Score>
-std::optional<Pass> scored_pass(ImagePlan& plan, double t, const Score& score) {
+std::optional<Pass> scored_pass(Coder& coder, double t, const Score& score) {
   try {
-    Pass p = code_pass(plan, t);
+    Pass p = code_pass(coder, t);
     p.score = score(p);
     return p;
   } catch (const IndexRangeError&) {
@@ -124,11 +217,11 @@ std::optional<Pass> scored_pass(ImagePlan& plan, double t, const Score& score) {
   }
 }
 
-// The next log step aiming the score at `aim`: the secant through the bracket's ends (kept in
-// its inner 80%), else the secant through the last two passes (`last`, `before`; slope within
-// 1/4 .. 4 times `slope`), else `slope` from the last pass.
-double next_t(const std::optional<Pass>& fine, const std::optional<Pass>& coarse, const Pass& last,
-              const std::optional<Pass>& before, double aim, double slope) {
+// The secant's next log step aiming the score at `aim`, for when the model cannot say: through
+// the bracket's ends (kept in its inner 80%), else through the last two passes (`last`,
+// `before`; slope within 1/4 .. 4 times `slope`), else `slope` from the last pass.
+double secant_t(const std::optional<Pass>& fine, const std::optional<Pass>& coarse, const Pass& last,
+                const std::optional<Pass>& before, double aim, double slope) {
   if (fine && coarse) {
     const double ds = coarse->score - fine->score, dt = coarse->t - fine->t;
     double t = ds < 0.0 ? fine->t + (aim - fine->score) * dt / ds : 0.5 * (fine->t + coarse->t);
@@ -139,30 +232,190 @@ double next_t(const std::optional<Pass>& fine, const std::optional<Pass>& coarse
   return last.t + std::clamp((aim - last.score) / slope, -4.0 * std::numbers::ln2, 4.0 * std::numbers::ln2);
 }
 
+// The residual of the model against the passes (real minus model score), linear in log step
+// through the last two passes (its slope bounded: the model carries the score's shape), the
+// last one's with the slope `prior_slope`, or `prior` before any pass.
+template <class Model>
+struct Calibration {
+  const Model& model;
+  double prior = 0.0;
+  double prior_slope = 0.0;
+  std::vector<std::pair<double, double>> seen;  // (t, score) of the passes
+  double residual(double t) const {
+    if (seen.empty()) return prior;
+    const auto& [tb, sb] = seen.back();
+    const double rb = sb - model(tb);
+    if (seen.size() == 1) return rb + prior_slope * (t - tb);
+    const auto& [ta, sa] = seen[seen.size() - 2];
+    if (std::abs(tb - ta) < 1e-9) return rb;
+    const double ra = sa - model(ta);
+    return rb + std::clamp((rb - ra) / (tb - ta), -kMaxResidualSlope, kMaxResidualSlope) * (t - tb);
+  }
+};
+
+// The log step in [lo, hi] where model(t) + residual(t) = aim (both fall as t grows), by
+// false position with the Illinois halving (the model is smooth: a few evaluations, each a
+// sum over every band's bins); an end of the interval when the aim lies beyond it.
+template <class Model>
+double solve_model(const Calibration<Model>& cal, double aim, double lo, double hi) {
+  const double r = cal.residual(0.0), slope = cal.residual(1.0) - r;  // residual(t) = r + slope t
+  const auto f = [&](double t) { return cal.model(t) + r + slope * t - aim; };
+  double flo = f(lo), fhi = f(hi);
+  if (flo <= 0.0) return lo;
+  if (fhi >= 0.0) return hi;
+  int side = 0;
+  for (int i = 0; i < 100 && hi - lo > 1e-5; ++i) {
+    double t = (lo * fhi - hi * flo) / (fhi - flo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    const double ft = f(t);
+    if (std::abs(ft) < 1e-7) return t;  // log bytes or dB: far inside any window
+    if (ft > 0.0) {
+      lo = t, flo = ft;
+      if (side > 0) fhi *= 0.5;
+      side = 1;
+    } else {
+      hi = t, fhi = ft;
+      if (side < 0) flo *= 0.5;
+      side = -1;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The finest detail bands with the most bytes in pass p, up to a quarter of the samples (the
+// luma's three of an RGB image, one of a grey one): the bands a trim codes again.
+std::vector<std::size_t> trim_bands(const ImagePlan& plan, const Pass& p) {
+  const std::size_t per = plan.bands.size();
+  std::vector<double> bytes(plan.header.channels * per, 0.0);
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+    bytes[plan.blocks[i].component * per + plan.blocks[i].band] += double(p.words[i].size());
+  std::vector<std::size_t> finest;
+  for (std::size_t k = 0; k < bytes.size(); ++k)
+    if (plan.bands[k % per].level == 1 && plan.bands[k % per].orientation != 0) finest.push_back(k);
+  std::sort(finest.begin(), finest.end(), [&](std::size_t a, std::size_t b) { return bytes[a] > bytes[b]; });
+  std::vector<std::size_t> chosen;
+  std::size_t samples = 0;
+  for (std::size_t k : finest) {
+    const std::size_t n = plan.bands[k % per].count();
+    if (samples + n > plan.samples / 4 + 1) break;
+    chosen.push_back(k);
+    samples += n;
+  }
+  return chosen;
+}
+
+// Pass p, which missed the byte window by a little, brought into it by coding again only the
+// blocks of a few finest bands (trim_bands: no band is their parent, so nothing else changes)
+// at a step of their own, k x their step in p: a 1D search of log k, its first guess from the
+// bands' share of the bytes. About a quarter of a pass each; the steps stay within kTrimReach (log) of
+// the others', so the allocation barely moves. nullopt when it does not land.
+std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
+  ImagePlan& plan = coder.plan;
+  const std::vector<std::size_t> bands = trim_bands(plan, p);
+  std::vector<std::size_t> blocks;
+  double share = 0.0;
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+    if (std::find(bands.begin(), bands.end(),
+                  plan.blocks[i].component * plan.bands.size() + plan.blocks[i].band) != bands.end()) {
+      blocks.push_back(i);
+      share += double(p.words[i].size());
+    }
+  // The blocks whose luma / Cb parents a trimmed block is (pc_luma) are coded again after it,
+  // at their own steps (their contexts change, so must their codewords).
+  const std::size_t trimmed = blocks.size();
+  for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+    const CodeBlock& c = plan.blocks[i];
+    if (!pc_has_luma(c, plan.header.channels)) continue;
+    for (std::size_t j = 0; j < trimmed; ++j) {
+      const CodeBlock& t = plan.blocks[blocks[j]];
+      if (t.band == c.band && t.offset == c.offset && t.component < c.component &&
+          std::find(blocks.begin(), blocks.end(), i) == blocks.end()) {
+        blocks.push_back(i);
+        break;
+      }
+    }
+  }
+  share /= double(p.bytes);
+  const double aim = goal - 0.5 * tolerance;
+  // The bands' bytes ~ 1 / step near these rates (measured 0.75-1.25): the log step factor
+  // that moves the file to the aim.
+  if (share < kTrimShare || std::abs(aim - p.score) > kTrimReach * share) return std::nullopt;
+  const std::vector<float> base = p.steps;
+  double k0 = 0.0, s0 = p.score, k = (p.score - aim) / share;
+  for (int n = 0; n < kTrimTries; ++n) {
+    k = std::clamp(k, -kTrimReach, kTrimReach);
+    plan.header.steps = base;
+    for (std::size_t b : bands) plan.header.steps[b] = float(base[b] * std::exp(k));
+    p.steps = plan.header.steps;
+    coder.held = std::nan("");  // the planes hold no whole pass now
+    std::atomic<bool> out_of_range{false};
+    by_resolution(
+        plan,
+        [&](std::size_t i) {
+          try {
+            code_block(plan, i, coder.q, p);
+          } catch (const IndexRangeError&) {
+            out_of_range = true;
+          }
+        },
+        blocks);
+    ++trims_coded;
+    if (out_of_range) return std::nullopt;
+    std::size_t data = 0;
+    for (const auto& w : p.words) data += w.size();
+    p.bytes = container_size(plan.header, encode_index(p.entries).size(), data);
+    p.score = std::log(double(p.bytes));
+    if (p.score <= goal && p.score >= goal - tolerance) {
+      coder.held = p.t;  // the pass returned: hold() need not decode it
+      return p;
+    }
+    // The secant through the last two tries (the untrimmed pass first), else the first guess's slope.
+    const double next = std::abs(p.score - s0) > 1e-9 ? k + (aim - p.score) * (k - k0) / (p.score - s0)
+                                                      : k + (p.score - aim) / share;
+    k0 = k;
+    s0 = p.score;
+    k = next;
+  }
+  return std::nullopt;
+}
+
 // The pass closest to `goal` on the side where ok(score) holds: coarser passes score lower, and
 // ok holds above the goal (PSNR) or below it (log bytes, `below`). nullopt when no pass between
-// `finest` and `coarsest` is ok.
-template <class Score>
-std::optional<Pass> search(ImagePlan& plan, double t, double goal, double tolerance, bool below, double slope,
-                           double finest, double coarsest, const Score& score) {
+// `finest` and `coarsest` is ok. Each next step is where the model, calibrated by the passes so
+// far, meets the aim (inside the bracket once there is one); the secant when it cannot.
+template <class Score, class Model, class Refit>
+std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool below, double slope,
+                           double finest, double coarsest, const Score& score, const Model& model,
+                           double prior, double prior_slope, const Refit& refit) {
   const auto ok = [&](double s) { return below ? s <= goal : s >= goal; };
   const auto close = [&](double s) { return below ? s >= goal - tolerance : s <= goal + tolerance; };
   const double aim = below ? goal - 0.5 * tolerance : goal + 0.5 * tolerance;
+  Calibration<Model> cal{model, prior, prior_slope, {}};
   std::optional<Pass> fine, coarse, best;  // fine: smaller step, higher score
   std::optional<Pass> before;              // the pass before the last (its t and score)
+  double t = solve_model(cal, aim, finest, coarsest);
+  double bracket = INFINITY;  // the bracket's width before the last pass
+  int trims_left = kTrimSearches;
   for (int n = 0;; ++n) {
     t = std::clamp(t, finest, coarsest);
-    std::optional<Pass> p = scored_pass(plan, t, score);
+    std::optional<Pass> p = scored_pass(coder, t, score);
     if (!p) {  // too fine for the index range: a PSNR this fine is out of reach; a budget moves coarser
       if (!below) return best;
       finest = t + std::numbers::ln2;
       if (finest > coarsest) return best;
-      t = finest;
+      t = std::max(finest, solve_model(cal, aim, finest, coarsest));
       continue;
     }
+    refit(*p);  // the model itself calibrated by the pass, where it can be
+    cal.seen.emplace_back(p->t, p->score);
     const bool fits = ok(p->score);
     if (fits && (!best || std::abs(p->score - goal) < std::abs(best->score - goal))) best = *p;
     if (fits && close(p->score)) return best;
+    if (below && trims_left > 0) {  // a budget missed by a little: a trim of a few bands may land it
+      const int coded = trims_coded;
+      if (std::optional<Pass> trimmed = trim(coder, *p, goal, tolerance)) return trimmed;
+      if (trims_coded > coded) --trims_left;  // tried and missed: bytes this jumpy (small images) stop trims
+    }
     // The pass on the side it lies of the goal (the bracket narrows).
     Pass last;
     last.t = p->t;
@@ -175,59 +428,110 @@ std::optional<Pass> search(ImagePlan& plan, double t, double goal, double tolera
     const std::optional<Pass>& miss = below ? fine : coarse;
     if (!best && miss && (below ? miss->t >= coarsest : miss->t <= finest)) return best;
     if (n + 1 >= kMaxTrials && best) return best;
-    const double next = next_t(fine, coarse, last, before, aim, slope);
+    const double lo = fine ? fine->t : finest, hi = coarse ? coarse->t : coarsest;
+    double next = solve_model(cal, aim, lo, hi);
+    if (fine && coarse) {  // strictly inside the bracket: its ends are coded
+      const double dt = hi - lo;
+      next = std::clamp(next, lo + kBracketMargin * dt, hi - kBracketMargin * dt);
+      // A bracket the model's last step did not halve (bytes that jump, a model that steps on
+      // small images): bisect, so it shrinks whatever the model says.
+      if (dt > 0.5 * bracket) next = 0.5 * (lo + hi);
+      bracket = dt;
+    } else if (next == last.t || next <= lo || next >= hi) {
+      next = secant_t(fine, coarse, last, before, aim, slope);
+    }
     before = last;
     // Past the trial budget with nothing fitting yet: an octave towards fitting at least.
     if (n + 1 >= kMaxTrials)
       t = below ? std::max(next, t + std::numbers::ln2) : std::min(next, t - std::numbers::ln2);
     else
       t = next;
-    if (fine && coarse && coarse->t - fine->t < 1e-6) return best;
+    // A bracket this narrow that still misses the window straddles a jump in the bytes (an
+    // RDOQ choice flipping a block's coding): no pass inside it lands.
+    if (fine && coarse && coarse->t - fine->t < kNarrowestBracket) return best;
   }
 }
 
-EncodeResult result_of(const ImageView& image, ImagePlan& plan, Pass& p, std::optional<double> psnr) {
+EncodeResult result_of(Coder& coder, Pass& p, std::optional<double> psnr) {
+  ImagePlan& plan = coder.plan;
   plan.header.steps = p.steps;
-  if (!psnr && plan.measure_psnr) psnr = pass_psnr(image, plan, p);
+  if (!psnr && plan.measure_psnr) {
+    hold(coder, p);
+    psnr = pass_psnr(coder, p);
+  }
+  std::vector<std::vector<std::int32_t>>().swap(coder.q);
+  std::vector<std::vector<float>>().swap(coder.recon);
+  release_coefficients(plan);
   auto bytes = assemble(plan, p.entries, p.words);
   const double base = std::exp(p.t);
-  release_coefficients(plan);
-  return make_encode_result(image, plan, std::move(bytes), base,
+  return make_encode_result(coder.image, plan, std::move(bytes), base,
                             psnr ? psnr : std::optional<double>(std::nan("")));
 }
 
 }  // namespace
 
+int pc_passes_of_last_encode() { return passes_coded; }
+int pc_trims_of_last_encode() { return trims_coded; }
+
 EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
+  passes_coded = trims_coded = 0;
   if (plan.header.reversible || options.mode == RateMode::lossless)
     throw std::invalid_argument("the pc coder codes lossy streams only (--bpp, --psnr or --step)");
   plan.header.delta = std::round(kPcDelta * 65536.0) / 65536.0;  // as the header stores it
   transform_all_components(plan);
+  Coder coder{image, plan, {}, std::nan(""), {}};
   const double finest = std::log(plan.peak * kFinestStep), coarsest = std::log(plan.peak * 4.0);
   if (options.mode == RateMode::step) {
-    Pass p = code_pass(plan, std::log(options.target));
-    return result_of(image, plan, p, std::nullopt);
+    Pass p = code_pass(coder, std::log(options.target));
+    return result_of(coder, p, std::nullopt);
   }
+  const PcRateModel model(plan, plan.header.delta);
   if (options.mode == RateMode::bpp) {
     const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
-    const double guess = guess_base_step(plan, 0, budget / double(plan.header.channels), 1.0);
-    auto best = search(plan, std::log(std::max(guess, plan.peak * kFinestStep)), std::log(budget),
-                       -std::log1p(-kSizeTolerance), true, kSizeSlope, finest, coarsest,
-                       [](const Pass& p) { return std::log(double(p.bytes)); });
-    if (best) return result_of(image, plan, *best, std::nullopt);
+    // The bytes besides the codewords (header, steps, index), about: the calibration takes the rest.
+    double overhead = double(container_size(plan.header, 4 * plan.blocks.size(), 0));
+    std::vector<double> scale(model.band_count());
+    for (std::size_t k = 0; k < scale.size(); ++k) scale[k] = prior_scale(plan, k);
+    const auto log_bytes = [&](double t) {
+      return std::log(overhead + model.bits(std::exp(t), &scale) / 8.0);
+    };
+    // Each band's model scaled to its bytes in the pass (the bands' ratios differ, and their mix
+    // moves with the step); bands the model gives almost nothing keep their bytes as a constant.
+    const auto refit = [&](const Pass& p) {
+      std::vector<double> real(scale.size(), 0.0);
+      std::size_t data = 0;
+      for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+        real[plan.blocks[i].component * plan.bands.size() + plan.blocks[i].band] += double(p.words[i].size());
+        data += p.words[i].size();
+      }
+      overhead = double(p.bytes - data);
+      for (std::size_t k = 0; k < scale.size(); ++k) {
+        const double estimate = model.bits_of_band(k, std::exp(p.t)) / 8.0;
+        scale[k] = estimate >= kFitBytes ? real[k] / estimate : 0.0;
+        if (scale[k] == 0.0) overhead += real[k];
+      }
+    };
+    auto best = search(
+        coder, std::log(budget), -std::log1p(-kSizeTolerance), true, kSizeSlope, finest, coarsest,
+        [](const Pass& p) { return std::log(double(p.bytes)); }, log_bytes, 0.0, kBytesResidualSlope, refit);
+    if (best) return result_of(coder, *best, std::nullopt);
     // Under the smallest stream (header and steps alone): that stream, as the other coders do.
-    Pass smallest = code_pass(plan, coarsest);
-    return result_of(image, plan, smallest, std::nullopt);
+    Pass smallest = code_pass(coder, coarsest);
+    return result_of(coder, smallest, std::nullopt);
   }
-  const double mse = plan.peak * plan.peak / std::pow(10.0, options.target / 10.0);
-  const double t0 = std::log(std::sqrt(12.0 * mse));  // a uniform quantizer's error step^2 / 12
-  auto best = search(plan, t0, options.target, kPsnrTolerance, false, kPsnrSlope, finest, coarsest,
-                     [&](const Pass& p) { return pass_psnr(image, plan, p); });
+  const double samples = double(plan.samples), peak2 = plan.peak * plan.peak;
+  const auto model_psnr = [&](double t) {
+    const double error = model.squared_error(std::exp(t));
+    return error > 0.0 ? 10.0 * std::log10(peak2 * samples / error) : 400.0;
+  };
+  auto best = search(
+      coder, options.target, kPsnrTolerance, false, kPsnrSlope, finest, coarsest,
+      [&](const Pass& p) { return pass_psnr(coder, p); }, model_psnr, kPsnrPrior, 0.0, [](const Pass&) {});
   if (!best)
     throw TargetRangeError("PSNR " + format_number(options.target) +
                            " dB is beyond the precision of lossy coding");
   const double reached = best->score;
-  return result_of(image, plan, *best, reached);
+  return result_of(coder, *best, reached);
 }
 
 }  // namespace pupwave

@@ -15,4 +15,10 @@ inline constexpr double kPcDelta = 0.05;
 // --bpp and --psnr by a search of the base step over whole coding passes.
 EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOptions& options);
 
+// Coding passes (whole-image ones) of the last encode_pc on the calling thread: the rate
+// search's cost, for tests and bench/pc_cpu_bench.
+int pc_passes_of_last_encode();
+// Trims (codings of a few finest bands, about a quarter of a pass each) of the last encode_pc.
+int pc_trims_of_last_encode();
+
 }  // namespace pupwave

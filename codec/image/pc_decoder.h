@@ -21,12 +21,14 @@ inline float pc_dequantize(std::int32_t q, float step, float delta) {
 }
 
 // Block b of the index plane `index` dequantized into `plane` (both `stride` samples a row, b at
-// its offset in each): the one dequantisation loop of the decoder and the encoder's PSNR.
+// its offset in each): the encoder's PSNR; the decoder dequantizes in place with the same
+// pc_dequantize, so both give the same floats.
 void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* plane, std::size_t stride,
                          float step, float delta);
 
 // Decodes every block of the read resolutions of a pc stream (planes[c]: `region`-sized and
-// zeroed, the low corner of the Mallat layout) and dequantizes them into the planes.
+// zeroed, the low corner of the Mallat layout) and dequantizes them into the planes: the
+// planes hold the indices until their children are decoded, so no other planes are needed.
 void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
                     const std::vector<float*>& planes);
 

@@ -100,6 +100,23 @@ int main(int argc, char** argv) {
   p.type = h5::ChunkType::u16;
   p.mode = h5::Mode::lossless;
   save(out / "hdf5_chunk" / "seed-u16-lossless", h5::encode_chunk(p, u16));
+  // Trimmed chunks (kind 2): the crop zero-padded as HDF5 pads an edge chunk, a u16 one padded
+  // with a fill value, and an all-constant chunk (no stream).
+  h5::ChunkParams t;
+  t.dims = {20, 18, 10};
+  t.bound = 1e-2;
+  std::vector<float> padded(t.count(), 0.0f);
+  for (std::size_t i = 0; i < crop.size(); ++i)
+    padded[i % 16 + 20 * (i / 16 % 16 + 18 * (i / 256))] = crop[i];
+  save(out / "hdf5_chunk" / "seed-f32-trimmed", h5::encode_chunk(t, as_bytes(padded)));
+  save(out / "hdf5_chunk" / "seed-f32-constant",
+       h5::encode_chunk(t, as_bytes(std::vector<float>(t.count(), 2.5f))));
+  t.type = h5::ChunkType::u16;
+  t.mode = h5::Mode::lossless;
+  std::vector<std::uint8_t> u16_padded(t.count() * 2, 0x7f);
+  for (std::size_t i = 0; i < p.count(); ++i)
+    std::memcpy(&u16_padded[2 * (i % 16 + 20 * (i / 16 % 16 + 18 * (i / 256)))], &u16[2 * i], 2);
+  save(out / "hdf5_chunk" / "seed-u16-trimmed", h5::encode_chunk(t, u16_padded));
   p.dims = {3, 2, 1};  // too small to code: stored raw
   save(out / "hdf5_chunk" / "seed-raw",
        h5::encode_chunk(p, std::vector<std::uint8_t>(u16.begin(), u16.begin() + 12)));

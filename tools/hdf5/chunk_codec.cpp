@@ -1,5 +1,6 @@
 #include "tools/hdf5/chunk_codec.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -26,10 +27,11 @@ void widen(std::span<const std::uint8_t> raw, std::vector<double>& out, double o
 }
 
 // The chunk as a volume grid; signed integers are offset into the unsigned type the codec holds.
-VolumeGrid to_grid(const ChunkParams& p, std::span<const std::uint8_t> raw) {
+// `raw` holds contiguous elements of `dims` (the chunk's or a trimmed box's).
+VolumeGrid to_grid(const ChunkParams& p, const Extent& dims, std::span<const std::uint8_t> raw) {
   VolumeGrid grid;
   grid.name = "chunk";
-  grid.volume = Volume(p.dims, stored_voxel_type(p.type));
+  grid.volume = Volume(dims, stored_voxel_type(p.type));
   std::vector<double>& s = grid.volume.samples;
   switch (p.type) {
     case ChunkType::u8: widen<std::uint8_t>(raw, s, 0.0); break;
@@ -50,10 +52,27 @@ bool codes_in_place(const ChunkParams& p, std::span<const std::uint8_t> raw) {
   return !is_signed && reinterpret_cast<std::uintptr_t>(raw.data()) % element_size(p.type) == 0;
 }
 
-VolumeEncodeResult encode_grid(const ChunkParams& p, std::span<const std::uint8_t> raw,
-                               const VolumeEncodeOptions& options) {
-  if (!codes_in_place(p, raw)) return encode_volumes({to_grid(p, raw)}, options);
-  const VolumeView view = contiguous_view(raw.data(), p.dims, stored_voxel_type(p.type));
+// The rows of the box [0, box) of the chunk, contiguous (for the copying path of encode_box).
+std::vector<std::uint8_t> gather_box(const ChunkParams& p, std::span<const std::uint8_t> raw,
+                                     const Extent& box) {
+  const std::size_t es = element_size(p.type);
+  std::vector<std::uint8_t> out(box[0] * box[1] * box[2] * es);
+  std::uint8_t* to = out.data();
+  for (std::size_t z = 0; z < box[2]; ++z)
+    for (std::size_t y = 0; y < box[1]; ++y, to += box[0] * es)
+      std::memcpy(to, raw.data() + (z * p.dims[1] + y) * p.dims[0] * es, box[0] * es);
+  return out;
+}
+
+// Codes the box [0, box) of the chunk (the whole chunk when box == p.dims).
+VolumeEncodeResult encode_box(const ChunkParams& p, std::span<const std::uint8_t> raw, const Extent& box,
+                              const VolumeEncodeOptions& options) {
+  if (!codes_in_place(p, raw)) {
+    if (box == p.dims) return encode_volumes({to_grid(p, box, raw)}, options);
+    return encode_volumes({to_grid(p, box, gather_box(p, raw, box))}, options);
+  }
+  const VolumeView view =
+      sub_view(contiguous_view(raw.data(), p.dims, stored_voxel_type(p.type)), {0, 0, 0}, box);
   const VolumeView views[] = {view};
   return encode_volumes({describe_view(view, "chunk")}, views, options);
 }
@@ -77,6 +96,64 @@ VolumeEncodeOptions volume_options(const ChunkParams& p) {
 
 std::vector<std::uint8_t> stored_raw(ChunkType type, std::span<const std::uint8_t> raw) {
   return stored_chunk(ChunkKind::raw, type, raw);
+}
+
+// Bitwise element equality as unsigned integers of the element's width (NaN fill values included).
+template <typename U>
+Extent box_of(const ChunkParams& p, std::span<const std::uint8_t> raw) {
+  const auto at = [&](std::size_t i) {
+    U v;
+    std::memcpy(&v, raw.data() + i * sizeof(U), sizeof(U));
+    return v;
+  };
+  const std::size_t nx = p.dims[0];
+  const U c = at(p.count() - 1);
+  Extent box{0, 0, 0};
+  for (std::size_t z = 0; z < p.dims[2]; ++z)
+    for (std::size_t y = 0; y < p.dims[1]; ++y) {
+      const std::size_t row = (z * p.dims[1] + y) * nx;
+      std::size_t end = nx;  // one past the row's last element differing from c (0: none)
+      while (end > 0 && at(row + end - 1) == c) --end;
+      if (end == 0) continue;
+      box = {std::max(box[0], end), std::max(box[1], y + 1), z + 1};
+    }
+  return box;
+}
+
+// The smallest box [0, box) holding every element not bitwise equal to the chunk's last one, c:
+// outside it lie the trailing planes of each axis that are all c (HDF5's and Zarr's padding of
+// edge chunks with the fill value). {0, 0, 0} when the whole chunk is c.
+Extent untrimmed_box(const ChunkParams& p, std::span<const std::uint8_t> raw) {
+  switch (element_size(p.type)) {
+    case 1: return box_of<std::uint8_t>(p, raw);
+    case 2: return box_of<std::uint16_t>(p, raw);
+    case 4: return box_of<std::uint32_t>(p, raw);
+    default: return box_of<std::uint64_t>(p, raw);
+  }
+}
+
+// Kind 2: the head (extents and c), then the box's stream unless the box is empty. In bpv mode the
+// box gets the whole chunk's budget (bpv counts bits per value of the chunk, docs/hdf5.md).
+std::vector<std::uint8_t> encode_trimmed(const ChunkParams& p, std::span<const std::uint8_t> raw,
+                                         const Extent& box, VolumeEncodeOptions options) {
+  std::vector<std::uint8_t> payload;
+  for (const std::size_t d : p.dims) put_u32(payload, d);
+  for (const std::size_t d : box) put_u32(payload, d);
+  const std::size_t es = element_size(p.type);
+  payload.insert(payload.end(), raw.end() - std::ptrdiff_t(es), raw.end());
+  const std::size_t box_count = box[0] * box[1] * box[2];
+  if (box_count > 0) {
+    if (p.mode == Mode::bpv) options.target = p.bound * double(p.count()) / double(box_count);
+    VolumeEncodeResult coded;
+    try {
+      coded = encode_box(p, raw, box, options);
+    } catch (const EncodeError&) {
+      return stored_raw(p.type, raw);  // as encode_chunk: data the codec cannot hold stays raw
+    }
+    payload.insert(payload.end(), coded.bytes.begin(), coded.bytes.end());
+  }
+  if (payload.size() >= raw.size()) return stored_raw(p.type, raw);  // tiny chunks
+  return stored_chunk(ChunkKind::trimmed, p.type, payload);
 }
 
 }  // namespace
@@ -143,8 +220,12 @@ std::vector<std::uint8_t> encode_chunk(const ChunkParams& params, std::span<cons
   const auto executor = make_pool_executor(params.threads);
   VolumeEncodeOptions options = volume_options(params);
   options.executor = executor.get();
+  // Trimmed only when its decode stays within the default limit, as a volume chunk's must.
+  if (const Extent box = untrimmed_box(params, raw);
+      box != params.dims && params.count() <= kDefaultMaxDecodePixels)
+    return encode_trimmed(params, raw, box, options);
   try {
-    coded = encode_grid(params, raw, options);
+    coded = encode_box(params, raw, params.dims, options);
   } catch (const EncodeError&) {
     // Data the codec cannot hold (NaN, Inf, a bound below the type's precision): keep it raw.
     return stored_raw(params.type, raw);
