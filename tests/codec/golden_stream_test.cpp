@@ -67,7 +67,7 @@ TEST(GoldenStream, PcStepStreamsAreUnchanged) {
 TEST(GoldenStream, PcStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97",
                        EntropyCoder::pc),
-            1487019315u);  // pcfast: the model-guided search lands at another step (the coder is unchanged)
+            2835366523u);  // version 5 (pcctx: coder and the chroma priors of the search)
 }
 
 }  // namespace
