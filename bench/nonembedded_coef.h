@@ -22,10 +22,10 @@
 
 namespace pupwave::estimate {
 
-// Bits of the band's signed indices q (w x h) in `ctx` (the coder's binarisation, coef_index.h,
-// with pc_blocks' contexts). lambda > 0: greedy RDOQ from the coefficients in index units `u` as
-// in nonembedded_model.h (q rewritten to the chosen indices, pc_rdoq_index), reconstruction
-// offset delta.
+// Bits of the band's signed indices q (w x h) in `ctx` (the pc coder's binarisation and models,
+// pc_index.h, with pc_blocks' contexts; this estimate gives no block a luma parent). lambda > 0: greedy RDOQ
+// from the coefficients in index units `u` as in nonembedded_model.h (q rewritten to the chosen indices,
+// pc_rdoq_index), reconstruction offset delta.
 inline double coef_band_bits(std::vector<std::int32_t>& q, std::size_t w, std::size_t h, PcContext ctx,
                              const std::vector<float>& u, double lambda, double delta) {
   if (lambda > 0.0)
@@ -34,12 +34,12 @@ inline double coef_band_bits(std::vector<std::int32_t>& q, std::size_t w, std::s
       q[k] = u[k] < 0 ? -n : n;
     }
   if (std::all_of(q.begin(), q.end(), [](std::int32_t v) { return v == 0; })) return 0.0;  // no codeword
-  auto m = std::make_unique<CoefModels>();
+  auto m = std::make_unique<PcModels>();
   double bits = 0.0;
-  pc_visit(w, h, ctx, [&](std::size_t x, std::size_t y, int cls, std::size_t sc) {
+  pc_visit(w, h, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
     std::int32_t& v = q[y * w + x];
-    if (lambda > 0.0) v = pc_rdoq_index(*m, cls, sc, u[y * w + x], v, lambda, delta);
-    bits += coef_index_bits<true>(*m, cls, sc, std::uint32_t(std::abs(v)), v < 0);
+    if (lambda > 0.0) v = pc_rdoq_index(*m, c, u[y * w + x], v, lambda, delta);
+    bits += pc_index_bits<true>(*m, c, std::uint32_t(std::abs(v)), v < 0);
     return v;
   });
   return bits;

@@ -250,7 +250,7 @@ class Trial {
     std::vector<float> u(b.count());
     copy_block_out(plan_.coef[b.component].data(), dims, b, u.data());
     for (float& x : u) x *= inv;
-    const PcContext ctx(b.size[0], b.size[1], LcParent{lp.origin, lp.stride, lp.width, lp.height},
+    const PcContext ctx(b.size[0], b.size[1], LcParent{lp.origin, lp.stride, lp.width, lp.height}, PcLuma{},
                         args_.est.parent_weight, args_.est.scale);
     double bits = 0.0;
     if (args_.families && args_.est.lambda > 0.0) {

@@ -17,25 +17,37 @@
 
 namespace pupwave {
 
-std::pair<int, std::size_t> PcContext::at(std::size_t x, std::size_t y) const {
-  const std::size_t p = (y + 1) * nx_ + x + 1;
-  std::uint64_t s = 2 * (std::uint64_t(a_[p - 1]) + a_[p - nx_]) + a_[p - 1 - nx_] + a_[p + 1 - nx_];
-  int ps = 0;
-  if (parent_.origin) {
-    s *= 2 * std::uint64_t(scale_);
-    const std::size_t py = std::min((parent_.y0 + y) >> 1, parent_.height - 1);
-    const std::size_t px = std::min((parent_.x0 + x) >> 1, parent_.width - 1);
-    const std::int32_t c = parent_.origin[py * parent_.stride + px];
-    s += std::uint64_t(weight_) * std::uint64_t(c < 0 ? -std::int64_t(c) : c);
-    ps = c == 0 ? 0 : (c < 0 ? -1 : 1);
+PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma,
+                     int parent_weight, int scale)
+    : nx_(w + 2),
+      a_((h + 1) * nx_, 0u),
+      sg_((h + 1) * nx_, 0),
+      parent_(parent),
+      luma_(luma),
+      in_weight_(parent.origin ? 6 * std::uint64_t(scale) : 3),
+      parent_weight_(3 * std::uint64_t(parent_weight)) {
+  if (!parent_.origin) return;
+  // The parent of child c is c / 2 (clamped); its neighbour towards c is one further on c's side.
+  const auto own_and_side = [](std::size_t c, std::size_t extent) {
+    const std::size_t p = std::min(c >> 1, extent - 1);
+    return std::pair{p, (c & 1u) ? std::min(p + 1, extent - 1) : (p > 0 ? p - 1 : 0)};
+  };
+  parent_rows_.resize(2 * h);
+  for (std::size_t y = 0; y < h; ++y) {
+    const auto [py, ny] = own_and_side(parent_.y0 + y, parent_.height);
+    parent_rows_[2 * y] = parent_.origin + py * parent_.stride;
+    parent_rows_[2 * y + 1] = parent_.origin + ny * parent_.stride;
   }
-  const int w = int(std::bit_width(s));
-  const int cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
-  return {cls, std::size_t(9 * (sg_[p - 1] + 1) + 3 * (sg_[p - nx_] + 1) + (ps + 1))};
+  parent_cols_.resize(2 * w);
+  for (std::size_t x = 0; x < w; ++x) {
+    const auto [px, nx] = own_and_side(parent_.x0 + x, parent_.width);
+    parent_cols_[2 * x] = px;
+    parent_cols_[2 * x + 1] = nx;
+  }
 }
 
-std::int32_t pc_rdoq_index(CoefModels& m, int cls, std::size_t sign_ctx, float u, std::int32_t v,
-                           double lambda, double delta) {
+std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t v, double lambda,
+                           double delta) {
   if (v == 0) return 0;
   const bool negative = v < 0;
   const double x = std::fabs(double(u));
@@ -44,7 +56,7 @@ std::int32_t pc_rdoq_index(CoefModels& m, int cls, std::size_t sign_ctx, float u
   std::uint32_t pick = nearest;
   for (std::uint32_t c : {nearest, nearest - 1, 0u}) {
     const double d = x - (c == 0 ? 0.0 : double(c) + delta);
-    const double j = d * d + lambda * coef_index_bits<false>(m, cls, sign_ctx, c, negative);
+    const double j = d * d + lambda * pc_index_bits<false>(m, ctx, c, negative);
     if (c == nearest || j < best) {
       best = j;
       pick = c;
@@ -57,14 +69,13 @@ std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vecto
                                                                       std::size_t width, std::size_t height,
                                                                       PcContext ctx, const PcRdoq* rdoq) {
   RangeEncoder enc;
-  auto models = std::make_unique<CoefModels>();
+  auto models = std::make_unique<PcModels>();
   const std::uint32_t largest =
-      pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, int cls, std::size_t sc) {
+      pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
         std::int32_t& v = q[y * width + x];
         if (rdoq)
-          v = pc_rdoq_index(*models, cls, sc, rdoq->coefficients[y * width + x], v, rdoq->lambda,
-                            rdoq->delta);
-        put_coef_index(enc, *models, cls, sc, std::uint32_t(v < 0 ? -std::int64_t(v) : v), v < 0);
+          v = pc_rdoq_index(*models, c, rdoq->coefficients[y * width + x], v, rdoq->lambda, rdoq->delta);
+        put_pc_index(enc, *models, c, std::uint32_t(v < 0 ? -std::int64_t(v) : v), v < 0);
         return v;
       });
   return {enc.finish(), largest};
@@ -74,16 +85,16 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
                                 std::size_t width, std::size_t height, PcContext ctx, std::int32_t* out,
                                 std::size_t stride) {
   RangeDecoder dec(codeword);
-  auto models = std::make_unique<CoefModels>();
-  return pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, int cls, std::size_t sc) {
+  auto models = std::make_unique<PcModels>();
+  return pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
     bool negative = false;
-    const std::uint32_t a = get_coef_index(dec, *models, cls, sc, limit, negative);
+    const std::uint32_t a = get_pc_index(dec, *models, c, limit, negative);
     return out[y * stride + x] = negative ? -std::int32_t(a) : std::int32_t(a);
   });
 }
 
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq) {
+                             const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma) {
   if (q.size() != width * height)
     throw std::invalid_argument("pc_encode_block: index count differs from the size");
   if (rdoq) {
@@ -101,7 +112,7 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
   if (all >= (std::uint64_t(1) << kCoefMaxBits)) throw IndexRangeError("index too large for the pc coder");
   CoefCodeword out;
   if (all == 0) return out;
-  auto [bytes, largest] = pc_encode_indices(q, width, height, PcContext(width, height, parent), rdoq);
+  auto [bytes, largest] = pc_encode_indices(q, width, height, PcContext(width, height, parent, luma), rdoq);
   out.bits = int(std::bit_width(largest));  // RDOQ may have lowered it: the decoder checks this one
   if (out.bits == 0) return out;            // RDOQ zeroed everything: no codeword
   out.bytes = std::move(bytes);
@@ -110,11 +121,11 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
 }
 
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
-                     const LcParent& parent, std::int32_t* out, std::size_t stride) {
+                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma) {
   require_stream(bits >= 1 && bits <= kCoefMaxBits && !codeword.empty(), "pc code-block: index bit width");
   const std::uint64_t limit = (std::uint64_t(1) << bits) - 1;
   const std::uint32_t largest =
-      pc_decode_indices(codeword, limit, width, height, PcContext(width, height, parent), out, stride);
+      pc_decode_indices(codeword, limit, width, height, PcContext(width, height, parent, luma), out, stride);
   require_stream(int(std::bit_width(largest)) == bits, "pc code-block: largest index differs from the index");
 }
 

@@ -1,12 +1,14 @@
 #pragma once
 // The parent-context coefficient coder: entropy coder 4 of lossy image streams (`--entropy pc`,
 // docs/bitstream.md; codec/image/image_encoder_pc.cpp and pc_decoder.cpp use it). One pass
-// over a detail block's quantization indices with the volume coefficient coder's binarisation and models
-// (coef_contexts.h: Rice class from the causal neighbour magnitudes, unary high part with models, modelled
-// top low bits, raw rest, sign by neighbour signs), the index of the parent (the next coarser band of the
-// same orientation, already decoded) added to the activity sum and the sign context (ECECOW-style). Measured
-// with bench/nonembedded_rd (coefp): with greedy RDOQ, -3.3% BD-rate against the default bit-plane coder on
-// the four test photographs and -5.3% on nine held-out ones.
+// over a detail block's quantization indices with the volume coefficient coder's binarisation
+// (pc_index.h: Rice class from the causal neighbour magnitudes, unary high part with models, modelled
+// top low bits, raw rest, sign by neighbour signs) and pc's own models (pc_bit.h), the index of the
+// parent (the next coarser band of the same orientation, already decoded) and its neighbours towards
+// the child added to the activity sum, the parent's sign to the sign context (ECECOW-style), and for
+// chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h). Against
+// OpenJPEG on the four test photographs -8.6% BD-rate (-6.6% with the parent alone), -11.7% on nine
+// held-out ones (bench/results/rd_issue20.md).
 
 #include <algorithm>
 #include <cstddef>
@@ -18,39 +20,85 @@
 #include "codec/entropy/coef_contexts.h"
 #include "codec/entropy/coef_encoder.h"
 #include "codec/entropy/lc_blocks.h"
+#include "codec/entropy/pc_index.h"
 
 namespace pupwave {
 
+// A chroma block's further parents: the co-located luma indices (row y at origin + y * stride)
+// and, for Cr, Cb's, decoded before it. Null origin: none.
+struct PcLuma {
+  const std::int32_t* origin = nullptr;
+  std::size_t stride = 0;
+  // The third component's: the co-located indices of the second (Cb for Cr), same stride.
+  const std::int32_t* cb = nullptr;
+};
+
 // A block's contexts as the codeword goes: causal magnitudes and signs (padded by one column
-// each side and one row above) and the parent band. The coder's weights are 1 and 1; the bench
-// estimate (bench/nonembedded_coef.h) tries others.
+// each side and one row above), the parent band and, for chroma, the luma parent. The coder's
+// weights are 1 and 1; the bench estimate (bench/nonembedded_coef.h) tries others.
 class PcContext {
  public:
-  PcContext(std::size_t w, std::size_t h, const LcParent& parent, int parent_weight = 1, int scale = 1)
-      : nx_(w + 2),
-        a_((h + 1) * nx_, 0u),
-        sg_((h + 1) * nx_, 0),
-        parent_(parent),
-        weight_(parent_weight),
-        scale_(scale) {}
+  // Weight of Cb's magnitude in Cr's S (3 x the activity): measured best of 3 .. 48 (the
+  // chroma components' magnitudes go together more than the neighbours').
+  static constexpr std::uint64_t kCbWeight = 24;
 
-  // Activity class and sign context of coefficient (x, y): the in-band sum 2 (W + N) + NW + NE
-  // (the volume coder's), with a parent multiplied by 2 x scale and plus weight x the parent's
-  // magnitude (the coder: 1 and 1, heavier weights measured worse); the sign context by the
-  // signs of W, N and the parent.
-  std::pair<int, std::size_t> at(std::size_t x, std::size_t y) const;
+  PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma = {},
+            int parent_weight = 1, int scale = 1);
+
+  // Activity class and sign context of coefficient (x, y). Activity: the in-band sum
+  // 2 (W + N) + NW + NE (the volume coder's), with a parent doubled (x scale) plus weight x |P|
+  // plus the mean of P's three neighbours towards the child (horizontal, vertical, diagonal: the
+  // parent band's values nearest the child's position), plus |L| (the co-located luma index) for
+  // chroma and 8 |Cb| (Cb's co-located index) for Cr; rounded to an integer. Sign context: the
+  // signs of W, N, the parent and the luma parent (Cb for Cr).
+  PcCtx at(std::size_t x, std::size_t y) const {
+    const std::size_t p = (y + 1) * nx_ + x + 1;
+    const std::uint64_t in = 2 * (std::uint64_t(a_[p - 1]) + a_[p - nx_]) + a_[p - 1 - nx_] + a_[p + 1 - nx_];
+    std::uint64_t s3 = in_weight_ * in;  // three times the activity (P's neighbours count a third)
+    int ps = 0, ls = 0;
+    if (parent_.origin) {
+      const std::int32_t* row = parent_rows_[2 * y];
+      const std::int32_t* side = parent_rows_[2 * y + 1];
+      const std::size_t px = parent_cols_[2 * x], nx = parent_cols_[2 * x + 1];
+      const std::int32_t c = row[px];
+      s3 += parent_weight_ * magnitude(c) + magnitude(row[nx]) + magnitude(side[px]) + magnitude(side[nx]);
+      ps = sign_of(c);
+    }
+    if (luma_.origin) {
+      const std::int32_t l = luma_.origin[y * luma_.stride + x];
+      s3 += 3 * magnitude(l);
+      ls = sign_of(l);
+      if (luma_.cb) {  // Cr: Cb's magnitude weighs 8 and its sign replaces luma's
+        const std::int32_t c = luma_.cb[y * luma_.stride + x];
+        s3 += kCbWeight * magnitude(c);
+        ls = sign_of(c);
+      }
+    }
+    const std::uint64_t s = (2 * s3 + 3) / 6;  // s3 / 3 rounded
+    const int w = int(std::bit_width(s));
+    const int cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
+    return {cls, std::size_t(27 * (ls + 1) + 9 * (sg_[p - 1] + 1) + 3 * (sg_[p - nx_] + 1) + (ps + 1))};
+  }
   void set(std::size_t x, std::size_t y, std::int32_t v) {
     const std::size_t p = (y + 1) * nx_ + x + 1;
     a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
-    sg_[p] = std::int8_t(v == 0 ? 0 : (v < 0 ? -1 : 1));
+    sg_[p] = std::int8_t(sign_of(v));
   }
 
  private:
+  static std::uint64_t magnitude(std::int32_t v) { return std::uint64_t(v < 0 ? -std::int64_t(v) : v); }
+  static int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
+
   std::size_t nx_;
   std::vector<std::uint32_t> a_;
   std::vector<std::int8_t> sg_;
   LcParent parent_;
-  int weight_, scale_;
+  PcLuma luma_;
+  std::uint64_t in_weight_, parent_weight_;  // 3 (x 2 x scale with a parent) and 3 x weight
+  // Per child row y: the parent's row and its neighbour row towards y (2y, 2y + 1); per child
+  // column x: the parent's column and its neighbour column towards x (2x, 2x + 1), clamped.
+  std::vector<const std::int32_t*> parent_rows_;
+  std::vector<std::size_t> parent_cols_;
 };
 
 // Greedy rate-distortion optimised quantization inside the encoder: each index starts at the
@@ -67,13 +115,13 @@ struct PcRdoq {
 // With `rdoq`, q is first re-chosen (and rewritten) as PcRdoq says. Throws IndexRangeError for an
 // index of 2^kCoefMaxBits or more.
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq = nullptr);
+                             const LcParent& parent, const PcRdoq* rdoq = nullptr, const PcLuma& luma = {});
 
 // Decodes a codeword of `bits` (the largest index's bit length, 1 .. kCoefMaxBits) into `width` x
 // `height` indices at `out` (row y at out + y * stride). Throws DecodeError unless the largest
 // decoded index has bit length `bits`.
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
-                     const LcParent& parent, std::int32_t* out, std::size_t stride);
+                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma = {});
 
 // The coders under any context (`ctx` fresh): pc_encode_block's loop (no empty-block rules),
 // returning the codeword and the largest magnitude coded, and pc_decode_block's (magnitudes
@@ -88,18 +136,16 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
 // Greedy RDOQ of one index: `v` (the signed nearest point of coefficient u, in index units)
 // becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x the bits
 // models m would spend on it now. 0 stays 0.
-std::int32_t pc_rdoq_index(CoefModels& m, int cls, std::size_t sign_ctx, float u, std::int32_t v,
-                           double lambda, double delta);
+std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& c, float u, std::int32_t v, double lambda, double delta);
 
-// Visits a block in coding order: `code(x, y, cls, sign_ctx)` codes coefficient (x, y) and
+// Visits a block in coding order: `code(x, y, ctx)` codes coefficient (x, y) and
 // returns its signed index, which joins the contexts. Returns the largest magnitude.
 template <class Code>
 std::uint32_t pc_visit(std::size_t width, std::size_t height, PcContext& ctx, Code code) {
   std::uint32_t largest = 0;
   for (std::size_t y = 0; y < height; ++y)
     for (std::size_t x = 0; x < width; ++x) {
-      const auto [cls, sc] = ctx.at(x, y);
-      const std::int32_t v = code(x, y, cls, sc);
+      const std::int32_t v = code(x, y, ctx.at(x, y));
       ctx.set(x, y, v);
       largest = std::max(largest, std::uint32_t(v < 0 ? -std::int64_t(v) : v));
     }

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_groups.h"
 #include "codec/error.h"
 #include "codec/image/lc_parent.h"
 
@@ -57,17 +58,26 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
   while (first < s.blocks.size()) {
     std::size_t end = first;
     while (end < s.blocks.size() && s.blocks[end].resolution == s.blocks[first].resolution) ++end;
-    ex.run(end - first, [&](std::size_t k) {
-      const std::size_t i = first + k;
-      const CodeBlock& b = s.blocks[i];
-      if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
-      require_stream(s.index[i].passes == 1, "pc code-block: pass count");
-      // The plane's storage as indices until dequantize_in_place (see there).
-      std::int32_t* plane = reinterpret_cast<std::int32_t*>(planes[b.component]);
-      pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
-                      lc_parent(s.bands, b, plane, region[0], nullptr),
-                      plane + b.offset[0] + region[0] * b.offset[1], region[0]);
-    });
+    // The planes' storage as indices until dequantize_in_place (see there).
+    const auto index_plane = [&](std::size_t c) { return reinterpret_cast<std::int32_t*>(planes[c]); };
+    for (int g = 0; g < kPcGroupsPerResolution; ++g) {  // pc_group's order inside the resolution
+      std::vector<std::size_t> ids;
+      for (std::size_t i = first; i < end; ++i)
+        if (pc_group(s.blocks[i], planes.size()) % kPcGroupsPerResolution == g) ids.push_back(i);
+      ex.run(ids.size(), [&](std::size_t k) {
+        const std::size_t i = ids[k];
+        const CodeBlock& b = s.blocks[i];
+        if (s.index[i].passes == 0) return;  // all zero: the planes start zeroed
+        require_stream(s.index[i].passes == 1, "pc code-block: pass count");
+        std::int32_t* plane = index_plane(b.component);
+        const PcLuma luma = pc_has_luma(b, planes.size())
+                                ? pc_luma(b, planes.size(), index_plane(0), index_plane(1), region[0])
+                                : PcLuma{};
+        pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
+                        lc_parent(s.bands, b, plane, region[0], nullptr),
+                        plane + b.offset[0] + region[0] * b.offset[1], region[0], luma);
+      });
+    }
     dequantize(previous, first);  // the parents of this resolution, no longer needed
     previous = first;
     first = end;

@@ -176,6 +176,18 @@ TEST(PcPhotos, BudgetUnderTheSmallestStreamGivesTheSmallestStream) {
   EXPECT_NEAR(decoded_psnr(img, r.bytes), r.psnr, 1e-9);
 }
 
+TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
+  auto bytes = encode_image(crop(photo("chelsea.png"), 64, 48), pc(RateMode::bpp, 1.0)).bytes;
+  ASSERT_EQ(bytes[4], kStreamVersion);
+  bytes[4] = 4;  // pc streams of version 4 had other contexts
+  try {
+    (void)decode_image(bytes);
+    ADD_FAILURE() << "a version 4 stream decoded";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("unsupported version 4"), std::string::npos) << e.what();
+  }
+}
+
 TEST(PcPhotos, LosslessIsRefusedAndTheCliNamesTheCoder) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("pupwave_pc_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));

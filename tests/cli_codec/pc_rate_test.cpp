@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_groups.h"
 #include "codec/format/container.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_encoder_pc.h"
@@ -112,13 +113,14 @@ std::vector<std::vector<float>> decode_by_index_planes(const ParsedStream& s, co
   const std::size_t n = region[0] * region[1];
   std::vector<std::vector<std::int32_t>> index(s.header.channels, std::vector<std::int32_t>(n, 0));
   std::vector<std::vector<float>> out(s.header.channels, std::vector<float>(n, 0.0f));
-  for (std::size_t i = 0; i < s.blocks.size(); ++i) {  // blocks come resolution by resolution
+  // Blocks come resolution by resolution, components in order: parents, luma and Cb first.
+  for (std::size_t i = 0; i < s.blocks.size(); ++i) {
     const CodeBlock& b = s.blocks[i];
     if (s.index[i].passes == 0) continue;
     std::int32_t* plane = index[b.component].data();
     pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
                     lc_parent(s.bands, b, plane, region[0], nullptr),
-                    plane + b.offset[0] + region[0] * b.offset[1], region[0]);
+                    plane + b.offset[0] + region[0] * b.offset[1], region[0], pc_luma(b, index, region[0]));
   }
   for (std::size_t i = 0; i < s.blocks.size(); ++i) {
     const CodeBlock& b = s.blocks[i];

@@ -1,0 +1,143 @@
+#pragma once
+// The parent-context coder's binarisation of one quantization index (entropy coder 4): the
+// volume coefficient coder's (coef_index.h: Rice class, unary high part with kCoefUnaryModels
+// models a class, escape, kCoefModelledLow modelled top low bits, raw rest, sign by context)
+// with pc's own models (pc_bit.h) and sign contexts, so that the volume coder's streams stay
+// as they are.
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "codec/entropy/coef_contexts.h"
+#include "codec/entropy/coef_index.h"
+#include "codec/entropy/pc_bit.h"
+#include "codec/entropy/range_decoder.h"
+#include "codec/entropy/range_encoder.h"
+
+namespace pupwave {
+
+// Sign contexts: the signs of W, N, the parent and the luma parent (Cb for Cr) (each negative,
+// zero or positive; zero where there is none).
+inline constexpr int kPcSignContexts = 81;
+
+// A coefficient's contexts: activity class (coef_rice_k's class) and sign context.
+struct PcCtx {
+  int cls = 0;
+  std::size_t sign = 0;
+};
+
+// Adaptive models of one pc block (fresh per block: each block's codeword decodes alone).
+struct PcModels {
+  std::array<std::array<PcBit, kCoefUnaryModels>, kCoefClasses> unary{};
+  std::array<std::array<PcBit, 2 << kCoefModelledLow>, kCoefClasses> low{};  // as CoefModels::low
+  std::array<PcBit, 2 * kPcSignContexts> sign{};                             // x2: index 1 / larger
+
+  // Class 0's unary models adapt faster (pc_bit.h).
+  static constexpr int kSilentShift = 5;
+  PcModels() {
+    for (PcBit& b : unary[0]) b.max_shift = kSilentShift;
+  }
+};
+
+// code_coef_index with pc's models: the decisions of q handed to `sink`.
+template <class Sink>
+inline void code_pc_index(Sink& sink, PcModels& m, const PcCtx& c, std::uint32_t q, bool negative) {
+  const int k = coef_rice_k(c.cls);
+  const std::uint32_t h = q >> k;
+  auto& unary = m.unary[std::size_t(c.cls)];
+  const std::uint32_t ones = std::min<std::uint32_t>(h, kCoefEscape);
+  for (std::uint32_t j = 0; j < ones; ++j) sink.bit(1, unary[std::min<std::size_t>(j, kCoefUnaryModels - 1)]);
+  if (h < kCoefEscape)
+    sink.bit(0, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]);
+  else
+    sink.escape(h - kCoefEscape);
+  const int modelled = std::min(k, kCoefModelledLow);
+  auto& low = m.low[std::size_t(c.cls)];
+  std::size_t node = 1;
+  const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
+  for (int b = k - 1; b >= k - modelled; --b) {
+    const int bit = int((q >> b) & 1u);
+    sink.bit(bit, low[tree + node]);
+    node = 2 * node + std::size_t(bit);
+  }
+  const int rest_bits = k - modelled;
+  sink.rest(q & ((1u << rest_bits) - 1u), rest_bits);
+  if (q != 0) sink.bit(negative ? 1 : 0, m.sign[c.sign + (q > 1 ? kPcSignContexts : 0)]);
+}
+
+// The range coder as code_pc_index's sink.
+struct PcIndexWriter {
+  RangeEncoder& enc;
+  void bit(int b, PcBit& model) {
+    enc.encode_probability(b, model.p0);
+    model.update(b);
+  }
+  void escape(std::uint32_t e) {
+    const int n = int(std::bit_width(e));
+    enc.encode_raw(std::uint32_t(n), 5);
+    put_coef_raw(enc, e, n);
+  }
+  void rest(std::uint32_t v, int n) { put_coef_raw(enc, v, n); }
+};
+
+inline void put_pc_index(RangeEncoder& enc, PcModels& m, const PcCtx& c, std::uint32_t q, bool negative) {
+  PcIndexWriter writer{enc};
+  code_pc_index(writer, m, c, q, negative);
+}
+
+inline int pc_decode_bit(RangeDecoder& dec, PcBit& model) {
+  const int b = dec.decode_probability(model.p0);
+  model.update(b);
+  return b;
+}
+
+// Inverse of put_pc_index: the magnitude, clamped to `limit` (corrupt input only), and its sign.
+inline std::uint32_t get_pc_index(RangeDecoder& dec, PcModels& m, const PcCtx& c, std::uint64_t limit,
+                                  bool& negative) {
+  const int k = coef_rice_k(c.cls);
+  auto& unary = m.unary[std::size_t(c.cls)];
+  std::uint64_t h = 0;
+  while (h < kCoefEscape && pc_decode_bit(dec, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]) != 0)
+    ++h;
+  if (h == kCoefEscape) {
+    const int n = int(dec.decode_raw(5));  // at most 31 bits: bounded
+    h += get_coef_raw(dec, n);
+  }
+  const int modelled = std::min(k, kCoefModelledLow);
+  auto& low = m.low[std::size_t(c.cls)];
+  std::size_t node = 1;
+  const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
+  for (int b = 0; b < modelled; ++b) node = 2 * node + std::size_t(pc_decode_bit(dec, low[tree + node]));
+  const std::uint64_t top = (node - (std::size_t(1) << modelled)) | (h << modelled);  // q >> rest_bits
+  const int rest_bits = k - modelled;
+  const std::uint64_t value = (top << rest_bits) | get_coef_raw(dec, rest_bits);
+  negative = value != 0 && pc_decode_bit(dec, m.sign[c.sign + (value > 1 ? kPcSignContexts : 0)]) != 0;
+  return std::uint32_t(std::min(value, limit));
+}
+
+// Counts the bits code_pc_index's decisions would take (raw bits whole); Update: adapting the
+// models as the coder would.
+template <bool Update>
+struct PcIndexCounter {
+  double bits = 0.0;
+  void bit(int b, PcBit& model) {
+    bits -= std::log2(double(b ? kProbabilityOne - model.p0 : model.p0) / double(kProbabilityOne));
+    if constexpr (Update) model.update(b);
+  }
+  void escape(std::uint32_t e) { bits += 5.0 + double(std::bit_width(e)); }
+  void rest(std::uint32_t, int n) { bits += double(n); }
+};
+
+// put_pc_index's code length in bits, for RDOQ and the bench estimate.
+template <bool Update>
+double pc_index_bits(PcModels& m, const PcCtx& c, std::uint32_t q, bool negative) {
+  PcIndexCounter<Update> counter;
+  code_pc_index(counter, m, c, q, negative);
+  return counter.bits;
+}
+
+}  // namespace pupwave
