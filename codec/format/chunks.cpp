@@ -50,13 +50,16 @@ bool has_signature(std::span<const std::uint8_t> bytes, const ChunkTag& magic) {
 }
 
 ChunkReader::ChunkReader(std::span<const std::uint8_t> bytes, const ChunkTag& magic, std::uint8_t version,
-                         const char* what)
+                         const char* what, std::uint8_t oldest)
     : bytes_(bytes), what_(what) {
+  if (oldest == 0) oldest = version;
   require_stream(bytes.size() >= kSignatureBytes && has_signature(bytes, magic),
                  [&] { return std::string("not a pupwave ") + what + " (bad signature)"; });
-  require_stream(bytes[4] == version, [&] {
+  require_stream(bytes[4] >= oldest && bytes[4] <= version, [&] {
     return std::string(what) + ": unsupported version " + std::to_string(bytes[4]) + " (this build reads " +
-           std::to_string(version) + ")";
+           (oldest == version ? std::to_string(version)
+                              : std::to_string(oldest) + " to " + std::to_string(version)) +
+           ")";
   });
 }
 

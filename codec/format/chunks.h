@@ -48,15 +48,18 @@ bool has_signature(std::span<const std::uint8_t> bytes, const ChunkTag& magic);
 // Every failure throws DecodeError naming the stream kind (`what`, a string literal).
 class ChunkReader {
  public:
-  // Checks the signature and that the version byte equals `version`.
+  // Checks the signature and that the version byte is in [oldest, version] (oldest defaults to
+  // version: only streams whose syntax is unchanged since `oldest` may widen the range).
   ChunkReader(std::span<const std::uint8_t> bytes, const ChunkTag& magic, std::uint8_t version,
-              const char* what);
+              const char* what, std::uint8_t oldest = 0);
 
   bool at_end() const { return pos_ == bytes_.size(); }
   std::size_t position() const { return pos_; }
   Chunk next();
   // next(), which must carry `tag`.
   Chunk expect(const ChunkTag& tag);
+  // The stream's version byte.
+  std::uint8_t version() const { return bytes_[4]; }
 
  private:
   std::span<const std::uint8_t> bytes_;

@@ -220,10 +220,15 @@ std::size_t container_size(const StreamHeader& header, std::size_t index_bytes, 
 
 ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_levels,
                              const DecodeLimits& limits) {
-  ChunkReader chunks(bytes, kSignature, kStreamVersion, "image stream");
+  ChunkReader chunks(bytes, kSignature, kStreamVersion, "image stream", kOldestStreamVersion);
   ParsedStream s;
   s.header = parse_header(chunks.expect("HEAD").payload);
   const StreamHeader& h = s.header;
+  require_stream(chunks.version() == kStreamVersion || h.entropy != EntropyCoder::pc, [&] {
+    return "image stream: version " + std::to_string(chunks.version()) +
+           " with entropy coder 4 (pc), whose contexts changed in version " + std::to_string(kStreamVersion) +
+           ": decode it with the pupwave build that wrote it";
+  });
   s.bands = header_bands(h);
   if (drop_levels < 0 || drop_levels > h.levels)
     throw std::invalid_argument(

@@ -25,7 +25,10 @@ namespace pupwave {
 // Version 3: the bit-plane block coder's far-neighbour contexts and trained priors.
 // Version 4: the priors retrained on photographs other than the scored ones, each with its own
 // weight (codec/entropy/ctx_priors.h).
+// Version 5: the pc coder's contexts (parent's neighbours, luma and Cb parents, class-0 rate); the
+// other coders' streams are unchanged, so version 4 streams of coders other than pc still decode.
 inline constexpr std::uint8_t kStreamVersion = 5;
+inline constexpr std::uint8_t kOldestStreamVersion = 4;
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxAxisExtent = std::size_t(1) << 16;
 inline constexpr std::size_t kMaxTotalSamples = std::size_t(1) << 31;
