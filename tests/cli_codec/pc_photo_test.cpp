@@ -187,7 +187,8 @@ TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
     (void)decode_image(bytes);
     ADD_FAILURE() << "a version 4 pc stream decoded";
   } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("version 4 with entropy coder 4 (pc)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("version 4 with entropy coder 4 (pc)"), std::string::npos)
+        << e.what();
   }
   EncodeOptions plain;
   plain.mode = RateMode::bpp;
