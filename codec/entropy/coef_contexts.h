@@ -47,6 +47,7 @@ struct CoefModels {
   // Sign, by the signs of the x-1, y-1, z-1 neighbours and whether the index is 1 or larger
   // (neighbour signs agree more with a large coefficient's): streams 2-5% smaller than with raw signs.
   std::array<BitModel, 2 * kCoefSignContexts> sign{};
+  static constexpr int kSignContexts = kCoefSignContexts;
 };
 
 // Block indices with a zero border before x, y, z and after x, so every causal neighbour of a

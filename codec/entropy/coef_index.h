@@ -39,8 +39,9 @@ inline std::uint64_t get_coef_raw(RangeDecoder& dec, int n) {
 // context `sign_ctx`, handed to `sink`: bit(b, model) for a modelled bit, escape(e) for the
 // Elias-gamma raw tail of a long high part, rest(v, n) for the n raw low bits. One binarisation
 // for the coder (CoefIndexWriter) and the rate estimates (CoefIndexCounter).
-template <class Sink>
-inline void code_coef_index(Sink& sink, CoefModels& m, int ctx, std::size_t sign_ctx, std::uint32_t q,
+// Models: CoefModels, or the pc coder's PcModels (pc_index.h), whose bits adapt their own way.
+template <class Sink, class Models>
+inline void code_coef_index(Sink& sink, Models& m, int ctx, std::size_t sign_ctx, std::uint32_t q,
                             bool negative) {
   const int k = coef_rice_k(ctx);
   const std::uint32_t h = q >> k;
@@ -63,7 +64,7 @@ inline void code_coef_index(Sink& sink, CoefModels& m, int ctx, std::size_t sign
   }
   const int rest_bits = k - modelled;
   sink.rest(q & ((1u << rest_bits) - 1u), rest_bits);
-  if (q != 0) sink.bit(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? kCoefSignContexts : 0)]);
+  if (q != 0) sink.bit(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? Models::kSignContexts : 0)]);
 }
 
 // The range coder as code_coef_index's sink.
@@ -85,13 +86,18 @@ inline void put_coef_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_
   code_coef_index(writer, m, ctx, sign_ctx, q, negative);
 }
 
+// One modelled bit decoded (pc_index.h overloads it for its models).
+inline int decode_model_bit(RangeDecoder& dec, BitModel& model) { return dec.decode(model); }
+
 // Inverse of put_coef_index: the magnitude, clamped to `limit` (corrupt input only), and its sign.
-inline std::uint32_t get_coef_index(RangeDecoder& dec, CoefModels& m, int ctx, std::size_t sign_ctx,
+template <class Models>
+inline std::uint32_t get_coef_index(RangeDecoder& dec, Models& m, int ctx, std::size_t sign_ctx,
                                     std::uint64_t limit, bool& negative) {
   const int k = coef_rice_k(ctx);
   auto& unary = m.unary[std::size_t(ctx)];
   std::uint64_t h = 0;
-  while (h < kCoefEscape && dec.decode(unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]) != 0) ++h;
+  while (h < kCoefEscape && decode_model_bit(dec, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]) != 0)
+    ++h;
   if (h == kCoefEscape) {
     const int n = int(dec.decode_raw(5));  // at most 31 bits: bounded
     h += get_coef_raw(dec, n);
@@ -100,11 +106,12 @@ inline std::uint32_t get_coef_index(RangeDecoder& dec, CoefModels& m, int ctx, s
   auto& low = m.low[std::size_t(ctx)];
   std::size_t node = 1;
   const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
-  for (int b = 0; b < modelled; ++b) node = 2 * node + std::size_t(dec.decode(low[tree + node]));
+  for (int b = 0; b < modelled; ++b) node = 2 * node + std::size_t(decode_model_bit(dec, low[tree + node]));
   const std::uint64_t top = (node - (std::size_t(1) << modelled)) | (h << modelled);  // q >> rest_bits
   const int rest_bits = k - modelled;
   const std::uint64_t value = (top << rest_bits) | get_coef_raw(dec, rest_bits);
-  negative = value != 0 && dec.decode(m.sign[sign_ctx + (value > 1 ? kCoefSignContexts : 0)]) != 0;
+  negative =
+      value != 0 && decode_model_bit(dec, m.sign[sign_ctx + (value > 1 ? Models::kSignContexts : 0)]) != 0;
   return std::uint32_t(std::min(value, limit));
 }
 

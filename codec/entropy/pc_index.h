@@ -35,6 +35,7 @@ struct PcModels {
   std::array<std::array<PcBit, kCoefUnaryModels>, kCoefClasses> unary{};
   std::array<std::array<PcBit, 2 << kCoefModelledLow>, kCoefClasses> low{};  // as CoefModels::low
   std::array<PcBit, 2 * kPcSignContexts> sign{};                             // x2: index 1 / larger
+  static constexpr int kSignContexts = kPcSignContexts;
 
   // Class 0's unary models adapt faster (pc_bit.h).
   static constexpr int kSilentShift = 5;
@@ -46,27 +47,7 @@ struct PcModels {
 // code_coef_index with pc's models: the decisions of q handed to `sink`.
 template <class Sink>
 inline void code_pc_index(Sink& sink, PcModels& m, const PcCtx& c, std::uint32_t q, bool negative) {
-  const int k = coef_rice_k(c.cls);
-  const std::uint32_t h = q >> k;
-  auto& unary = m.unary[std::size_t(c.cls)];
-  const std::uint32_t ones = std::min<std::uint32_t>(h, kCoefEscape);
-  for (std::uint32_t j = 0; j < ones; ++j) sink.bit(1, unary[std::min<std::size_t>(j, kCoefUnaryModels - 1)]);
-  if (h < kCoefEscape)
-    sink.bit(0, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]);
-  else
-    sink.escape(h - kCoefEscape);
-  const int modelled = std::min(k, kCoefModelledLow);
-  auto& low = m.low[std::size_t(c.cls)];
-  std::size_t node = 1;
-  const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
-  for (int b = k - 1; b >= k - modelled; --b) {
-    const int bit = int((q >> b) & 1u);
-    sink.bit(bit, low[tree + node]);
-    node = 2 * node + std::size_t(bit);
-  }
-  const int rest_bits = k - modelled;
-  sink.rest(q & ((1u << rest_bits) - 1u), rest_bits);
-  if (q != 0) sink.bit(negative ? 1 : 0, m.sign[c.sign + (q > 1 ? kPcSignContexts : 0)]);
+  code_coef_index(sink, m, c.cls, c.sign, q, negative);
 }
 
 // The range coder as code_pc_index's sink.
@@ -89,7 +70,8 @@ inline void put_pc_index(RangeEncoder& enc, PcModels& m, const PcCtx& c, std::ui
   code_pc_index(writer, m, c, q, negative);
 }
 
-inline int pc_decode_bit(RangeDecoder& dec, PcBit& model) {
+// get_coef_index's bit decoder for pc's models.
+inline int decode_model_bit(RangeDecoder& dec, PcBit& model) {
   const int b = dec.decode_probability(model.p0);
   model.update(b);
   return b;
@@ -98,25 +80,7 @@ inline int pc_decode_bit(RangeDecoder& dec, PcBit& model) {
 // Inverse of put_pc_index: the magnitude, clamped to `limit` (corrupt input only), and its sign.
 inline std::uint32_t get_pc_index(RangeDecoder& dec, PcModels& m, const PcCtx& c, std::uint64_t limit,
                                   bool& negative) {
-  const int k = coef_rice_k(c.cls);
-  auto& unary = m.unary[std::size_t(c.cls)];
-  std::uint64_t h = 0;
-  while (h < kCoefEscape && pc_decode_bit(dec, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]) != 0)
-    ++h;
-  if (h == kCoefEscape) {
-    const int n = int(dec.decode_raw(5));  // at most 31 bits: bounded
-    h += get_coef_raw(dec, n);
-  }
-  const int modelled = std::min(k, kCoefModelledLow);
-  auto& low = m.low[std::size_t(c.cls)];
-  std::size_t node = 1;
-  const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
-  for (int b = 0; b < modelled; ++b) node = 2 * node + std::size_t(pc_decode_bit(dec, low[tree + node]));
-  const std::uint64_t top = (node - (std::size_t(1) << modelled)) | (h << modelled);  // q >> rest_bits
-  const int rest_bits = k - modelled;
-  const std::uint64_t value = (top << rest_bits) | get_coef_raw(dec, rest_bits);
-  negative = value != 0 && pc_decode_bit(dec, m.sign[c.sign + (value > 1 ? kPcSignContexts : 0)]) != 0;
-  return std::uint32_t(std::min(value, limit));
+  return get_coef_index(dec, m, c.cls, c.sign, limit, negative);
 }
 
 // Counts the bits code_pc_index's decisions would take (raw bits whole); Update: adapting the
