@@ -27,13 +27,8 @@ namespace {
 using test::crop;
 using test::photo;
 
-EncodeOptions pc(RateMode mode, double target) {
-  EncodeOptions o;
-  o.mode = mode;
-  o.target = target;
-  o.entropy = EntropyCoder::pc;
-  return o;
-}
+// A pc encode's options (photo_crops.h).
+EncodeOptions pc(RateMode mode, double target) { return test::pc_options(mode, target); }
 
 double decoded_psnr(const Image& img, const std::vector<std::uint8_t>& bytes) {
   return compare_images(img, decode_image(bytes)).overall.psnr;

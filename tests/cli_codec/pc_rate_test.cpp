@@ -30,13 +30,8 @@ using test::photo;
 
 const char* const kPhotos[] = {"astronaut.png", "camera.png", "chelsea.png", "coffee.png"};
 
-EncodeOptions pc(RateMode mode, double target) {
-  EncodeOptions o;
-  o.mode = mode;
-  o.target = target;
-  o.entropy = EntropyCoder::pc;
-  return o;
-}
+// A pc encode's options (photo_crops.h).
+EncodeOptions pc(RateMode mode, double target) { return test::pc_options(mode, target); }
 
 TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
   int passes = 0, searches = 0, trimmed = 0;

@@ -1,10 +1,11 @@
 #pragma once
-// The test photographs and their crops, shared by the strip encoder and decoder tests.
+// The test photographs and their crops, shared by the strip encoder, decoder and pc tests.
 
 #include <cstddef>
 #include <string>
 
 #include "codec/image/image.h"
+#include "codec/image/image_codec.h"
 #include "tools/image_io.h"
 
 namespace pupwave::test {
@@ -20,6 +21,15 @@ inline Image crop(const Image& in, std::size_t w, std::size_t h) {
     for (std::size_t y = 0; y < h; ++y)
       for (std::size_t x = 0; x < w; ++x) out.at(c, x, y) = in.at(c, x, y);
   return out;
+}
+
+// Options of a pc (entropy coder 4) encode at a rate target.
+inline EncodeOptions pc_options(RateMode mode, double target) {
+  EncodeOptions o;
+  o.mode = mode;
+  o.target = target;
+  o.entropy = EntropyCoder::pc;
+  return o;
 }
 
 }  // namespace pupwave::test

@@ -15,3 +15,22 @@ def wmag91():
 
 def value_range(a):
     return float(a.max()) - float(a.min())
+
+
+def damaged_refusals(codec, stored, seed, trials=150):
+    """Decodes `trials` copies of a stored chunk with 1-3 random bytes flipped (every fifth also
+    cut short); returns how many were refused with the codec's message (none may crash)."""
+    rng = np.random.default_rng(seed)
+    refused = 0
+    for i in range(trials):
+        damaged = bytearray(stored)
+        for _ in range(int(rng.integers(1, 4))):
+            damaged[int(rng.integers(0, len(damaged)))] ^= int(rng.integers(1, 256))
+        if i % 5 == 0:
+            damaged = damaged[: int(rng.integers(0, len(damaged)))]
+        try:
+            codec.decode(bytes(damaged))
+        except ValueError as e:
+            assert "cannot decode chunk" in str(e)
+            refused += 1
+    return refused
