@@ -34,3 +34,19 @@ def damaged_refusals(codec, stored, seed, trials=150):
             assert "cannot decode chunk" in str(e)
             refused += 1
     return refused
+
+
+def h5_write(path, data, chunks, **kwargs):
+    """Writes `data` as dataset "x" with these chunks and filter arguments; returns its stored bytes."""
+    import h5py  # here, not at the top: the numcodecs tests share this file without needing h5py
+
+    with h5py.File(path, "w") as f:
+        return f.create_dataset("x", data=data, chunks=chunks, **kwargs).id.get_storage_size()
+
+
+def h5_read(path):
+    """Dataset "x" of the file, whole."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        return f["x"][...]

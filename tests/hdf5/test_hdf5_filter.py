@@ -7,28 +7,17 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import value_range
+from conftest import h5_read, h5_write, value_range
 from pupwave.hdf5 import FILTER_ID, filter_cd_values, hdf5_filter
 
 CHUNK_HEADER = 4  # bytes added to a chunk stored raw (docs/hdf5.md)
 
 
-def write(path, data, chunks, **kwargs):
-    with h5py.File(path, "w") as f:
-        d = f.create_dataset("x", data=data, chunks=chunks, **kwargs)
-        return d.id.get_storage_size()
-
-
-def read(path):
-    with h5py.File(path, "r") as f:
-        return f["x"][...]
-
-
 @pytest.mark.parametrize("rel", [1e-2, 1e-3, 1e-4])
 def test_max_error_holds_on_every_value_of_wmag91(tmp_path, wmag91, rel):
     bound = rel * value_range(wmag91)
-    stored = write(tmp_path / "w.h5", wmag91, (48, 91, 91), **hdf5_filter(max_error=bound))
-    back = read(tmp_path / "w.h5")
+    stored = h5_write(tmp_path / "w.h5", wmag91, (48, 91, 91), **hdf5_filter(max_error=bound))
+    back = h5_read(tmp_path / "w.h5")
     assert back.dtype == np.float32 and back.shape == wmag91.shape
     assert np.abs(back.astype(np.float64) - wmag91).max() <= bound
     assert stored < wmag91.nbytes / 3  # compresses (two chunks, the second padded by HDF5)
@@ -37,19 +26,19 @@ def test_max_error_holds_on_every_value_of_wmag91(tmp_path, wmag91, rel):
 def test_float64_1d_and_2d_chunks(tmp_path, wmag91):
     plane = wmag91[40].astype(np.float64)
     bound = 1e-3 * value_range(plane)
-    write(tmp_path / "p.h5", plane, (32, 91), **hdf5_filter(max_error=bound))
-    assert np.abs(read(tmp_path / "p.h5") - plane).max() <= bound
+    h5_write(tmp_path / "p.h5", plane, (32, 91), **hdf5_filter(max_error=bound))
+    assert np.abs(h5_read(tmp_path / "p.h5") - plane).max() <= bound
     line = plane.ravel()
-    write(tmp_path / "l.h5", line, (1000,), **hdf5_filter(max_error=bound))
-    assert np.abs(read(tmp_path / "l.h5") - line).max() <= bound
+    h5_write(tmp_path / "l.h5", line, (1000,), **hdf5_filter(max_error=bound))
+    assert np.abs(h5_read(tmp_path / "l.h5") - line).max() <= bound
 
 
 def test_bits_per_value_sets_the_size(tmp_path, wmag91):
     data = wmag91[:64, :64, :64].copy()
-    stored = write(tmp_path / "b.h5", data, data.shape, **hdf5_filter(bpv=2.0))
+    stored = h5_write(tmp_path / "b.h5", data, data.shape, **hdf5_filter(bpv=2.0))
     assert stored <= data.size * 2.0 / 8 + 200  # a 200-byte stream header at most
     assert stored > data.size * 1.0 / 8
-    assert np.abs(read(tmp_path / "b.h5") - data).max() < 0.1 * value_range(data)
+    assert np.abs(h5_read(tmp_path / "b.h5") - data).max() < 0.1 * value_range(data)
 
 
 @pytest.mark.parametrize("dtype", ["u1", "i1", "u2", "i2"])
@@ -57,22 +46,22 @@ def test_lossless_integers_are_bit_exact(tmp_path, wmag91, dtype):
     info = np.iinfo(dtype)
     scaled = (wmag91 - wmag91.min()) / value_range(wmag91) * (float(info.max) - info.min) + info.min
     data = np.round(scaled).astype(dtype)
-    stored = write(tmp_path / "i.h5", data, (48, 48, 48), **hdf5_filter(lossless=True))
-    assert np.array_equal(read(tmp_path / "i.h5"), data)
+    stored = h5_write(tmp_path / "i.h5", data, (48, 48, 48), **hdf5_filter(lossless=True))
+    assert np.array_equal(h5_read(tmp_path / "i.h5"), data)
     assert stored < data.nbytes
 
 
 def test_incompressible_or_nan_chunks_are_stored_raw(tmp_path, wmag91):
     noise = np.random.default_rng(1).standard_normal((64, 64, 64)).astype(np.float32)
-    stored = write(tmp_path / "n.h5", noise, (32, 32, 32), **hdf5_filter(max_error=1e-7))
+    stored = h5_write(tmp_path / "n.h5", noise, (32, 32, 32), **hdf5_filter(max_error=1e-7))
     assert stored <= noise.nbytes + 8 * CHUNK_HEADER
-    assert np.abs(read(tmp_path / "n.h5") - noise).max() <= 1e-7
+    assert np.abs(h5_read(tmp_path / "n.h5") - noise).max() <= 1e-7
     data = wmag91[:32, :32, :32].copy()
     data[3, 4, 5] = np.nan
     data[6, 7, 8] = np.inf
-    stored = write(tmp_path / "nan.h5", data, data.shape, **hdf5_filter(max_error=1e-3))
+    stored = h5_write(tmp_path / "nan.h5", data, data.shape, **hdf5_filter(max_error=1e-3))
     assert stored == data.nbytes + CHUNK_HEADER
-    assert np.array_equal(read(tmp_path / "nan.h5"), data, equal_nan=True)
+    assert np.array_equal(h5_read(tmp_path / "nan.h5"), data, equal_nan=True)
 
 
 @pytest.mark.parametrize("opts, message", [
@@ -102,8 +91,8 @@ def test_unsupported_datasets_are_refused(tmp_path, dtype, shape, chunks, messag
 
 def test_unit_dimensions_are_dropped(tmp_path, wmag91):
     data = wmag91[:32, :32, :32].reshape(1, 32, 32, 32).copy()
-    write(tmp_path / "u.h5", data, data.shape, **hdf5_filter(max_error=0.05))
-    assert np.abs(read(tmp_path / "u.h5") - data).max() <= 0.05
+    h5_write(tmp_path / "u.h5", data, data.shape, **hdf5_filter(max_error=0.05))
+    assert np.abs(h5_read(tmp_path / "u.h5") - data).max() <= 0.05
 
 
 def corrupt_first_chunk(path, position):
@@ -120,11 +109,11 @@ def corrupt_first_chunk(path, position):
 def test_corrupted_chunk_fails_the_read_with_the_filter_named(tmp_path, wmag91, where):
     path = tmp_path / "c.h5"
     data = wmag91[:64, :64, :64].copy()
-    write(path, data, data.shape, **hdf5_filter(max_error=1e-3 * value_range(data)))
+    h5_write(path, data, data.shape, **hdf5_filter(max_error=1e-3 * value_range(data)))
     position = {"signature": lambda n: 0, "stream header": lambda n: 9, "middle": lambda n: n // 2}[where]
     corrupt_first_chunk(path, position)
     with pytest.raises(OSError):
-        read(path)
+        h5_read(path)
     run = subprocess.run(["h5dump", "--enable-error-stack", "-d", "/x", str(path)], capture_output=True, text=True,
                          env=os.environ, timeout=60)
     assert run.returncode != 0
@@ -134,7 +123,7 @@ def test_corrupted_chunk_fails_the_read_with_the_filter_named(tmp_path, wmag91, 
 def test_h5dump_and_h5ls_show_and_decode_the_filter(tmp_path, wmag91):
     path = tmp_path / "d.h5"
     data = wmag91[:8, :8, :8].copy()
-    write(path, data, (8, 8, 8), **hdf5_filter(max_error=1e-2))
+    h5_write(path, data, (8, 8, 8), **hdf5_filter(max_error=1e-2))
     header = subprocess.run(["h5dump", "-p", "-H", str(path)], capture_output=True, text=True, check=True,
                             env=os.environ, timeout=60).stdout
     assert f"FILTER_ID {FILTER_ID}" in header and "pupwave" in header
@@ -152,7 +141,7 @@ def test_max_error_chunks_use_the_cli_default_bank(tmp_path, wmag91):
     """Max-error chunks carry the bank `pupwave compress --max-error` uses (one default everywhere)."""
     import pupwave
     bound = 1e-3 * value_range(wmag91)
-    write(tmp_path / "t.h5", wmag91, (64, 64, 64), **hdf5_filter(max_error=bound))
+    h5_write(tmp_path / "t.h5", wmag91, (64, 64, 64), **hdf5_filter(max_error=bound))
     with h5py.File(tmp_path / "t.h5", "r") as f:
         _, chunk = f["x"].id.read_direct_chunk((0, 0, 0))
     assert chunk[:2] == b"PW" and chunk[2] == 1  # a coded chunk (docs/hdf5.md, "Chunk format")

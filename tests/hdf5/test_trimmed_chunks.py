@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import zarr
 
-from conftest import damaged_refusals, value_range
+from conftest import damaged_refusals, h5_read, h5_write, value_range
 from pupwave.hdf5 import hdf5_filter
 from pupwave.numcodecs import Pupwave
 
@@ -23,22 +23,12 @@ def head(chunk):
     return dims[:3], dims[3:]
 
 
-def h5_write(path, data, chunks, **kwargs):
-    with h5py.File(path, "w") as f:
-        return f.create_dataset("x", data=data, chunks=chunks, **kwargs).id.get_storage_size()
-
-
 def h5_chunks(path):
     """Offset -> stored bytes of every chunk."""
     with h5py.File(path, "r") as f:
         d = f["x"].id
         return {d.get_chunk_info(i).chunk_offset: d.read_direct_chunk(d.get_chunk_info(i).chunk_offset)[1]
                 for i in range(d.get_num_chunks())}
-
-
-def h5_read(path):
-    with h5py.File(path, "r") as f:
-        return f["x"][...]
 
 
 @pytest.mark.parametrize("rel", [1e-2, 1e-3, 1e-4])
