@@ -52,15 +52,22 @@ std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t 
   const bool negative = v < 0;
   const double x = std::fabs(double(u));
   const auto nearest = std::uint32_t(negative ? -std::int64_t(v) : v);
-  double best = 0.0;
-  std::uint32_t pick = nearest;
-  for (std::uint32_t c : {nearest, nearest - 1, 0u}) {
+  const auto error = [&](std::uint32_t c) {
     const double d = x - (c == 0 ? 0.0 : double(c) + delta);
-    const double j = d * d + lambda * pc_index_bits<false>(m, ctx, c, negative);
-    if (c == nearest || j < best) {
+    return d * d;
+  };
+  double best = error(nearest) + lambda * pc_index_bits<false>(m, ctx, nearest, negative);
+  const double bound = best;  // a candidate whose error alone reaches the nearest's cost cannot win
+  std::uint32_t pick = nearest;
+  for (std::uint32_t c : {nearest - 1, 0u}) {
+    const double e = error(c);
+    if (e >= bound) continue;  // skipped without pricing: the outcome is the same, only cheaper
+    const double j = e + lambda * pc_index_bits<false>(m, ctx, c, negative);
+    if (j < best) {
       best = j;
       pick = c;
     }
+    if (c == 0) break;  // nearest 1: its n - 1 was 0
   }
   return negative ? -std::int32_t(pick) : std::int32_t(pick);
 }
@@ -73,7 +80,7 @@ std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vecto
   const std::uint32_t largest =
       pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
         std::int32_t& v = q[y * width + x];
-        if (rdoq)
+        if (rdoq && v != 0)  // a zero stays zero: no call for the most common index
           v = pc_rdoq_index(*models, c, rdoq->coefficients[y * width + x], v, rdoq->lambda, rdoq->delta);
         put_pc_index(enc, *models, c, std::uint32_t(v < 0 ? -std::int64_t(v) : v), v < 0);
         return v;
@@ -100,12 +107,19 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
   if (rdoq) {
     if (rdoq->coefficients.size() != q.size())
       throw std::invalid_argument("pc_encode_block: coefficient count differs from the size");
-    for (std::size_t k = 0; k < q.size(); ++k) {  // the nearest reconstruction points
-      const double x = std::fabs(double(rdoq->coefficients[k]));
-      const double n = std::max(0.0, std::floor(x - rdoq->delta + 0.5));
-      if (n >= double(1u << kCoefMaxBits)) throw IndexRangeError("index too large for the pc coder");
-      q[k] = rdoq->coefficients[k] < 0 ? -std::int32_t(n) : std::int32_t(n);
+    // The nearest reconstruction points floor(|u| - delta + 0.5), 0 below 0: truncation of a
+    // non-negative value, and the range checked once after the loop, so that it vectorizes.
+    const double delta = rdoq->delta, limit = double(1u << kCoefMaxBits);
+    double largest = 0.0;
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const float u = rdoq->coefficients[k];
+      const double v = (double(std::fabs(u)) - delta) + 0.5;
+      const double y = v > 0.0 ? v : 0.0;  // NaN too
+      largest = y > largest ? y : largest;
+      const auto n = std::int32_t(y < limit ? y : limit);
+      q[k] = u < 0 ? -n : n;
     }
+    if (!(largest < limit)) throw IndexRangeError("index too large for the pc coder");
   }
   std::uint64_t all = 0;
   for (std::int32_t v : q) all |= std::uint64_t(v < 0 ? -std::int64_t(v) : v);
