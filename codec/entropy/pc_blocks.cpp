@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "codec/entropy/block_encoder.h"
@@ -32,18 +33,28 @@ PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const
     const std::size_t p = std::min(c >> 1, extent - 1);
     return std::pair{p, (c & 1u) ? std::min(p + 1, extent - 1) : (p > 0 ? p - 1 : 0)};
   };
+  if (w == 0 || h == 0) return;
   parent_rows_.resize(2 * h);
-  for (std::size_t y = 0; y < h; ++y) {
-    const auto [py, ny] = own_and_side(parent_.y0 + y, parent_.height);
-    parent_rows_[2 * y] = parent_.origin + py * parent_.stride;
-    parent_rows_[2 * y + 1] = parent_.origin + ny * parent_.stride;
-  }
+  for (std::size_t y = 0; y < h; ++y) std::tie(parent_rows_[2 * y], parent_rows_[2 * y + 1]) =
+      own_and_side(parent_.y0 + y, parent_.height);
   parent_cols_.resize(2 * w);
-  for (std::size_t x = 0; x < w; ++x) {
-    const auto [px, nx] = own_and_side(parent_.x0 + x, parent_.width);
-    parent_cols_[2 * x] = px;
-    parent_cols_[2 * x + 1] = nx;
+  for (std::size_t x = 0; x < w; ++x) std::tie(parent_cols_[2 * x], parent_cols_[2 * x + 1]) =
+      own_and_side(parent_.x0 + x, parent_.width);
+  // The window of parent rows and columns read, copied as magnitudes and signs.
+  const auto [row0, row1] = std::minmax_element(parent_rows_.begin(), parent_rows_.end());
+  const auto [col0, col1] = std::minmax_element(parent_cols_.begin(), parent_cols_.end());
+  const std::size_t y0 = *row0, x0 = *col0, pw = *col1 - x0 + 1, ph = *row1 - y0 + 1;
+  pmag_.resize(pw * ph);
+  psign_.resize(pw * ph);
+  for (std::size_t r = 0; r < ph; ++r) {
+    const std::int32_t* from = parent_.origin + (y0 + r) * parent_.stride + x0;
+    for (std::size_t c = 0; c < pw; ++c) {
+      pmag_[r * pw + c] = std::uint32_t(magnitude(from[c]));
+      psign_[r * pw + c] = std::int8_t(sign_of(from[c]));
+    }
   }
+  for (std::size_t& r : parent_rows_) r = (r - y0) * pw;
+  for (std::size_t& c : parent_cols_) c -= x0;
 }
 
 std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t v, double lambda,

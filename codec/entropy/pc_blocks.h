@@ -57,12 +57,11 @@ class PcContext {
     std::uint64_t s3 = in_weight_ * in;  // three times the activity (P's neighbours count a third)
     int ps = 0, ls = 0;
     if (parent_.origin) {
-      const std::int32_t* row = parent_rows_[2 * y];
-      const std::int32_t* side = parent_rows_[2 * y + 1];
+      const std::uint32_t* row = pmag_.data() + parent_rows_[2 * y];
+      const std::uint32_t* side = pmag_.data() + parent_rows_[2 * y + 1];
       const std::size_t px = parent_cols_[2 * x], nx = parent_cols_[2 * x + 1];
-      const std::int32_t c = row[px];
-      s3 += parent_weight_ * magnitude(c) + magnitude(row[nx]) + magnitude(side[px]) + magnitude(side[nx]);
-      ps = sign_of(c);
+      s3 += parent_weight_ * row[px] + row[nx] + side[px] + side[nx];
+      ps = psign_[parent_rows_[2 * y] + px];
     }
     if (luma_.origin) {
       const std::int32_t l = luma_.origin[y * luma_.stride + x];
@@ -95,9 +94,14 @@ class PcContext {
   LcParent parent_;
   PcLuma luma_;
   std::uint64_t in_weight_, parent_weight_;  // 3 (x 2 x scale with a parent) and 3 x weight
-  // Per child row y: the parent's row and its neighbour row towards y (2y, 2y + 1); per child
-  // column x: the parent's column and its neighbour column towards x (2x, 2x + 1), clamped.
-  std::vector<const std::int32_t*> parent_rows_;
+  // The magnitudes and signs of the parent band's samples this block reads (its window of rows
+  // and columns, row-major), made once per block so that the per-coefficient loop does no abs.
+  std::vector<std::uint32_t> pmag_;
+  std::vector<std::int8_t> psign_;
+  // Per child row y: the offsets in pmag_ of the parent's row and its neighbour row towards y
+  // (2y, 2y + 1); per child column x: the parent's column and its neighbour column towards x
+  // (2x, 2x + 1), clamped to the band, relative to the window.
+  std::vector<std::size_t> parent_rows_;
   std::vector<std::size_t> parent_cols_;
 };
 
