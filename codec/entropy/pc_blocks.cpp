@@ -92,7 +92,8 @@ void get_cfl(RangeDecoder& dec, PcCfl& cfl) {
     for (int k = 0; k < n; ++k) z = (z << 1) | std::uint32_t(dec.decode_equiprobable());
     const int zz = int(z - 1);
     const int c = zz & 1 ? (zz + 1) / 2 : -(zz / 2);
-    require_stream(c >= -kCflMaxCode && c <= kCflMaxCode, "pc code-block: chroma-from-luma weight out of range");
+    require_stream(c >= -kCflMaxCode && c <= kCflMaxCode,
+                   "pc code-block: chroma-from-luma weight out of range");
     cfl.code[i] = c;
   }
 }
@@ -131,7 +132,8 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
 }
 
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma, const PcCfl* cfl) {
+                             const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma,
+                             const PcCfl* cfl) {
   if (cfl)
     for (int i = 0; i < cfl->count; ++i)
       if (std::abs(cfl->code[i]) > kCflMaxCode)
@@ -153,7 +155,8 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
   if (all >= (std::uint64_t(1) << kCoefMaxBits)) throw IndexRangeError("index too large for the pc coder");
   CoefCodeword out;
   if (all == 0) return out;
-  auto [bytes, largest] = pc_encode_indices(q, width, height, PcContext(width, height, parent, luma), rdoq, cfl);
+  auto [bytes, largest] =
+      pc_encode_indices(q, width, height, PcContext(width, height, parent, luma), rdoq, cfl);
   out.bits = int(std::bit_width(largest));  // RDOQ may have lowered it: the decoder checks this one
   if (out.bits == 0) return out;            // RDOQ zeroed everything: no codeword
   out.bytes = std::move(bytes);
@@ -166,8 +169,8 @@ void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size
                      PcCfl* cfl) {
   require_stream(bits >= 1 && bits <= kCoefMaxBits && !codeword.empty(), "pc code-block: index bit width");
   const std::uint64_t limit = (std::uint64_t(1) << bits) - 1;
-  const std::uint32_t largest =
-      pc_decode_indices(codeword, limit, width, height, PcContext(width, height, parent, luma), out, stride, cfl);
+  const std::uint32_t largest = pc_decode_indices(codeword, limit, width, height,
+                                                  PcContext(width, height, parent, luma), out, stride, cfl);
   require_stream(int(std::bit_width(largest)) == bits, "pc code-block: largest index differs from the index");
 }
 

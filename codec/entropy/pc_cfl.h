@@ -39,7 +39,8 @@ inline float pc_cfl_predict(const PcCfl& k, float l, float cb) {
 // A weight rounded to a code in [-32, 32].
 inline int pc_cfl_code(double weight) {
   if (!std::isfinite(weight)) return 0;
-  return int(std::clamp(std::round(weight * kPcCflDenominator), double(-kPcCflMaxCode), double(kPcCflMaxCode)));
+  return int(
+      std::clamp(std::round(weight * kPcCflDenominator), double(-kPcCflMaxCode), double(kPcCflMaxCode)));
 }
 
 // Least-squares sums of a block: x1 = L, x2 = Cb, y = the coefficient.

@@ -66,7 +66,7 @@ struct Pass {
   std::vector<std::vector<std::uint8_t>> words;
   std::vector<PcCfl> cfl;  // per block: its chroma-from-luma weights (none for most)
   std::size_t bytes = 0;   // the whole file
-  double score = 0.0;     // log bytes or PSNR, by the search
+  double score = 0.0;      // log bytes or PSNR, by the search
 };
 
 // The passes' shared state: one set of index planes (Mallat layout per component), which hold
@@ -109,7 +109,8 @@ std::size_t cb_block(const ImagePlan& plan, std::size_t i) {
 double index_error(std::span<const float> u, std::span<const std::int32_t> v, double delta) {
   double e = 0.0;
   for (std::size_t k = 0; k < u.size(); ++k) {
-    const double r = v[k] == 0 ? 0.0 : (v[k] < 0 ? -(double(-std::int64_t(v[k])) + delta) : double(v[k]) + delta);
+    const double r =
+        v[k] == 0 ? 0.0 : (v[k] < 0 ? -(double(-std::int64_t(v[k])) + delta) : double(v[k]) + delta);
     e += (double(u[k]) - r) * (double(u[k]) - r);
   }
   return e;
@@ -135,7 +136,8 @@ PcCfl predict_block(const ImagePlan& plan, std::size_t i, const std::vector<std:
     for (std::size_t x = 0; x < b.size[0]; ++x) {
       const std::size_t k = y * b.size[0] + x;
       l[k] = pc_dequantize(q[0][at + x], luma_step, delta);
-      if (b.component == 2) m[k] = pc_dequantize(q[1][at + x], cb_step, delta) + pc_cfl_predict(cb, l[k], 0.0f);
+      if (b.component == 2)
+        m[k] = pc_dequantize(q[1][at + x], cb_step, delta) + pc_cfl_predict(cb, l[k], 0.0f);
       sums.add(l[k], m[k], row[x]);
     }
   }
@@ -178,7 +180,8 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
       vr.resize(b.count());
       for (std::size_t y = 0; y < b.size[1]; ++y) {
         const float* row = plan.coef[b.component].data() + b.offset[0] + dims[0] * (b.offset[1] + y);
-        for (std::size_t x = 0; x < b.size[0]; ++x) ur[y * b.size[0] + x] = (row[x] - pred[y * b.size[0] + x]) * inv;
+        for (std::size_t x = 0; x < b.size[0]; ++x)
+          ur[y * b.size[0] + x] = (row[x] - pred[y * b.size[0] + x]) * inv;
       }
       const PcRdoq residual{ur, kPcLambda, plan.header.delta};
       CoefCodeword wr = pc_encode_block(vr, b.size[0], b.size[1], parent, &residual, luma, &k);

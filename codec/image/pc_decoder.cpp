@@ -21,8 +21,8 @@ void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* p
       plane[at + y * stride + x] = pc_dequantize(index[at + y * stride + x], step, delta);
 }
 
-void pc_add_prediction(const CodeBlock& b, const PcCfl& k, const float* first, const float* second, float* plane,
-                       std::size_t stride) {
+void pc_add_prediction(const CodeBlock& b, const PcCfl& k, const float* first, const float* second,
+                       float* plane, std::size_t stride) {
   for (std::size_t y = 0; y < b.size[1]; ++y) {
     const std::size_t at = b.offset[0] + stride * (b.offset[1] + y);
     for (std::size_t x = 0; x < b.size[0]; ++x)
@@ -68,7 +68,8 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
         const CodeBlock& b = s.blocks[ids[k]];
         dequantize_in_place(b, planes[b.component], region[0],
                             s.header.steps[b.component * s.bands.size() + b.band], delta);
-        if (!pc_cfl_none(cfl[ids[k]])) pc_add_prediction(b, cfl[ids[k]], planes[0], planes[1], planes[b.component], region[0]);
+        if (!pc_cfl_none(cfl[ids[k]]))
+          pc_add_prediction(b, cfl[ids[k]], planes[0], planes[1], planes[b.component], region[0]);
       });
     }
   };

@@ -30,8 +30,8 @@ void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* p
 // Adds block b's chroma-from-luma prediction (pc_cfl.h) to its dequantized residual in `plane`,
 // from the decoded luma `first` and Cb `second` planes (all `stride` samples a row): the decoder's
 // and the encoder's PSNR's, one expression for both.
-void pc_add_prediction(const CodeBlock& b, const PcCfl& k, const float* first, const float* second, float* plane,
-                       std::size_t stride);
+void pc_add_prediction(const CodeBlock& b, const PcCfl& k, const float* first, const float* second,
+                       float* plane, std::size_t stride);
 
 // Decodes every block of the read resolutions of a pc stream (planes[c]: `region`-sized and
 // zeroed, the low corner of the Mallat layout) and dequantizes them into the planes: the

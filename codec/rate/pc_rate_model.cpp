@@ -54,7 +54,8 @@ PcRateModel::PcRateModel(const ImagePlan& plan, double delta) : delta_(delta) {
         PcCflSums sums;
         for (std::size_t y = 0; y < band.size[1]; ++y)
           for (std::size_t x = 0; x < band.size[0]; ++x)
-            sums.add(plan.coef[0][at(y) + x], c == 2 ? plan.coef[1][at(y) + x] : 0.0f, plan.coef[c][at(y) + x]);
+            sums.add(plan.coef[0][at(y) + x], c == 2 ? plan.coef[1][at(y) + x] : 0.0f,
+                     plan.coef[c][at(y) + x]);
         k = pc_cfl_fit(sums, c == 2 ? 2 : 1);
       }
       for (std::size_t y = 0; y < band.size[1]; ++y) {

@@ -184,8 +184,9 @@ TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
       (void)decode_image(bytes);
       ADD_FAILURE() << "a version " << int(version) << " pc stream decoded";
     } catch (const std::exception& e) {
-      EXPECT_NE(std::string(e.what()).find("version " + std::to_string(version) + " with entropy coder 4 (pc)"),
-                std::string::npos)
+      EXPECT_NE(
+          std::string(e.what()).find("version " + std::to_string(version) + " with entropy coder 4 (pc)"),
+          std::string::npos)
           << e.what();
     }
   }
