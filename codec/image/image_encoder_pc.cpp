@@ -78,6 +78,9 @@ struct Coder {
   std::vector<std::vector<std::int32_t>> q;
   double held = std::nan("");  // t of the pass q holds
   std::vector<std::vector<float>> recon;
+  // Per block, the chroma-from-luma choice of the first pass that weighed it (0: not yet, 1:
+  // without, 2: with the prediction): later passes code only that one (half the chroma coding).
+  std::vector<std::int8_t> choice;
 };
 
 // Real bytes over the model's estimate in a band before any pass, by its level (1: finest) and
@@ -149,9 +152,11 @@ PcCfl predict_block(const ImagePlan& plan, std::size_t i, const std::vector<std:
 
 // Codes block i at the plan's steps with RDOQ, its parent read from (and its indices written
 // to) the index planes q. A chroma detail block is coded with its prediction and without (both
-// codewords carry the weights) and keeps the one of less squared error + lambda x bits; a block
-// that codes nothing has no prediction (the decoder sees no weights).
-void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<std::int32_t>>& q, Pass& out) {
+// codewords carry the weights) and keeps the one of less squared error + lambda x bits, unless
+// `choice` (Coder::choice) says which an earlier pass kept; a block that codes nothing has no
+// prediction (the decoder sees no weights).
+void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<std::int32_t>>& q, Pass& out,
+                std::int8_t& choice) {
   const CodeBlock& b = plan.blocks[i];
   const Extent& dims = plan.header.dims;
   thread_local std::vector<float> u, ur, pred;
@@ -171,27 +176,35 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   PcCfl none;
   none.count = cfl ? pc_cfl_count(b) : 0;
   const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
-  CoefCodeword w = pc_encode_block(v, b.size[0], b.size[1], parent, &rdoq, luma, cfl ? &none : nullptr);
+  CoefCodeword w;
+  bool plain = false;  // w holds the coding without prediction
+  const auto code_plain = [&] {
+    w = pc_encode_block(v, b.size[0], b.size[1], parent, &rdoq, luma, cfl ? &none : nullptr);
+    plain = true;
+  };
   PcCfl chosen = none;
-  if (cfl) {
-    const PcCfl k = predict_block(plan, i, q, out, pred);
-    if (!pc_cfl_none(k)) {
-      ur.resize(b.count());
-      vr.resize(b.count());
-      for (std::size_t y = 0; y < b.size[1]; ++y) {
-        const float* row = plan.coef[b.component].data() + b.offset[0] + dims[0] * (b.offset[1] + y);
-        for (std::size_t x = 0; x < b.size[0]; ++x)
-          ur[y * b.size[0] + x] = (row[x] - pred[y * b.size[0] + x]) * inv;
-      }
-      const PcRdoq residual{ur, kPcLambda, plan.header.delta};
-      CoefCodeword wr = pc_encode_block(vr, b.size[0], b.size[1], parent, &residual, luma, &k);
-      const double bits = 8.0 * double(w.bytes.size()), bits_r = 8.0 * double(wr.bytes.size());
-      if (wr.bits > 0 && index_error(ur, vr, plan.header.delta) + kPcLambda * bits_r <
-                             index_error(u, v, plan.header.delta) + kPcLambda * bits) {
-        w = std::move(wr);
-        v.swap(vr);
-        chosen = k;
-      }
+  const PcCfl k = cfl && choice != 1 ? predict_block(plan, i, q, out, pred) : none;
+  if (!cfl || pc_cfl_none(k) || choice == 0) code_plain();
+  if (cfl && !pc_cfl_none(k)) {
+    ur.resize(b.count());
+    vr.resize(b.count());
+    for (std::size_t y = 0; y < b.size[1]; ++y) {
+      const float* row = plan.coef[b.component].data() + b.offset[0] + dims[0] * (b.offset[1] + y);
+      for (std::size_t x = 0; x < b.size[0]; ++x)
+        ur[y * b.size[0] + x] = (row[x] - pred[y * b.size[0] + x]) * inv;
+    }
+    const PcRdoq residual{ur, kPcLambda, plan.header.delta};
+    CoefCodeword wr = pc_encode_block(vr, b.size[0], b.size[1], parent, &residual, luma, &k);
+    const double bits = 8.0 * double(w.bytes.size()), bits_r = 8.0 * double(wr.bytes.size());
+    const bool take = wr.bits > 0 && (!plain || index_error(ur, vr, plan.header.delta) + kPcLambda * bits_r <
+                                                    index_error(u, v, plan.header.delta) + kPcLambda * bits);
+    if (choice == 0) choice = take ? 2 : 1;
+    if (take) {
+      w = std::move(wr);
+      v.swap(vr);
+      chosen = k;
+    } else if (!plain) {
+      code_plain();
     }
   }
   copy_block_in(v.data(), dims, b, plane);
@@ -230,6 +243,7 @@ Pass code_pass(Coder& coder, double t) {
   p.entries.resize(plan.blocks.size());
   p.words.resize(plan.blocks.size());
   p.cfl.resize(plan.blocks.size());
+  coder.choice.resize(plan.blocks.size(), 0);
   if (coder.q.empty())
     coder.q.assign(plan.header.channels,
                    std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
@@ -238,7 +252,7 @@ Pass code_pass(Coder& coder, double t) {
   by_resolution(plan, [&](std::size_t i) {
     if (out_of_range) return;
     try {
-      code_block(plan, i, coder.q, p);
+      code_block(plan, i, coder.q, p, coder.choice[i]);
     } catch (const IndexRangeError&) {
       out_of_range = true;
     }
@@ -441,7 +455,7 @@ std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
         plan,
         [&](std::size_t i) {
           try {
-            code_block(plan, i, coder.q, p);
+            code_block(plan, i, coder.q, p, coder.choice[i]);
           } catch (const IndexRangeError&) {
             out_of_range = true;
           }
@@ -567,7 +581,7 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     throw std::invalid_argument("the pc coder codes lossy streams only (--bpp, --psnr or --step)");
   plan.header.delta = std::round(kPcDelta * 65536.0) / 65536.0;  // as the header stores it
   transform_all_components(plan);
-  Coder coder{image, plan, {}, std::nan(""), {}};
+  Coder coder{image, plan, {}, std::nan(""), {}, {}};
   const double finest = std::log(plan.peak * kFinestStep), coarsest = std::log(plan.peak * 4.0);
   if (options.mode == RateMode::step) {
     Pass p = code_pass(coder, std::log(options.target));
