@@ -83,10 +83,47 @@ std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t 
   return negative ? -std::int32_t(pick) : std::int32_t(pick);
 }
 
+namespace {
+
+// The CfL codes: each zigzagged (0, -1, 1, -2, ...) as an order-0 Exp-Golomb code of equiprobable
+// bits (a zero weight costs one bit; the codes sit near 0 for Cb and near -16 for Cr).
+constexpr int kCflMaxCode = 32;
+constexpr int kCflMaxPrefix = 6;  // zigzag(+-32) + 1 = 65 < 2^7
+
+void put_cfl(RangeEncoder& enc, const PcCfl& cfl) {
+  for (int i = 0; i < cfl.count; ++i) {
+    const int c = cfl.code[i];
+    const std::uint32_t z = std::uint32_t(c > 0 ? 2 * c - 1 : -2 * c) + 1;
+    const int n = int(std::bit_width(z)) - 1;
+    for (int k = 0; k < n; ++k) enc.encode_equiprobable(0);
+    enc.encode_equiprobable(1);
+    for (int k = n - 1; k >= 0; --k) enc.encode_equiprobable(int((z >> k) & 1u));
+  }
+}
+
+void get_cfl(RangeDecoder& dec, PcCfl& cfl) {
+  for (int i = 0; i < cfl.count; ++i) {
+    int n = 0;
+    while (dec.decode_equiprobable() == 0)
+      require_stream(++n <= kCflMaxPrefix, "pc code-block: chroma-from-luma code too long");
+    std::uint32_t z = 1;
+    for (int k = 0; k < n; ++k) z = (z << 1) | std::uint32_t(dec.decode_equiprobable());
+    const int zz = int(z - 1);
+    const int c = zz & 1 ? (zz + 1) / 2 : -(zz / 2);
+    require_stream(c >= -kCflMaxCode && c <= kCflMaxCode,
+                   "pc code-block: chroma-from-luma weight out of range");
+    cfl.code[i] = c;
+  }
+}
+
+}  // namespace
+
 std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vector<std::int32_t>& q,
                                                                       std::size_t width, std::size_t height,
-                                                                      PcContext ctx, const PcRdoq* rdoq) {
+                                                                      PcContext ctx, const PcRdoq* rdoq,
+                                                                      const PcCfl* cfl) {
   RangeEncoder enc;
+  if (cfl) put_cfl(enc, *cfl);
   auto models = std::make_unique<PcModels>();
   const std::uint32_t largest =
       pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
@@ -101,8 +138,9 @@ std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vecto
 
 std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uint64_t limit,
                                 std::size_t width, std::size_t height, PcContext ctx, std::int32_t* out,
-                                std::size_t stride) {
+                                std::size_t stride, PcCfl* cfl) {
   RangeDecoder dec(codeword);
+  if (cfl) get_cfl(dec, *cfl);
   auto models = std::make_unique<PcModels>();
   return pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
     bool negative = false;
@@ -112,7 +150,12 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
 }
 
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma) {
+                             const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma,
+                             const PcCfl* cfl) {
+  if (cfl)
+    for (int i = 0; i < cfl->count; ++i)
+      if (std::abs(cfl->code[i]) > kCflMaxCode)
+        throw std::invalid_argument("pc_encode_block: chroma-from-luma code beyond [-32, 32]");
   if (q.size() != width * height)
     throw std::invalid_argument("pc_encode_block: index count differs from the size");
   if (rdoq) {
@@ -137,7 +180,8 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
   if (all >= (std::uint64_t(1) << kCoefMaxBits)) throw IndexRangeError("index too large for the pc coder");
   CoefCodeword out;
   if (all == 0) return out;
-  auto [bytes, largest] = pc_encode_indices(q, width, height, PcContext(width, height, parent, luma), rdoq);
+  auto [bytes, largest] =
+      pc_encode_indices(q, width, height, PcContext(width, height, parent, luma), rdoq, cfl);
   out.bits = int(std::bit_width(largest));  // RDOQ may have lowered it: the decoder checks this one
   if (out.bits == 0) return out;            // RDOQ zeroed everything: no codeword
   out.bytes = std::move(bytes);
@@ -146,11 +190,12 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
 }
 
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
-                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma) {
+                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma,
+                     PcCfl* cfl) {
   require_stream(bits >= 1 && bits <= kCoefMaxBits && !codeword.empty(), "pc code-block: index bit width");
   const std::uint64_t limit = (std::uint64_t(1) << bits) - 1;
-  const std::uint32_t largest =
-      pc_decode_indices(codeword, limit, width, height, PcContext(width, height, parent, luma), out, stride);
+  const std::uint32_t largest = pc_decode_indices(codeword, limit, width, height,
+                                                  PcContext(width, height, parent, luma), out, stride, cfl);
   require_stream(int(std::bit_width(largest)) == bits, "pc code-block: largest index differs from the index");
 }
 

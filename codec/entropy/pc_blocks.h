@@ -33,6 +33,14 @@ struct PcLuma {
   const std::int32_t* cb = nullptr;
 };
 
+// A chroma detail block's chroma-from-luma prediction (codec/entropy/pc_cfl.h): `count` codes
+// (1 for Cb: luma's weight; 2 for Cr: luma's and Cb's), each weight code / 16 in [-2, 2], coded
+// at the head of the block's codeword. count 0: the block has no prediction.
+struct PcCfl {
+  int count = 0;
+  int code[2] = {0, 0};
+};
+
 // A block's contexts as the codeword goes: causal magnitudes and signs (padded by one column
 // each side and one row above), the parent band and, for chroma, the luma parent. The coder's
 // weights are 1 and 1; the bench estimate (bench/nonembedded_coef.h) tries others.
@@ -116,26 +124,30 @@ struct PcRdoq {
 
 // Codes the indices `q` (`width` x `height`, x fastest) of a block whose parent is `parent`
 // (LcParent's origin, stride, extent and the block's offset in its band; null origin: none).
-// With `rdoq`, q is first re-chosen (and rewritten) as PcRdoq says. Throws IndexRangeError for an
-// index of 2^kCoefMaxBits or more.
+// With `rdoq`, q is first re-chosen (and rewritten) as PcRdoq says; with `cfl`, its codes head the
+// codeword. Throws IndexRangeError for an index of 2^kCoefMaxBits or more.
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq = nullptr, const PcLuma& luma = {});
+                             const LcParent& parent, const PcRdoq* rdoq = nullptr, const PcLuma& luma = {},
+                             const PcCfl* cfl = nullptr);
 
 // Decodes a codeword of `bits` (the largest index's bit length, 1 .. kCoefMaxBits) into `width` x
-// `height` indices at `out` (row y at out + y * stride). Throws DecodeError unless the largest
-// decoded index has bit length `bits`.
+// `height` indices at `out` (row y at out + y * stride); with `cfl` (its count set), its codes are
+// read first. Throws DecodeError unless the largest decoded index has bit length `bits`, or for a
+// code beyond [-32, 32].
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
-                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma = {});
+                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma = {},
+                     PcCfl* cfl = nullptr);
 
 // The coders under any context (`ctx` fresh): pc_encode_block's loop (no empty-block rules),
 // returning the codeword and the largest magnitude coded, and pc_decode_block's (magnitudes
 // clamped to `limit`), returning the largest magnitude decoded.
 std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vector<std::int32_t>& q,
                                                                       std::size_t width, std::size_t height,
-                                                                      PcContext ctx, const PcRdoq* rdoq);
+                                                                      PcContext ctx, const PcRdoq* rdoq,
+                                                                      const PcCfl* cfl = nullptr);
 std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uint64_t limit,
                                 std::size_t width, std::size_t height, PcContext ctx, std::int32_t* out,
-                                std::size_t stride);
+                                std::size_t stride, PcCfl* cfl = nullptr);
 
 // Greedy RDOQ of one index: `v` (the signed nearest point of coefficient u, in index units)
 // becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x the bits

@@ -226,7 +226,7 @@ ParsedStream parse_container(std::span<const std::uint8_t> bytes, int drop_level
   const StreamHeader& h = s.header;
   require_stream(chunks.version() == kStreamVersion || h.entropy != EntropyCoder::pc, [&] {
     return "image stream: version " + std::to_string(chunks.version()) +
-           " with entropy coder 4 (pc), whose contexts changed in version " + std::to_string(kStreamVersion) +
+           " with entropy coder 4 (pc), whose coding changed in version " + std::to_string(kStreamVersion) +
            ": decode it with the pupwave build that wrote it";
   });
   s.bands = header_bands(h);

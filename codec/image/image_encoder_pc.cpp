@@ -16,6 +16,7 @@
 
 #include "codec/entropy/block_encoder.h"
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_cfl.h"
 #include "codec/entropy/pc_groups.h"
 #include "codec/error.h"
 #include "codec/format/container.h"
@@ -63,8 +64,9 @@ struct Pass {
   std::vector<float> steps;
   std::vector<BlockEntry> entries;
   std::vector<std::vector<std::uint8_t>> words;
-  std::size_t bytes = 0;  // the whole file
-  double score = 0.0;     // log bytes or PSNR, by the search
+  std::vector<PcCfl> cfl;  // per block: its chroma-from-luma weights (none for most)
+  std::size_t bytes = 0;   // the whole file
+  double score = 0.0;      // log bytes or PSNR, by the search
 };
 
 // The passes' shared state: one set of index planes (Mallat layout per component), which hold
@@ -76,6 +78,9 @@ struct Coder {
   std::vector<std::vector<std::int32_t>> q;
   double held = std::nan("");  // t of the pass q holds
   std::vector<std::vector<float>> recon;
+  // Per block, the chroma-from-luma choice of the first pass that weighed it (0: not yet, 1:
+  // without, 2: with the prediction): later passes code only that one (half the chroma coding).
+  std::vector<std::int8_t> choice;
 };
 
 // Real bytes over the model's estimate in a band before any pass, by its level (1: finest) and
@@ -93,13 +98,69 @@ double prior_scale(const ImagePlan& plan, std::size_t k) {
   return (chroma ? kChroma : kLuma)[level - 1];
 }
 
-// Codes block i at the plan's steps with RDOQ, its parent read from (and its indices written
-// to) the index planes q.
-void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<std::int32_t>>& q, Pass& out) {
+// The Cb block of Cr block i (same band, same place).
+std::size_t cb_block(const ImagePlan& plan, std::size_t i) {
+  const CodeBlock& b = plan.blocks[i];
+  for (std::size_t j = 0; j < plan.blocks.size(); ++j) {
+    const CodeBlock& o = plan.blocks[j];
+    if (o.component == 1 && o.band == b.band && o.offset == b.offset) return j;
+  }
+  throw std::logic_error("pc encoder: a Cr block without its Cb block");
+}
+
+// Squared index-unit error of indices v against coefficients u (index units), as RDOQ counts it.
+double index_error(std::span<const float> u, std::span<const std::int32_t> v, double delta) {
+  double e = 0.0;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    const double r =
+        v[k] == 0 ? 0.0 : (v[k] < 0 ? -(double(-std::int64_t(v[k])) + delta) : double(v[k]) + delta);
+    e += (double(u[k]) - r) * (double(u[k]) - r);
+  }
+  return e;
+}
+
+// Chroma detail block i's prediction (pc_cfl.h) into `pred` (the block's samples, x fastest): the
+// least-squares weights on the decoded luma (and Cb, for Cr) of the planes q at the pass's steps.
+PcCfl predict_block(const ImagePlan& plan, std::size_t i, const std::vector<std::vector<std::int32_t>>& q,
+                    const Pass& out, std::vector<float>& pred) {
   const CodeBlock& b = plan.blocks[i];
   const Extent& dims = plan.header.dims;
-  thread_local std::vector<float> u;
-  thread_local std::vector<std::int32_t> v;  // RDOQ overwrites every index
+  const std::size_t per = plan.bands.size();
+  const float delta = float(plan.header.delta);
+  const float luma_step = out.steps[b.band], cb_step = out.steps[per + b.band];
+  const PcCfl cb = b.component == 2 ? out.cfl[cb_block(plan, i)] : PcCfl{};
+  thread_local std::vector<float> l, m;
+  l.resize(b.count());
+  m.assign(b.count(), 0.0f);
+  PcCflSums sums;
+  for (std::size_t y = 0; y < b.size[1]; ++y) {
+    const std::size_t at = b.offset[0] + dims[0] * (b.offset[1] + y);
+    const float* row = plan.coef[b.component].data() + at;
+    for (std::size_t x = 0; x < b.size[0]; ++x) {
+      const std::size_t k = y * b.size[0] + x;
+      l[k] = pc_dequantize(q[0][at + x], luma_step, delta);
+      if (b.component == 2)
+        m[k] = pc_dequantize(q[1][at + x], cb_step, delta) + pc_cfl_predict(cb, l[k], 0.0f);
+      sums.add(l[k], m[k], row[x]);
+    }
+  }
+  const PcCfl k = pc_cfl_fit(sums, pc_cfl_count(b));
+  pred.resize(b.count());
+  for (std::size_t j = 0; j < pred.size(); ++j) pred[j] = pc_cfl_predict(k, l[j], m[j]);
+  return k;
+}
+
+// Codes block i at the plan's steps with RDOQ, its parent read from (and its indices written
+// to) the index planes q. A chroma detail block is coded with its prediction and without (both
+// codewords carry the weights) and keeps the one of less squared error + lambda x bits, unless
+// `choice` (Coder::choice) says which an earlier pass kept; a block that codes nothing has no
+// prediction (the decoder sees no weights).
+void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<std::int32_t>>& q, Pass& out,
+                std::int8_t& choice) {
+  const CodeBlock& b = plan.blocks[i];
+  const Extent& dims = plan.header.dims;
+  thread_local std::vector<float> u, ur, pred;
+  thread_local std::vector<std::int32_t> v, vr;  // RDOQ overwrites every index
   u.resize(b.count());
   v.resize(b.count());
   const float inv = 1.0f / plan.header.steps[b.component * plan.bands.size() + b.band];
@@ -108,11 +169,46 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
     float* to = u.data() + y * b.size[0];
     for (std::size_t x = 0; x < b.size[0]; ++x) to[x] = row[x] * inv;
   }
-  const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
   std::int32_t* plane = q[b.component].data();
-  CoefCodeword w = pc_encode_block(v, b.size[0], b.size[1], lc_parent(plan.bands, b, plane, dims[0], nullptr),
-                                   &rdoq, pc_luma(b, q, dims[0]));
+  const LcParent parent = lc_parent(plan.bands, b, plane, dims[0], nullptr);
+  const PcLuma luma = pc_luma(b, q, dims[0]);
+  const bool cfl = pc_cfl_applies(b, plan.header.channels);
+  PcCfl none;
+  none.count = cfl ? pc_cfl_count(b) : 0;
+  const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
+  CoefCodeword w;
+  bool plain = false;  // w holds the coding without prediction
+  const auto code_plain = [&] {
+    w = pc_encode_block(v, b.size[0], b.size[1], parent, &rdoq, luma, cfl ? &none : nullptr);
+    plain = true;
+  };
+  PcCfl chosen = none;
+  const PcCfl k = cfl && choice != 1 ? predict_block(plan, i, q, out, pred) : none;
+  if (!cfl || pc_cfl_none(k) || choice == 0) code_plain();
+  if (cfl && !pc_cfl_none(k)) {
+    ur.resize(b.count());
+    vr.resize(b.count());
+    for (std::size_t y = 0; y < b.size[1]; ++y) {
+      const float* row = plan.coef[b.component].data() + b.offset[0] + dims[0] * (b.offset[1] + y);
+      for (std::size_t x = 0; x < b.size[0]; ++x)
+        ur[y * b.size[0] + x] = (row[x] - pred[y * b.size[0] + x]) * inv;
+    }
+    const PcRdoq residual{ur, kPcLambda, plan.header.delta};
+    CoefCodeword wr = pc_encode_block(vr, b.size[0], b.size[1], parent, &residual, luma, &k);
+    const double bits = 8.0 * double(w.bytes.size()), bits_r = 8.0 * double(wr.bytes.size());
+    const bool take = wr.bits > 0 && (!plain || index_error(ur, vr, plan.header.delta) + kPcLambda * bits_r <
+                                                    index_error(u, v, plan.header.delta) + kPcLambda * bits);
+    if (choice == 0) choice = take ? 2 : 1;
+    if (take) {
+      w = std::move(wr);
+      v.swap(vr);
+      chosen = k;
+    } else if (!plain) {
+      code_plain();
+    }
+  }
   copy_block_in(v.data(), dims, b, plane);
+  out.cfl[i] = w.bits > 0 ? chosen : PcCfl{};
   out.entries[i] = {w.bits, w.bits > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
   out.words[i] = std::move(w.bytes);
 }
@@ -146,6 +242,8 @@ Pass code_pass(Coder& coder, double t) {
   p.steps = plan.header.steps;
   p.entries.resize(plan.blocks.size());
   p.words.resize(plan.blocks.size());
+  p.cfl.resize(plan.blocks.size());
+  coder.choice.resize(plan.blocks.size(), 0);
   if (coder.q.empty())
     coder.q.assign(plan.header.channels,
                    std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
@@ -154,7 +252,7 @@ Pass code_pass(Coder& coder, double t) {
   by_resolution(plan, [&](std::size_t i) {
     if (out_of_range) return;
     try {
-      code_block(plan, i, coder.q, p);
+      code_block(plan, i, coder.q, p, coder.choice[i]);
     } catch (const IndexRangeError&) {
       out_of_range = true;
     }
@@ -181,9 +279,11 @@ void hold(Coder& coder, const Pass& p) {
       for (std::size_t y = 0; y < b.size[1]; ++y) std::fill_n(at + y * dims[0], b.size[0], 0);
       return;
     }
+    PcCfl cfl;  // read past (p.cfl has the block's weights)
+    cfl.count = pc_cfl_applies(b, plan.header.channels) ? pc_cfl_count(b) : 0;
     pc_decode_block(p.words[i], p.entries[i].planes, b.size[0], b.size[1],
                     lc_parent(plan.bands, b, plane, dims[0], nullptr), at, dims[0],
-                    pc_luma(b, coder.q, dims[0]));
+                    pc_luma(b, coder.q, dims[0]), cfl.count ? &cfl : nullptr);
   });
   coder.held = p.t;
 }
@@ -196,11 +296,19 @@ double pass_psnr(Coder& coder, const Pass& p) {
   const float delta = float(plan.header.delta);
   coder.recon.resize(coder.q.size());
   for (auto& c : coder.recon) c.resize(dims[0] * dims[1]);  // every sample is written below
-  plan.executor->run(plan.blocks.size(), [&](std::size_t i) {
-    const CodeBlock& b = plan.blocks[i];
-    pc_dequantize_block(b, coder.q[b.component].data(), coder.recon[b.component].data(), dims[0],
-                        p.steps[b.component * plan.bands.size() + b.band], delta);
-  });
+  for (int g = 0; g < kPcGroupsPerResolution; ++g) {  // luma before Cb before Cr: their predictions read it
+    std::vector<std::size_t> ids;
+    for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+      if (pc_group(plan.blocks[i], plan.header.channels) % kPcGroupsPerResolution == g) ids.push_back(i);
+    plan.executor->run(ids.size(), [&](std::size_t k) {
+      const CodeBlock& b = plan.blocks[ids[k]];
+      pc_dequantize_block(b, coder.q[b.component].data(), coder.recon[b.component].data(), dims[0],
+                          p.steps[b.component * plan.bands.size() + b.band], delta);
+      if (!pc_cfl_none(p.cfl[ids[k]]))
+        pc_add_prediction(b, p.cfl[ids[k]], coder.recon[0].data(), coder.recon[1].data(),
+                          coder.recon[b.component].data(), dims[0]);
+    });
+  }
   for (auto& c : coder.recon) inverse(*plan.transform, c.data(), dims, plan.header.levels, 0, *plan.executor);
   return components_psnr(coder.image, coder.recon, plan.header.colour, plan.header.nonnegative);
 }
@@ -347,7 +455,7 @@ std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
         plan,
         [&](std::size_t i) {
           try {
-            code_block(plan, i, coder.q, p);
+            code_block(plan, i, coder.q, p, coder.choice[i]);
           } catch (const IndexRangeError&) {
             out_of_range = true;
           }
@@ -473,7 +581,7 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     throw std::invalid_argument("the pc coder codes lossy streams only (--bpp, --psnr or --step)");
   plan.header.delta = std::round(kPcDelta * 65536.0) / 65536.0;  // as the header stores it
   transform_all_components(plan);
-  Coder coder{image, plan, {}, std::nan(""), {}};
+  Coder coder{image, plan, {}, std::nan(""), {}, {}};
   const double finest = std::log(plan.peak * kFinestStep), coarsest = std::log(plan.peak * 4.0);
   if (options.mode == RateMode::step) {
     Pass p = code_pass(coder, std::log(options.target));

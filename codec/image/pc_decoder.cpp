@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_cfl.h"
 #include "codec/entropy/pc_groups.h"
 #include "codec/error.h"
 #include "codec/image/lc_parent.h"
@@ -18,6 +19,15 @@ void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* p
   for (std::size_t y = 0; y < b.size[1]; ++y)
     for (std::size_t x = 0; x < b.size[0]; ++x)
       plane[at + y * stride + x] = pc_dequantize(index[at + y * stride + x], step, delta);
+}
+
+void pc_add_prediction(const CodeBlock& b, const PcCfl& k, const float* first, const float* second,
+                       float* plane, std::size_t stride) {
+  for (std::size_t y = 0; y < b.size[1]; ++y) {
+    const std::size_t at = b.offset[0] + stride * (b.offset[1] + y);
+    for (std::size_t x = 0; x < b.size[0]; ++x)
+      plane[at + x] += pc_cfl_predict(k, first[at + x], k.count == 2 ? second[at + x] : 0.0f);
+  }
 }
 
 namespace {
@@ -45,14 +55,23 @@ void dequantize_in_place(const CodeBlock& b, float* plane, std::size_t stride, f
 void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor& ex,
                     const std::vector<float*>& planes) {
   const float delta = float(s.header.delta);
+  std::vector<PcCfl> cfl(s.blocks.size());  // the chroma detail blocks' weights, as decoded
+  // Luma's blocks before Cb's before Cr's (pc_group's order): a prediction reads the decoded
+  // floats of the components before it.
   const auto dequantize = [&](std::size_t first, std::size_t end) {
-    ex.run(end - first, [&](std::size_t k) {
-      const std::size_t i = first + k;
-      const CodeBlock& b = s.blocks[i];
-      if (s.index[i].passes == 0) return;  // zero either way
-      dequantize_in_place(b, planes[b.component], region[0],
-                          s.header.steps[b.component * s.bands.size() + b.band], delta);
-    });
+    for (int g = 0; g < kPcGroupsPerResolution; ++g) {
+      std::vector<std::size_t> ids;
+      for (std::size_t i = first; i < end; ++i)
+        if (s.index[i].passes != 0 && pc_group(s.blocks[i], planes.size()) % kPcGroupsPerResolution == g)
+          ids.push_back(i);  // a block not coded is zero either way (and has no prediction)
+      ex.run(ids.size(), [&](std::size_t k) {
+        const CodeBlock& b = s.blocks[ids[k]];
+        dequantize_in_place(b, planes[b.component], region[0],
+                            s.header.steps[b.component * s.bands.size() + b.band], delta);
+        if (!pc_cfl_none(cfl[ids[k]]))
+          pc_add_prediction(b, cfl[ids[k]], planes[0], planes[1], planes[b.component], region[0]);
+      });
+    }
   };
   std::size_t previous = 0, first = 0;
   while (first < s.blocks.size()) {
@@ -73,9 +92,11 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
         const PcLuma luma = pc_has_luma(b, planes.size())
                                 ? pc_luma(b, planes.size(), index_plane(0), index_plane(1), region[0])
                                 : PcLuma{};
+        cfl[i].count = pc_cfl_applies(b, planes.size()) ? pc_cfl_count(b) : 0;
         pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
                         lc_parent(s.bands, b, plane, region[0], nullptr),
-                        plane + b.offset[0] + region[0] * b.offset[1], region[0], luma);
+                        plane + b.offset[0] + region[0] * b.offset[1], region[0], luma,
+                        cfl[i].count ? &cfl[i] : nullptr);
       });
     }
     dequantize(previous, first);  // the parents of this resolution, no longer needed

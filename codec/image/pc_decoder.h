@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "codec/entropy/pc_blocks.h"
 #include "codec/format/container.h"
 #include "transforms/executor.h"
 
@@ -25,6 +26,12 @@ inline float pc_dequantize(std::int32_t q, float step, float delta) {
 // pc_dequantize, so both give the same floats.
 void pc_dequantize_block(const CodeBlock& b, const std::int32_t* index, float* plane, std::size_t stride,
                          float step, float delta);
+
+// Adds block b's chroma-from-luma prediction (pc_cfl.h) to its dequantized residual in `plane`,
+// from the decoded luma `first` and Cb `second` planes (all `stride` samples a row): the decoder's
+// and the encoder's PSNR's, one expression for both.
+void pc_add_prediction(const CodeBlock& b, const PcCfl& k, const float* first, const float* second,
+                       float* plane, std::size_t stride);
 
 // Decodes every block of the read resolutions of a pc stream (planes[c]: `region`-sized and
 // zeroed, the low corner of the Mallat layout) and dequantizes them into the planes: the

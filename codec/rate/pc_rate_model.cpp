@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "codec/entropy/pc_cfl.h"
 #include "codec/rate/rate_guess.h"
 
 namespace pupwave {
@@ -44,10 +45,26 @@ PcRateModel::PcRateModel(const ImagePlan& plan, double delta) : delta_(delta) {
       const Subband& band = plan.bands[b];
       const float scale = magnitude_scale(plan, c, b);
       std::vector<std::uint32_t> counts(kBins, 0u);
+      // Cb and Cr detail bands: the residual of their chroma-from-luma prediction (pc_cfl.h),
+      // fitted here on the unquantized luma and Cb (the passes fit it on the decoded ones).
+      const bool predicted = plan.coef.size() >= 3 && (c == 1 || c == 2) && band.orientation != 0;
+      const auto at = [&](std::size_t y) { return band.offset[0] + dims[0] * (band.offset[1] + y); };
+      PcCfl k;
+      if (predicted) {
+        PcCflSums sums;
+        for (std::size_t y = 0; y < band.size[1]; ++y)
+          for (std::size_t x = 0; x < band.size[0]; ++x)
+            sums.add(plan.coef[0][at(y) + x], c == 2 ? plan.coef[1][at(y) + x] : 0.0f,
+                     plan.coef[c][at(y) + x]);
+        k = pc_cfl_fit(sums, c == 2 ? 2 : 1);
+      }
       for (std::size_t y = 0; y < band.size[1]; ++y) {
-        const float* row = plan.coef[c].data() + band.offset[0] + dims[0] * (band.offset[1] + y);
+        const float* row = plan.coef[c].data() + at(y);
         for (std::size_t x = 0; x < band.size[0]; ++x) {
-          const std::uint32_t bin = std::bit_cast<std::uint32_t>(std::fabs(row[x]) * scale) >> kBinShift;
+          const float v = predicted ? row[x] - pc_cfl_predict(k, plan.coef[0][at(y) + x],
+                                                              c == 2 ? plan.coef[1][at(y) + x] : 0.0f)
+                                    : row[x];
+          const std::uint32_t bin = std::bit_cast<std::uint32_t>(std::fabs(v) * scale) >> kBinShift;
           ++counts[std::min<std::uint32_t>(bin > first ? bin - first : 0u, kBins - 1)];
         }
       }

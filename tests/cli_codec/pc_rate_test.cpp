@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_cfl.h"
 #include "codec/entropy/pc_groups.h"
 #include "codec/format/container.h"
 #include "codec/image/image_codec.h"
@@ -103,24 +104,39 @@ TEST(PcRate, ModelFallsWithTheStepAndSitsNearTheCoder) {
 }
 
 // decode_pc_into's reference: every resolution into int32 index planes, then dequantized into
-// separate float planes (the decoder before it dequantized in place).
-std::vector<std::vector<float>> decode_by_index_planes(const ParsedStream& s, const Extent& region) {
+// separate float planes (the decoder before it dequantized in place), each chroma detail
+// sample plus its weights x the decoded luma (and Cb) sample, as docs/bitstream.md writes it.
+// `predicted`: the blocks with a nonzero weight.
+std::vector<std::vector<float>> decode_by_index_planes(const ParsedStream& s, const Extent& region,
+                                                       int* predicted = nullptr) {
   const std::size_t n = region[0] * region[1];
   std::vector<std::vector<std::int32_t>> index(s.header.channels, std::vector<std::int32_t>(n, 0));
   std::vector<std::vector<float>> out(s.header.channels, std::vector<float>(n, 0.0f));
+  std::vector<PcCfl> weights(s.blocks.size());
   // Blocks come resolution by resolution, components in order: parents, luma and Cb first.
   for (std::size_t i = 0; i < s.blocks.size(); ++i) {
     const CodeBlock& b = s.blocks[i];
     if (s.index[i].passes == 0) continue;
     std::int32_t* plane = index[b.component].data();
+    weights[i].count = pc_cfl_applies(b, s.header.channels) ? pc_cfl_count(b) : 0;
     pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
                     lc_parent(s.bands, b, plane, region[0], nullptr),
-                    plane + b.offset[0] + region[0] * b.offset[1], region[0], pc_luma(b, index, region[0]));
+                    plane + b.offset[0] + region[0] * b.offset[1], region[0], pc_luma(b, index, region[0]),
+                    weights[i].count ? &weights[i] : nullptr);
   }
-  for (std::size_t i = 0; i < s.blocks.size(); ++i) {
+  for (std::size_t i = 0; i < s.blocks.size(); ++i) {  // a band's luma and Cb blocks before its Cr's
     const CodeBlock& b = s.blocks[i];
     pc_dequantize_block(b, index[b.component].data(), out[b.component].data(), region[0],
                         s.header.steps[b.component * s.bands.size() + b.band], float(s.header.delta));
+    const PcCfl& k = weights[i];
+    if (predicted && !pc_cfl_none(k)) ++*predicted;
+    for (std::size_t y = 0; y < b.size[1] && k.count > 0; ++y)
+      for (std::size_t x = 0; x < b.size[0]; ++x) {
+        const std::size_t at = b.offset[0] + x + region[0] * (b.offset[1] + y);
+        float p = float(k.code[0]) * (1.0f / 16) * out[0][at];
+        if (k.count == 2) p += float(k.code[1]) * (1.0f / 16) * out[1][at];
+        out[b.component][at] += p;
+      }
   }
   return out;
 }
@@ -136,7 +152,9 @@ TEST(PcRate, InPlaceDecodeEqualsDecodingIntoIndexPlanesAtEveryLevel) {
     std::vector<float*> pointers;
     for (auto& p : planes) pointers.push_back(p.data());
     decode_pc_into(s, region, serial_executor(), pointers);
-    const auto reference = decode_by_index_planes(s, region);
+    int predicted = 0;
+    const auto reference = decode_by_index_planes(s, region, &predicted);
+    EXPECT_GE(predicted, 4) << "level " << level;  // chroma from luma in use (coffee's chroma follows luma)
     for (std::size_t c = 0; c < planes.size(); ++c)
       EXPECT_EQ(std::memcmp(planes[c].data(), reference[c].data(), planes[c].size() * sizeof(float)), 0)
           << "level " << level << " component " << c;
