@@ -46,8 +46,8 @@ PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const
   }
 }
 
-std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t v, double lambda, double delta,
-                           double neighbour_bits) {
+std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t v, double lambda,
+                           double delta, double neighbour_bits) {
   if (v == 0) return 0;
   const bool negative = v < 0;
   const double x = std::fabs(double(u));
@@ -66,8 +66,8 @@ std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t 
   return negative ? -std::int32_t(pick) : std::int32_t(pick);
 }
 
-double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, std::size_t height, std::size_t x,
-                         std::size_t y, int cls, const PcRdoq& rdoq) {
+double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
+                         std::size_t x, std::size_t y, int cls, const PcRdoq& rdoq) {
   // Zeros among the later neighbours E, S (weight 2: they count twice in the activity), SW and
   // SE (1); beyond the block counts as zero (no neighbour there pays).
   const std::size_t i = y * width + x;

@@ -7,8 +7,8 @@
 // parent (the next coarser band of the same orientation, already decoded) and its neighbours towards
 // the child added to the activity sum, the parent's sign to the sign context (ECECOW-style), and for
 // chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h). Against
-// OpenJPEG on the four test photographs -8.6% BD-rate (-6.6% with the parent alone), -11.7% on nine
-// held-out ones (bench/results/rd_issue20.md).
+// OpenJPEG on the four test photographs -9.0% BD-rate (-6.6% with the parent alone, -8.6% before
+// RDOQ's neighbour term), -12.0% on nine held-out ones (bench/results/rd_issue20.md).
 
 #include <algorithm>
 #include <cstddef>
@@ -151,8 +151,8 @@ std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& c, float u, std::int32_t v,
 // class nearer their magnitudes. q holds the nearest points ahead of (x, y), standing in for the
 // final indices: rdoq.neighbour_bits x (zero weights - non-zero weights) / 6, fading with the
 // class (an index moves a high activity less): x fade / (fade + cls).
-double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, std::size_t height, std::size_t x,
-                         std::size_t y, int cls, const PcRdoq& rdoq);
+double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
+                         std::size_t x, std::size_t y, int cls, const PcRdoq& rdoq);
 
 // Visits a block in coding order: `code(x, y, ctx)` codes coefficient (x, y) and
 // returns its signed index, which joins the contexts. Returns the largest magnitude.

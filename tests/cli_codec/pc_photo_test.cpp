@@ -205,8 +205,8 @@ TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
 
 // One band's coding with RDOQ at `step` (neighbour term `neighbour_bits`): log of its
 // codeword's bytes and of its squared error in coefficient units.
-std::pair<double, double> coded_band(const std::vector<float>& coef, std::size_t w, std::size_t h, double step,
-                                     double neighbour_bits) {
+std::pair<double, double> coded_band(const std::vector<float>& coef, std::size_t w, std::size_t h,
+                                     double step, double neighbour_bits) {
   std::vector<float> u(coef.size());
   for (std::size_t k = 0; k < u.size(); ++k) u[k] = float(coef[k] / step);
   PcRdoq rdoq{u};
@@ -239,7 +239,8 @@ TEST(PcPhotos, RdoqNeighbourTermLowersTheErrorAtEqualBytesOnAPhotoBand) {
     for (std::size_t x = 0; x < band.size[0]; ++x)
       coef[y * band.size[0] + x] = plane[(band.offset[1] + y) * img.width + band.offset[0] + x];
   std::vector<std::pair<double, double>> plain;  // falling bytes
-  for (int k = 0; k <= 32; ++k) plain.push_back(coded_band(coef, band.size[0], band.size[1], 2.0 * std::exp2(k / 8.0), 0.0));
+  for (int k = 0; k <= 32; ++k)
+    plain.push_back(coded_band(coef, band.size[0], band.size[1], 2.0 * std::exp2(k / 8.0), 0.0));
   for (double step : {3.0, 6.0, 12.0}) {
     const auto [bytes, error] = coded_band(coef, band.size[0], band.size[1], step, PcRdoq{}.neighbour_bits);
     std::size_t k = 1;

@@ -231,7 +231,8 @@ TEST(PcCoder, RdoqNeighbourTermChargesIsolationAndCreditsCompany) {
   q[8] = 1;  // all four non-zero
   EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 1, 1, 0, rdoq), -rdoq.neighbour_bits);
   // Half at class `fade`; the last row and column have only zeros beyond the block.
-  EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 1, 1, int(rdoq.neighbour_fade), rdoq), -rdoq.neighbour_bits / 2);
+  EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 1, 1, int(rdoq.neighbour_fade), rdoq),
+                   -rdoq.neighbour_bits / 2);
   EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 2, 2, 0, rdoq), rdoq.neighbour_bits);
   // With the term switched off RDOQ is the plain greedy choice: an index the term would drop stays.
   PcModels m;
