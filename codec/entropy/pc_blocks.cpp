@@ -58,7 +58,7 @@ PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const
 }
 
 std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t v, double lambda,
-                           double delta) {
+                           double delta, double neighbour_bits) {
   if (v == 0) return 0;
   const bool negative = v < 0;
   const double x = std::fabs(double(u));
@@ -67,13 +67,14 @@ std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& ctx, float u, std::int32_t 
     const double d = x - (c == 0 ? 0.0 : double(c) + delta);
     return d * d;
   };
-  double best = error(nearest) + lambda * pc_index_bits<false>(m, ctx, nearest, negative);
-  const double bound = best;  // a candidate whose error alone reaches the nearest's cost cannot win
+  const auto extra = [&](std::uint32_t c) { return c == 0 ? 0.0 : neighbour_bits; };
+  double best = error(nearest) + lambda * (pc_index_bits<false>(m, ctx, nearest, negative) + extra(nearest));
+  const double bound = best;  // a candidate whose cost without its own bits reaches this cannot win
   std::uint32_t pick = nearest;
   for (std::uint32_t c : {nearest - 1, 0u}) {
     const double e = error(c);
-    if (e >= bound) continue;  // skipped without pricing: the outcome is the same, only cheaper
-    const double j = e + lambda * pc_index_bits<false>(m, ctx, c, negative);
+    if (e + lambda * std::min(0.0, extra(c)) >= bound) continue;  // skipped unpriced: same outcome
+    const double j = e + lambda * (pc_index_bits<false>(m, ctx, c, negative) + extra(c));
     if (j < best) {
       best = j;
       pick = c;
@@ -118,6 +119,22 @@ void get_cfl(RangeDecoder& dec, PcCfl& cfl) {
 
 }  // namespace
 
+double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
+                         std::size_t x, std::size_t y, int cls, const PcRdoq& rdoq) {
+  // Zeros among the later neighbours E, S (weight 2: they count twice in the activity), SW and
+  // SE (1); beyond the block counts as zero (no neighbour there pays).
+  const std::size_t i = y * width + x;
+  const bool east = x + 1 < width, west = x > 0;
+  int zeros = 2 * (!east || q[i + 1] == 0);
+  if (y + 1 < height)
+    zeros += 2 * (q[i + width] == 0) + (!west || q[i + width - 1] == 0) + (!east || q[i + width + 1] == 0);
+  else
+    zeros += 4;
+  // (zeros - non-zeros) / 6: +1 when all six weights are on zeros, -1 when none is.
+  const double balance = double(zeros - 3) / 3.0;
+  return rdoq.neighbour_bits * balance * rdoq.neighbour_fade / (rdoq.neighbour_fade + double(cls));
+}
+
 std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vector<std::int32_t>& q,
                                                                       std::size_t width, std::size_t height,
                                                                       PcContext ctx, const PcRdoq* rdoq,
@@ -129,7 +146,8 @@ std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vecto
       pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
         std::int32_t& v = q[y * width + x];
         if (rdoq && v != 0)  // a zero stays zero: no call for the most common index
-          v = pc_rdoq_index(*models, c, rdoq->coefficients[y * width + x], v, rdoq->lambda, rdoq->delta);
+          v = pc_rdoq_index(*models, c, rdoq->coefficients[y * width + x], v, rdoq->lambda, rdoq->delta,
+                            pc_neighbour_bits(q, width, height, x, y, c.cls, *rdoq));
         put_pc_index(enc, *models, c, std::uint32_t(v < 0 ? -std::int64_t(v) : v), v < 0);
         return v;
       });

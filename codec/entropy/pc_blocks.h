@@ -7,8 +7,8 @@
 // parent (the next coarser band of the same orientation, already decoded) and its neighbours towards
 // the child added to the activity sum, the parent's sign to the sign context (ECECOW-style), and for
 // chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h). Against
-// OpenJPEG on the four test photographs -8.6% BD-rate (-6.6% with the parent alone), -11.7% on nine
-// held-out ones (bench/results/rd_issue20.md).
+// OpenJPEG on the four test photographs -9.0% BD-rate (-6.6% with the parent alone, -8.6% before
+// RDOQ's neighbour term), -12.0% on nine held-out ones (bench/results/rd_issue20.md).
 
 #include <algorithm>
 #include <cstddef>
@@ -115,11 +115,17 @@ class PcContext {
 
 // Greedy rate-distortion optimised quantization inside the encoder: each index starts at the
 // reconstruction point nearest its coefficient and takes the one of {nearest, nearest - 1, 0}
-// with the least squared error (index units) + lambda x the bits the models would spend on it.
+// with the least squared error (index units) + lambda x the bits the models would spend on it,
+// a non-zero one also + lambda x pc_neighbour_bits (its effect on the contexts of the indices
+// coded after it).
 struct PcRdoq {
   std::span<const float> coefficients;  // the block's coefficients in index units (x / step)
   double lambda = 0.1;                  // squared index-unit error per bit (measured best: 0.1)
   double delta = 0.05;                  // the decoder's reconstruction offset (measured best: 0.05)
+  // The neighbour term's bits at activity class 0 and the class at which it has halved (measured
+  // on the test photographs: 3 and 8, a plateau from 2 to 4 bits; 0 bits: the plain greedy choice).
+  double neighbour_bits = 3.0;
+  double neighbour_fade = 8.0;
 };
 
 // Codes the indices `q` (`width` x `height`, x fastest) of a block whose parent is `parent`
@@ -150,9 +156,19 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
                                 std::size_t stride, PcCfl* cfl = nullptr);
 
 // Greedy RDOQ of one index: `v` (the signed nearest point of coefficient u, in index units)
-// becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x the bits
-// models m would spend on it now. 0 stays 0.
-std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& c, float u, std::int32_t v, double lambda, double delta);
+// becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x (the bits
+// models m would spend on it now, + `neighbour_bits` if it is non-zero). 0 stays 0.
+std::int32_t pc_rdoq_index(PcModels& m, const PcCtx& c, float u, std::int32_t v, double lambda, double delta,
+                           double neighbour_bits = 0.0);
+
+// The bits a non-zero index at (x, y) of class `cls` is charged for what it does to the later
+// coefficients' contexts (it joins the activity of E and S with weight 2, of SW and SE with 1):
+// where those are zero it makes their zeros dearer, where they are non-zero it brings their
+// class nearer their magnitudes. q holds the nearest points ahead of (x, y), standing in for the
+// final indices: rdoq.neighbour_bits x (zero weights - non-zero weights) / 6, fading with the
+// class (an index moves a high activity less): x fade / (fade + cls).
+double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
+                         std::size_t x, std::size_t y, int cls, const PcRdoq& rdoq);
 
 // Visits a block in coding order: `code(x, y, ctx)` codes coefficient (x, y) and
 // returns its signed index, which joins the contexts. Returns the largest magnitude.

@@ -46,7 +46,9 @@ TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
       // The encoder's PSNR comes from its planes (a trimmed pass's too): the decoder's image.
       EXPECT_NEAR(compare_images(img, decode_image(r.bytes)).overall.psnr, r.psnr, 1e-9)
           << name << " at " << bpp;
-      EXPECT_LE(pc_passes_of_last_encode(), 5) << name << " at " << bpp;
+      // At 0.125 bpp the bytes jump by up to 1% between steps 0.1% apart (RDOQ choices flipping), so
+      // landing in the window can take a search 6 passes (camera with RDOQ's neighbour term).
+      EXPECT_LE(pc_passes_of_last_encode(), 6) << name << " at " << bpp;
       passes += pc_passes_of_last_encode();
       trimmed += pc_trims_of_last_encode() > 0;
       ++searches;

@@ -220,6 +220,26 @@ TEST(PcCoder, RdoqIndicesDecodeExactlyAndStayNearTheCoefficients) {
   EXPECT_LT(word.bytes.size(), pc_encode_block(nearest_q, w, h, lp).bytes.size());
 }
 
+TEST(PcCoder, RdoqNeighbourTermChargesIsolationAndCreditsCompany) {
+  // 3 x 3 nearest points; the term of the centre (1, 1) looks at E, S (2 each), SW and SE (1).
+  const PcRdoq rdoq{};
+  std::vector<std::int32_t> q(9, 0);
+  EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 1, 1, 0, rdoq), rdoq.neighbour_bits);  // all zero
+  q[5] = 2;                                                                          // E non-zero
+  EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 1, 1, 0, rdoq), rdoq.neighbour_bits / 3.0);
+  q[6] = q[7] = -1;
+  q[8] = 1;  // all four non-zero
+  EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 1, 1, 0, rdoq), -rdoq.neighbour_bits);
+  // Half at class `fade`; the last row and column have only zeros beyond the block.
+  EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 1, 1, int(rdoq.neighbour_fade), rdoq),
+                   -rdoq.neighbour_bits / 2);
+  EXPECT_DOUBLE_EQ(pc_neighbour_bits(q, 3, 3, 2, 2, 0, rdoq), rdoq.neighbour_bits);
+  // With the term switched off RDOQ is the plain greedy choice: an index the term would drop stays.
+  PcModels m;
+  EXPECT_EQ(pc_rdoq_index(m, PcCtx{}, 1.2f, 1, 0.1, 0.05, 0.0), 1);
+  EXPECT_EQ(pc_rdoq_index(m, PcCtx{}, 1.2f, 1, 0.1, 0.05, 20.0), 0);  // 20 bits more for a 1
+}
+
 TEST(PcCoder, CorruptCodewordsFailCleanly) {
   const std::size_t pw = 16, ph = 16, w = 32, h = 32;
   const auto parent = parent_band(pw, ph, 5.0, 9);
