@@ -114,24 +114,31 @@ struct PcRdoq {
 // (LcParent's origin, stride, extent and the block's offset in its band; null origin: none).
 // With `rdoq`, q is first re-chosen (and rewritten) as PcRdoq says. Throws IndexRangeError for an
 // index of 2^kCoefMaxBits or more.
+// `start`: the models the block starts with (its band's trained priors, pc_priors.h), null: flat
+// ones; `end` (optional) receives the models' end state (their start when no codeword is written).
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq = nullptr, const PcLuma& luma = {});
+                             const LcParent& parent, const PcRdoq* rdoq = nullptr, const PcLuma& luma = {},
+                             const PcModels* start = nullptr, PcModels* end = nullptr);
 
 // Decodes a codeword of `bits` (the largest index's bit length, 1 .. kCoefMaxBits) into `width` x
 // `height` indices at `out` (row y at out + y * stride). Throws DecodeError unless the largest
 // decoded index has bit length `bits`.
+// `start` and `end` as pc_encode_block's.
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
-                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma = {});
+                     const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma = {},
+                     const PcModels* start = nullptr, PcModels* end = nullptr);
 
 // The coders under any context (`ctx` fresh): pc_encode_block's loop (no empty-block rules),
 // returning the codeword and the largest magnitude coded, and pc_decode_block's (magnitudes
-// clamped to `limit`), returning the largest magnitude decoded.
+// clamped to `limit`), returning the largest magnitude decoded. `models`: the models to code
+// with, left in their end state; null: fresh ones.
 std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vector<std::int32_t>& q,
                                                                       std::size_t width, std::size_t height,
-                                                                      PcContext ctx, const PcRdoq* rdoq);
+                                                                      PcContext ctx, const PcRdoq* rdoq,
+                                                                      PcModels* models = nullptr);
 std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uint64_t limit,
                                 std::size_t width, std::size_t height, PcContext ctx, std::int32_t* out,
-                                std::size_t stride);
+                                std::size_t stride, PcModels* models = nullptr);
 
 // Greedy RDOQ of one index: `v` (the signed nearest point of coefficient u, in index units)
 // becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x the bits
