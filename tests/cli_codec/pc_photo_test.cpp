@@ -171,19 +171,22 @@ TEST(PcPhotos, BudgetUnderTheSmallestStreamGivesTheSmallestStream) {
   EXPECT_NEAR(decoded_psnr(img, r.bytes), r.psnr, 1e-9);
 }
 
-// Version 5 changed only the pc coder: a version 4 pc stream is refused by name, a version 4
-// stream of another coder (same syntax) still decodes, and anything older is unsupported.
+// Versions 5 and 6 changed only the pc coder: a version 4 or 5 pc stream is refused by name, a
+// version 4 or 5 stream of another coder (same syntax) still decodes, and anything older is unsupported.
 TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
   const Image img = crop(photo("chelsea.png"), 64, 48);
   auto bytes = encode_image(img, pc(RateMode::bpp, 1.0)).bytes;
   ASSERT_EQ(bytes[4], kStreamVersion);
-  bytes[4] = 4;  // pc streams of version 4 had other contexts
-  try {
-    (void)decode_image(bytes);
-    ADD_FAILURE() << "a version 4 pc stream decoded";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("version 4 with entropy coder 4 (pc)"), std::string::npos)
-        << e.what();
+  for (const std::uint8_t old : {4, 5}) {  // version 4 had other contexts, 5 flat model starts
+    bytes[4] = old;
+    try {
+      (void)decode_image(bytes);
+      ADD_FAILURE() << "a version " << int(old) << " pc stream decoded";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("version " + std::to_string(old) + " with entropy coder 4 (pc)"),
+                std::string::npos)
+          << e.what();
+    }
   }
   EncodeOptions plain;
   plain.mode = RateMode::bpp;
@@ -191,6 +194,8 @@ TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
   auto other = encode_image(img, plain).bytes;
   const auto current = decode_image(other).samples;
   other[4] = 4;
+  EXPECT_EQ(decode_image(other).samples, current);
+  other[4] = 5;
   EXPECT_EQ(decode_image(other).samples, current);
   other[4] = 3;
   try {
