@@ -134,8 +134,8 @@ void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size
   require_stream(bits >= 1 && bits <= kCoefMaxBits && !codeword.empty(), "pc code-block: index bit width");
   const std::uint64_t limit = (std::uint64_t(1) << bits) - 1;
   auto models = std::make_unique<PcModels>(start ? *start : PcModels{});
-  const std::uint32_t largest = pc_decode_indices(codeword, limit, width, height,
-                                                  PcContext(width, height, parent, luma), out, stride, models.get());
+  const std::uint32_t largest = pc_decode_indices(
+      codeword, limit, width, height, PcContext(width, height, parent, luma), out, stride, models.get());
   if (end) *end = *models;
   require_stream(int(std::bit_width(largest)) == bits, "pc code-block: largest index differs from the index");
 }

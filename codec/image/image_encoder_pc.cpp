@@ -111,9 +111,9 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   }
   const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
   std::int32_t* plane = q[b.component].data();
-  CoefCodeword w = pc_encode_block(v, b.size[0], b.size[1], lc_parent(plan.bands, b, plane, dims[0], nullptr),
-                                   &rdoq, pc_luma(b, q, dims[0]),
-                                   &pc_block_priors(plan.bands, b, plan.header.channels));
+  CoefCodeword w =
+      pc_encode_block(v, b.size[0], b.size[1], lc_parent(plan.bands, b, plane, dims[0], nullptr), &rdoq,
+                      pc_luma(b, q, dims[0]), &pc_block_priors(plan.bands, b, plan.header.channels));
   copy_block_in(v.data(), dims, b, plane);
   out.entries[i] = {w.bits, w.bits > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
   out.words[i] = std::move(w.bytes);

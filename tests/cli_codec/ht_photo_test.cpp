@@ -93,8 +93,8 @@ TEST(HtPhotos, StreamedSearchesGiveTheStreamsTheHeldSampleGave) {
   } cases[] = {
       {&camera, 0.5, 2812409360u},  // two passes, the whole-image survey's sample held
       {&tall, 0.5, 2225815233u},    // one pass
-      {&tall, 2.0, 2342506729u},     // three passes, the stripes' sample held
-      {&wide, 1.0, 464722974u},    // two passes, the stripes surveyed again
+      {&tall, 2.0, 2342506729u},    // three passes, the stripes' sample held
+      {&wide, 1.0, 464722974u},     // two passes, the stripes surveyed again
       {&wide, 1.5, 4025601890u},    // three passes, the stripes surveyed again twice
   };
   for (const auto& k : cases)

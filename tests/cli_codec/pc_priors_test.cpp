@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "codec/entropy/pc_blocks.h"
+#include "codec/entropy/pc_groups.h"
 #include "codec/entropy/pc_priors.h"
 #include "codec/error.h"
-#include "codec/entropy/pc_groups.h"
 #include "codec/format/container.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/lc_parent.h"
@@ -29,8 +29,8 @@ TEST(PcPriors, EveryBandOfASixLevelColourImageHasItsOwnClass) {
   for (const Subband& band : bands) {
     const int y = pc_prior_class(band, 0, 3);
     EXPECT_EQ(pc_prior_class(band, 1, 3), pc_prior_class(band, 2, 3));  // Cb and Cr share
-    EXPECT_EQ(pc_prior_class(band, 0, 1), y);                            // grey takes luma's
-    EXPECT_EQ(pc_prior_class(band, 1, 2), y);                            // so does a second of two
+    EXPECT_EQ(pc_prior_class(band, 0, 1), y);                           // grey takes luma's
+    EXPECT_EQ(pc_prior_class(band, 1, 2), y);                           // so does a second of two
     luma.insert(y);
     chroma.insert(pc_prior_class(band, 1, 3));
   }
@@ -115,7 +115,8 @@ TEST(PcPriors, ABlockDecodesOnlyFromTheStartsItWasCodedWith) {
       trained += word.size();
       if (parent.origin || luma.origin) continue;
       ++parentless;
-      for (const PcModels* other : {static_cast<const PcModels*>(nullptr), &pc_prior_models((cls + 2) % 36)}) {
+      for (const PcModels* other :
+           {static_cast<const PcModels*>(nullptr), &pc_prior_models((cls + 2) % 36)}) {
         std::vector<std::int32_t> wrong(w * h);
         try {
           pc_decode_block(word, s.index[i].planes, w, h, parent, wrong.data(), w, luma, other);
@@ -137,7 +138,8 @@ TEST(PcPriors, PhotographsRoundTripAtSeveralRates) {
       ASSERT_EQ(r.bytes[4], 6);  // stream version 6: trained starts
       EXPECT_LE(double(r.bytes.size()), bpp * double(img.width * img.height) / 8.0) << name << " " << bpp;
       // The encoder's PSNR is of its own indices: equal only if the decoder gets them all.
-      EXPECT_NEAR(compare_images(img, decode_image(r.bytes)).overall.psnr, r.psnr, 1e-9) << name << " " << bpp;
+      EXPECT_NEAR(compare_images(img, decode_image(r.bytes)).overall.psnr, r.psnr, 1e-9)
+          << name << " " << bpp;
     }
   }
 }
