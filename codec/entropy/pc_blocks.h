@@ -6,9 +6,10 @@
 // top low bits, raw rest, sign by neighbour signs) and pc's own models (pc_bit.h), the index of the
 // parent (the next coarser band of the same orientation, already decoded) and its neighbours towards
 // the child added to the activity sum, the parent's sign to the sign context (ECECOW-style), and for
-// chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h). Against
-// OpenJPEG on the four test photographs -8.6% BD-rate (-6.6% with the parent alone), -11.7% on nine
-// held-out ones (bench/results/rd_issue20.md).
+// chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h), every
+// model starting from its band class's trained state (pc_priors.h). Against OpenJPEG on the four
+// test photographs -11.1% BD-rate (-8.6% from flat starts, -6.6% with the parent alone), -12.8%
+// on nine held-out ones (bench/results/rd_issue20.md).
 
 #include <algorithm>
 #include <cstddef>
