@@ -138,10 +138,11 @@ double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, 
 std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vector<std::int32_t>& q,
                                                                       std::size_t width, std::size_t height,
                                                                       PcContext ctx, const PcRdoq* rdoq,
-                                                                      const PcCfl* cfl) {
+                                                                      const PcCfl* cfl, PcModels* given) {
   RangeEncoder enc;
   if (cfl) put_cfl(enc, *cfl);
-  auto models = std::make_unique<PcModels>();
+  std::unique_ptr<PcModels> fresh;
+  PcModels* models = given ? given : (fresh = std::make_unique<PcModels>()).get();
   const std::uint32_t largest =
       pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
         std::int32_t& v = q[y * width + x];
@@ -156,10 +157,11 @@ std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vecto
 
 std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uint64_t limit,
                                 std::size_t width, std::size_t height, PcContext ctx, std::int32_t* out,
-                                std::size_t stride, PcCfl* cfl) {
+                                std::size_t stride, PcCfl* cfl, PcModels* given) {
   RangeDecoder dec(codeword);
   if (cfl) get_cfl(dec, *cfl);
-  auto models = std::make_unique<PcModels>();
+  std::unique_ptr<PcModels> fresh;
+  PcModels* models = given ? given : (fresh = std::make_unique<PcModels>()).get();
   return pc_visit(width, height, ctx, [&](std::size_t x, std::size_t y, const PcCtx& c) {
     bool negative = false;
     const std::uint32_t a = get_pc_index(dec, *models, c, limit, negative);
@@ -169,7 +171,7 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
 
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
                              const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma,
-                             const PcCfl* cfl) {
+                             const PcCfl* cfl, const PcModels* start, PcModels* end) {
   if (cfl)
     for (int i = 0; i < cfl->count; ++i)
       if (std::abs(cfl->code[i]) > kCflMaxCode)
@@ -197,11 +199,14 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
   for (std::int32_t v : q) all |= std::uint64_t(v < 0 ? -std::int64_t(v) : v);
   if (all >= (std::uint64_t(1) << kCoefMaxBits)) throw IndexRangeError("index too large for the pc coder");
   CoefCodeword out;
+  auto models = std::make_unique<PcModels>(start ? *start : PcModels{});
+  if (end) *end = *models;  // no codeword: the models stay as they start
   if (all == 0) return out;
   auto [bytes, largest] =
-      pc_encode_indices(q, width, height, PcContext(width, height, parent, luma), rdoq, cfl);
+      pc_encode_indices(q, width, height, PcContext(width, height, parent, luma), rdoq, cfl, models.get());
   out.bits = int(std::bit_width(largest));  // RDOQ may have lowered it: the decoder checks this one
   if (out.bits == 0) return out;            // RDOQ zeroed everything: no codeword
+  if (end) *end = *models;
   out.bytes = std::move(bytes);
   if (out.bytes.empty()) out.bytes.push_back(0);  // a codeword is never empty (the index says so)
   return out;
@@ -209,11 +214,14 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
 
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
                      const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma,
-                     PcCfl* cfl) {
+                     PcCfl* cfl, const PcModels* start, PcModels* end) {
   require_stream(bits >= 1 && bits <= kCoefMaxBits && !codeword.empty(), "pc code-block: index bit width");
   const std::uint64_t limit = (std::uint64_t(1) << bits) - 1;
+  auto models = std::make_unique<PcModels>(start ? *start : PcModels{});
   const std::uint32_t largest = pc_decode_indices(codeword, limit, width, height,
-                                                  PcContext(width, height, parent, luma), out, stride, cfl);
+                                                  PcContext(width, height, parent, luma), out, stride, cfl,
+                                                  models.get());
+  if (end) *end = *models;
   require_stream(int(std::bit_width(largest)) == bits, "pc code-block: largest index differs from the index");
 }
 

@@ -6,9 +6,9 @@
 // top low bits, raw rest, sign by neighbour signs) and pc's own models (pc_bit.h), the index of the
 // parent (the next coarser band of the same orientation, already decoded) and its neighbours towards
 // the child added to the activity sum, the parent's sign to the sign context (ECECOW-style), and for
-// chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h). Against
-// OpenJPEG on the four test photographs -9.0% BD-rate (-6.6% with the parent alone, -8.6% before
-// RDOQ's neighbour term), -12.0% on nine held-out ones (bench/results/rd_issue20.md).
+// chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h), every
+// model starting from its band class's trained state (pc_priors.h); the chroma detail blocks code
+// the residual of a prediction from luma (and Cb) (pc_cfl.h). Figures: bench/results/rd_issue20.md.
 
 #include <algorithm>
 #include <cstddef>
@@ -132,28 +132,33 @@ struct PcRdoq {
 // (LcParent's origin, stride, extent and the block's offset in its band; null origin: none).
 // With `rdoq`, q is first re-chosen (and rewritten) as PcRdoq says; with `cfl`, its codes head the
 // codeword. Throws IndexRangeError for an index of 2^kCoefMaxBits or more.
+// `start`: the models the block starts with (its band's trained priors, pc_priors.h), null: flat
+// ones; `end` (optional) receives the models' end state (their start when no codeword is written).
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
                              const LcParent& parent, const PcRdoq* rdoq = nullptr, const PcLuma& luma = {},
-                             const PcCfl* cfl = nullptr);
+                             const PcCfl* cfl = nullptr, const PcModels* start = nullptr,
+                             PcModels* end = nullptr);
 
 // Decodes a codeword of `bits` (the largest index's bit length, 1 .. kCoefMaxBits) into `width` x
 // `height` indices at `out` (row y at out + y * stride); with `cfl` (its count set), its codes are
 // read first. Throws DecodeError unless the largest decoded index has bit length `bits`, or for a
-// code beyond [-32, 32].
+// code beyond [-32, 32]. `start` and `end` as pc_encode_block's.
 void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size_t width, std::size_t height,
                      const LcParent& parent, std::int32_t* out, std::size_t stride, const PcLuma& luma = {},
-                     PcCfl* cfl = nullptr);
+                     PcCfl* cfl = nullptr, const PcModels* start = nullptr, PcModels* end = nullptr);
 
 // The coders under any context (`ctx` fresh): pc_encode_block's loop (no empty-block rules),
 // returning the codeword and the largest magnitude coded, and pc_decode_block's (magnitudes
-// clamped to `limit`), returning the largest magnitude decoded.
+// clamped to `limit`), returning the largest magnitude decoded. `models`: the models to code
+// with, left in their end state; null: fresh ones.
 std::pair<std::vector<std::uint8_t>, std::uint32_t> pc_encode_indices(std::vector<std::int32_t>& q,
                                                                       std::size_t width, std::size_t height,
                                                                       PcContext ctx, const PcRdoq* rdoq,
-                                                                      const PcCfl* cfl = nullptr);
+                                                                      const PcCfl* cfl = nullptr,
+                                                                      PcModels* models = nullptr);
 std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uint64_t limit,
                                 std::size_t width, std::size_t height, PcContext ctx, std::int32_t* out,
-                                std::size_t stride, PcCfl* cfl = nullptr);
+                                std::size_t stride, PcCfl* cfl = nullptr, PcModels* models = nullptr);
 
 // Greedy RDOQ of one index: `v` (the signed nearest point of coefficient u, in index units)
 // becomes the one of {nearest, nearest - 1, 0} with the least squared error + lambda x (the bits

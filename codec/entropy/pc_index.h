@@ -30,7 +30,8 @@ struct PcCtx {
   std::size_t sign = 0;
 };
 
-// Adaptive models of one pc block (fresh per block: each block's codeword decodes alone).
+// Adaptive models of one pc block (started per block, from its band class's trained states in the
+// coder, pc_priors.h: each block's codeword decodes alone).
 struct PcModels {
   std::array<std::array<PcBit, kCoefUnaryModels>, kCoefClasses> unary{};
   std::array<std::array<PcBit, 2 << kCoefModelledLow>, kCoefClasses> low{};  // as CoefModels::low

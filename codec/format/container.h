@@ -27,8 +27,9 @@ namespace pupwave {
 // weight (codec/entropy/ctx_priors.h).
 // Version 5: the pc coder's contexts (parent's neighbours, luma and Cb parents, class-0 rate); the
 // other coders' streams are unchanged, so version 4 streams of coders other than pc still decode.
-// Version 6: the pc coder predicts chroma detail blocks from luma (and Cr from Cb); the other
-// coders' streams are unchanged, so their version 4 and 5 streams still decode.
+// Version 6: the pc coder predicts chroma detail blocks from luma (and Cr from Cb), and its models
+// start from trained states per band class (pc_priors.h); the other coders' streams are
+// unchanged, so their version 4 and 5 streams still decode.
 inline constexpr std::uint8_t kStreamVersion = 6;
 inline constexpr std::uint8_t kOldestStreamVersion = 4;
 // Caps that keep a hostile header from demanding unbounded memory.

@@ -18,6 +18,7 @@
 #include "codec/entropy/pc_blocks.h"
 #include "codec/entropy/pc_cfl.h"
 #include "codec/entropy/pc_groups.h"
+#include "codec/entropy/pc_priors.h"
 #include "codec/error.h"
 #include "codec/format/container.h"
 #include "codec/image/image_components.h"
@@ -173,13 +174,14 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   const LcParent parent = lc_parent(plan.bands, b, plane, dims[0], nullptr);
   const PcLuma luma = pc_luma(b, q, dims[0]);
   const bool cfl = pc_cfl_applies(b, plan.header.channels);
+  const PcModels* start = &pc_block_priors(plan.bands, b, plan.header.channels);
   PcCfl none;
   none.count = cfl ? pc_cfl_count(b) : 0;
   const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
   CoefCodeword w;
   bool plain = false;  // w holds the coding without prediction
   const auto code_plain = [&] {
-    w = pc_encode_block(v, b.size[0], b.size[1], parent, &rdoq, luma, cfl ? &none : nullptr);
+    w = pc_encode_block(v, b.size[0], b.size[1], parent, &rdoq, luma, cfl ? &none : nullptr, start);
     plain = true;
   };
   PcCfl chosen = none;
@@ -194,7 +196,7 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
         ur[y * b.size[0] + x] = (row[x] - pred[y * b.size[0] + x]) * inv;
     }
     const PcRdoq residual{ur, kPcLambda, plan.header.delta};
-    CoefCodeword wr = pc_encode_block(vr, b.size[0], b.size[1], parent, &residual, luma, &k);
+    CoefCodeword wr = pc_encode_block(vr, b.size[0], b.size[1], parent, &residual, luma, &k, start);
     const double bits = 8.0 * double(w.bytes.size()), bits_r = 8.0 * double(wr.bytes.size());
     const bool take = wr.bits > 0 && (!plain || index_error(ur, vr, plan.header.delta) + kPcLambda * bits_r <
                                                     index_error(u, v, plan.header.delta) + kPcLambda * bits);
@@ -283,7 +285,8 @@ void hold(Coder& coder, const Pass& p) {
     cfl.count = pc_cfl_applies(b, plan.header.channels) ? pc_cfl_count(b) : 0;
     pc_decode_block(p.words[i], p.entries[i].planes, b.size[0], b.size[1],
                     lc_parent(plan.bands, b, plane, dims[0], nullptr), at, dims[0],
-                    pc_luma(b, coder.q, dims[0]), cfl.count ? &cfl : nullptr);
+                    pc_luma(b, coder.q, dims[0]), cfl.count ? &cfl : nullptr,
+                    &pc_block_priors(plan.bands, b, plan.header.channels));
   });
   coder.held = p.t;
 }

@@ -8,6 +8,7 @@
 #include "codec/entropy/pc_blocks.h"
 #include "codec/entropy/pc_cfl.h"
 #include "codec/entropy/pc_groups.h"
+#include "codec/entropy/pc_priors.h"
 #include "codec/error.h"
 #include "codec/image/lc_parent.h"
 
@@ -96,7 +97,7 @@ void decode_pc_into(const ParsedStream& s, const Extent& region, const Executor&
         pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
                         lc_parent(s.bands, b, plane, region[0], nullptr),
                         plane + b.offset[0] + region[0] * b.offset[1], region[0], luma,
-                        cfl[i].count ? &cfl[i] : nullptr);
+                        cfl[i].count ? &cfl[i] : nullptr, &pc_block_priors(s.bands, b, planes.size()));
       });
     }
     dequantize(previous, first);  // the parents of this resolution, no longer needed

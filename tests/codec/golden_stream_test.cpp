@@ -11,8 +11,9 @@
 // Entropy coder 4 (pc, issue 20) has its own value: coder, RDOQ and its rate search.
 // Version 5 (issue 20: pc's luma and Cb parents, parent neighbours, faster silent models) changed the
 // pc value and the six others by their version byte only.
-// Version 6 (issue 20: pc predicts chroma detail blocks from luma and Cb) changed the pc values (the
-// grey --step one by its version byte only) and the six others by their version byte only.
+// Version 6 (issue 20: pc predicts chroma detail blocks from luma and Cb, and its models start
+// from trained states per band class) changed the pc values and the six others by their version
+// byte only.
 #include <gtest/gtest.h>
 
 #include "codec/format/crc32.h"
@@ -57,7 +58,7 @@ TEST(GoldenStream, LossyStreamsAreUnchanged) {
 
 // A --step stream pins the pc coder alone (no search): the same values before and after the
 // pcfast helper's model-guided search and in-place decoder (changed by version 5's contexts and
-// version 6's chroma from luma).
+// version 6's chroma from luma and trained model starts).
 TEST(GoldenStream, PcStepStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::step, 4.0, "cdf97",
                        EntropyCoder::pc),
