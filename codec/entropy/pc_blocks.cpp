@@ -35,11 +35,11 @@ PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const
   };
   if (w == 0 || h == 0) return;
   parent_rows_.resize(2 * h);
-  for (std::size_t y = 0; y < h; ++y) std::tie(parent_rows_[2 * y], parent_rows_[2 * y + 1]) =
-      own_and_side(parent_.y0 + y, parent_.height);
+  for (std::size_t y = 0; y < h; ++y)
+    std::tie(parent_rows_[2 * y], parent_rows_[2 * y + 1]) = own_and_side(parent_.y0 + y, parent_.height);
   parent_cols_.resize(2 * w);
-  for (std::size_t x = 0; x < w; ++x) std::tie(parent_cols_[2 * x], parent_cols_[2 * x + 1]) =
-      own_and_side(parent_.x0 + x, parent_.width);
+  for (std::size_t x = 0; x < w; ++x)
+    std::tie(parent_cols_[2 * x], parent_cols_[2 * x + 1]) = own_and_side(parent_.x0 + x, parent_.width);
   // The window of parent rows and columns read, copied as magnitudes and signs.
   const auto [row0, row1] = std::minmax_element(parent_rows_.begin(), parent_rows_.end());
   const auto [col0, col1] = std::minmax_element(parent_cols_.begin(), parent_cols_.end());
@@ -170,8 +170,8 @@ std::uint32_t pc_decode_indices(std::span<const std::uint8_t> codeword, std::uin
 }
 
 CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, std::size_t height,
-                             const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma,
-                             const PcCfl* cfl, const PcModels* start, PcModels* end) {
+                             const LcParent& parent, const PcRdoq* rdoq, const PcLuma& luma, const PcCfl* cfl,
+                             const PcModels* start, PcModels* end) {
   if (cfl)
     for (int i = 0; i < cfl->count; ++i)
       if (std::abs(cfl->code[i]) > kCflMaxCode)
@@ -218,9 +218,8 @@ void pc_decode_block(std::span<const std::uint8_t> codeword, int bits, std::size
   require_stream(bits >= 1 && bits <= kCoefMaxBits && !codeword.empty(), "pc code-block: index bit width");
   const std::uint64_t limit = (std::uint64_t(1) << bits) - 1;
   auto models = std::make_unique<PcModels>(start ? *start : PcModels{});
-  const std::uint32_t largest = pc_decode_indices(codeword, limit, width, height,
-                                                  PcContext(width, height, parent, luma), out, stride, cfl,
-                                                  models.get());
+  const std::uint32_t largest = pc_decode_indices(
+      codeword, limit, width, height, PcContext(width, height, parent, luma), out, stride, cfl, models.get());
   if (end) *end = *models;
   require_stream(int(std::bit_width(largest)) == bits, "pc code-block: largest index differs from the index");
 }

@@ -180,7 +180,8 @@ TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
   const Image img = crop(photo("chelsea.png"), 64, 48);
   auto bytes = encode_image(img, pc(RateMode::bpp, 1.0)).bytes;
   ASSERT_EQ(bytes[4], kStreamVersion);
-  for (const std::uint8_t version : {4, 5}) {  // pc streams of version 4 had other contexts, of 5 no CfL and flat starts
+  for (const std::uint8_t version :
+       {4, 5}) {  // pc streams of version 4 had other contexts, of 5 no CfL and flat starts
     bytes[4] = version;
     try {
       (void)decode_image(bytes);

@@ -125,7 +125,8 @@ std::vector<std::vector<float>> decode_by_index_planes(const ParsedStream& s, co
     pc_decode_block(s.codeword(i), s.index[i].planes, b.size[0], b.size[1],
                     lc_parent(s.bands, b, plane, region[0], nullptr),
                     plane + b.offset[0] + region[0] * b.offset[1], region[0], pc_luma(b, index, region[0]),
-                    weights[i].count ? &weights[i] : nullptr, &pc_block_priors(s.bands, b, s.header.channels));
+                    weights[i].count ? &weights[i] : nullptr,
+                    &pc_block_priors(s.bands, b, s.header.channels));
   }
   for (std::size_t i = 0; i < s.blocks.size(); ++i) {  // a band's luma and Cb blocks before its Cr's
     const CodeBlock& b = s.blocks[i];
