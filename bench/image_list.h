@@ -1,8 +1,11 @@
 #pragma once
-// The image arguments of the bench tools (nonembedded_rd.cpp, train_priors.cpp).
+// The image and list arguments of the bench tools (nonembedded_rd.cpp, train_priors.cpp,
+// train_pc_priors.cpp).
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace pupwave::bench {
@@ -18,6 +21,21 @@ inline void add_images(const std::filesystem::path& arg, std::vector<std::filesy
     if (e.is_regular_file() && e.path().extension() == ".png") found.push_back(e.path());
   std::sort(found.begin(), found.end());
   out.insert(out.end(), found.begin(), found.end());
+}
+
+// The items of a comma-separated argument ("0.125,0.25,1").
+inline std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  return out;
+}
+
+// A comma-separated list of numbers.
+inline std::vector<double> number_list(const std::string& s) {
+  std::vector<double> out;
+  for (const std::string& item : split_list(s)) out.push_back(std::stod(item));
+  return out;
 }
 
 }  // namespace pupwave::bench

@@ -30,7 +30,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -68,22 +67,14 @@ struct Args {
   std::vector<fs::path> images;
 };
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
-}
-
 Args parse(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     if (s == "--bpp" && i + 1 < argc) {
-      a.bpps.clear();
-      for (const auto& v : split(argv[++i])) a.bpps.push_back(std::stod(v));
+      a.bpps = bench::number_list(argv[++i]);
     } else if (s == "--coders" && i + 1 < argc) {
-      a.coders = split(argv[++i]);
+      a.coders = bench::split_list(argv[++i]);
     } else if (s == "--zero" && i + 1 < argc) {
       a.zero = std::stod(argv[++i]);
     } else if (s == "--round" && i + 1 < argc) {

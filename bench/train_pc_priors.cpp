@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,9 +40,7 @@ Args parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     if (s == "--bpp" && i + 1 < argc) {
-      a.bpps.clear();
-      std::stringstream in(argv[++i]);
-      for (std::string item; std::getline(in, item, ',');) a.bpps.push_back(std::stod(item));
+      a.bpps = bench::number_list(argv[++i]);
     } else if (!s.empty() && s[0] == '-') {
       throw std::invalid_argument("unknown option " + s);
     } else {

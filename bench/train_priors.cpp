@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,20 +36,13 @@ struct Args {
   std::vector<fs::path> train, check;
 };
 
-std::vector<double> parse_list(const std::string& s) {
-  std::vector<double> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(std::stod(item));
-  return out;
-}
-
 Args parse(int argc, char** argv) {
   Args a;
   bool check = false;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     if (s == "--bpp" && i + 1 < argc) {
-      a.bpps = parse_list(argv[++i]);
+      a.bpps = pupwave::bench::number_list(argv[++i]);
     } else if (s == "--effort" && i + 1 < argc) {
       a.effort = std::stoi(argv[++i]);
     } else if (s == "--check") {
