@@ -21,8 +21,11 @@ inline constexpr int kPcCflMaxCode = 2 * kPcCflDenominator;
 
 // Whether block b (of an image with `components` components) is predicted: the Cb and Cr detail
 // blocks (the coarse band's are not: its values are offsets, not co-varying detail).
+inline bool pc_cfl_applies(std::size_t component, unsigned orientation, std::size_t components) {
+  return pc_has_luma(component, components) && orientation != 0;
+}
 inline bool pc_cfl_applies(const CodeBlock& b, std::size_t components) {
-  return pc_has_luma(b, components) && b.orientation != 0;
+  return pc_cfl_applies(b.component, b.orientation, components);
 }
 
 // The number of weights block b codes: 1 for Cb (luma's), 2 for Cr (luma's and Cb's).

@@ -20,8 +20,11 @@ inline constexpr int kPcGroupsPerResolution = 3;
 
 // Whether block b (of an image with `components` components) takes the first component (and,
 // for the third, the second) as further parents.
+inline bool pc_has_luma(std::size_t component, std::size_t components) {
+  return components >= 3 && (component == 1 || component == 2);
+}
 inline bool pc_has_luma(const CodeBlock& b, std::size_t components) {
-  return components >= 3 && (b.component == 1 || b.component == 2);
+  return pc_has_luma(b.component, components);
 }
 
 // The group of block b: 3 x resolution, + its component for a block with a luma parent.

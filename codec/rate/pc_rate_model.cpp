@@ -47,7 +47,7 @@ PcRateModel::PcRateModel(const ImagePlan& plan, double delta) : delta_(delta) {
       std::vector<std::uint32_t> counts(kBins, 0u);
       // Cb and Cr detail bands: the residual of their chroma-from-luma prediction (pc_cfl.h),
       // fitted here on the unquantized luma and Cb (the passes fit it on the decoded ones).
-      const bool predicted = plan.coef.size() >= 3 && (c == 1 || c == 2) && band.orientation != 0;
+      const bool predicted = pc_cfl_applies(c, band.orientation, plan.coef.size());
       const auto at = [&](std::size_t y) { return band.offset[0] + dims[0] * (band.offset[1] + y); };
       PcCfl k;
       if (predicted) {
