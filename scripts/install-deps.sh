@@ -16,6 +16,8 @@ packages=(
   libavif-bin ffmpeg webp
   # bench/codec_speed.sh only: Grok and OpenJPH (HTJ2K) as speed peers
   grokj2k-tools openjph-tools
+  # bench/encode_instructions.sh only: instruction counts that a loaded machine does not disturb
+  valgrind
   # sqrt(3) meshes: OpenMesh for the subdivision cross-check test, Draco and the CGAL sample
   # meshes for bench/mesh_vs_draco.py
   libopenmesh-dev draco libcgal-demo
