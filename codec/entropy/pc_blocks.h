@@ -89,7 +89,7 @@ class PcContext {
   void set(std::size_t x, std::size_t y, std::int32_t v) {
     const std::size_t p = (y + 1) * nx_ + x + 1;
     a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
-    sg_[p] = std::int8_t(sign_of(v));
+    sg_[p] = sign_of(v);
   }
 
  private:
@@ -98,7 +98,9 @@ class PcContext {
 
   std::size_t nx_;
   std::vector<std::uint32_t> a_;
-  std::vector<std::int8_t> sg_;
+  // int32, not int8: a store through a character type may alias anything, and the loop would
+  // reload every pointer it reads after each coefficient.
+  std::vector<std::int32_t> sg_;
   LcParent parent_;
   PcLuma luma_;
   std::uint64_t in_weight_, parent_weight_;  // 3 (x 2 x scale with a parent) and 3 x weight
