@@ -8,8 +8,12 @@
 // correlated with luma and with each other band by band, with a sign and size that vary by image.
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
 #include "codec/entropy/pc_blocks.h"
 #include "codec/entropy/pc_groups.h"
@@ -77,5 +81,51 @@ inline PcCfl pc_cfl_fit(const PcCflSums& s, int count) {
 
 // Whether a prediction is all zero.
 inline bool pc_cfl_none(const PcCfl& k) { return k.code[0] == 0 && (k.count < 2 || k.code[1] == 0); }
+
+// The samples pc_cfl_proxy_cost reads of a block at most (about): a decision between two sums
+// over a band needs no more, and a large band is read at an odd stride (never in step with its rows).
+inline constexpr std::size_t kPcCflProxySamples = 8192;
+
+// The encoder's cheap estimate of what coding values x (index units: coefficient / step) costs
+// in RDOQ's measure (squared index-unit error + lambda x bits), without coding them: the error
+// of rounding to the reconstruction points (0 and |q| + delta), and as bits a quarter of the
+// zero-order entropy of the magnitude classes (bit length of |q|) with their low bits and signs,
+// plus 2 bits per non-zero nearest index. The weights were fitted on the chroma blocks of the
+// first search pass of the training photographs at 0.125-2 bpp, as the ones that best agree with
+// coding both ways (bench/results/rd_issue20.md, helper cflcheap): the contexts code zeros far
+// below their zero-order cost, so the count of non-zeros carries most of the rate. A block of
+// more than 2 x kPcCflProxySamples values is estimated from every stride-th one (a sum in scale).
+inline double pc_cfl_proxy_cost(std::span<const float> x, double delta, double lambda) {
+  std::array<double, 34> classes{};
+  double error = 0.0, low_bits = 0.0, nonzero = 0.0, n = 0.0;
+  const std::size_t stride = (x.size() / kPcCflProxySamples) | 1;
+  for (std::size_t i = 0; i < x.size(); i += stride) {
+    const float f = std::abs(x[i]);
+    n += 1.0;
+    if (f < 0.5f) {  // the common case: index 0, class 0 (counted from n below)
+      error += double(f) * double(f);
+      continue;
+    }
+    const double a = double(f);
+    const double q = std::min(std::floor(a - delta + 0.5), 2147483647.0);
+    const double r = q > 0.0 ? q + delta : 0.0;
+    error += (a - r) * (a - r);
+    const int c = std::bit_width(std::uint32_t(q));  // 0 for zero
+    low_bits += double(c);                           // c - 1 low bits and the sign
+    classes[std::size_t(c)] += 1.0;
+    nonzero += 1.0;  // a >= 0.5: a non-zero nearest index
+  }
+  classes[0] += n - nonzero;  // the values under half a step (the others counted their class)
+  double entropy = 0.0;
+  for (const double m : classes)
+    if (m > 0.0) entropy -= m * std::log2(m / n);
+  return error + lambda * (0.25 * (entropy + low_bits) + 2.0 * nonzero);
+}
+
+// Whether a chroma block is coded with its prediction: when its residual ur (index units) is
+// estimated cheaper than its values u (pc_cfl_proxy_cost), so the encoder codes it once.
+inline bool pc_cfl_pays(std::span<const float> u, std::span<const float> ur, double delta, double lambda) {
+  return pc_cfl_proxy_cost(ur, delta, lambda) < pc_cfl_proxy_cost(u, delta, lambda);
+}
 
 }  // namespace pupwave

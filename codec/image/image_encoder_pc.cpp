@@ -80,7 +80,7 @@ struct Coder {
   double held = std::nan("");  // t of the pass q holds
   std::vector<std::vector<float>> recon;
   // Per block, the chroma-from-luma choice of the first pass that weighed it (0: not yet, 1:
-  // without, 2: with the prediction): later passes code only that one (half the chroma coding).
+  // without, 2: with the prediction, by pc_cfl_pays' estimate): later passes keep it.
   std::vector<std::int8_t> choice;
 };
 
@@ -107,17 +107,6 @@ std::size_t cb_block(const ImagePlan& plan, std::size_t i) {
     if (o.component == 1 && o.band == b.band && o.offset == b.offset) return j;
   }
   throw std::logic_error("pc encoder: a Cr block without its Cb block");
-}
-
-// Squared index-unit error of indices v against coefficients u (index units), as RDOQ counts it.
-double index_error(std::span<const float> u, std::span<const std::int32_t> v, double delta) {
-  double e = 0.0;
-  for (std::size_t k = 0; k < u.size(); ++k) {
-    const double r =
-        v[k] == 0 ? 0.0 : (v[k] < 0 ? -(double(-std::int64_t(v[k])) + delta) : double(v[k]) + delta);
-    e += (double(u[k]) - r) * (double(u[k]) - r);
-  }
-  return e;
 }
 
 // Chroma detail block i's prediction (pc_cfl.h) into `pred` (the block's samples, x fastest): the
@@ -152,16 +141,16 @@ PcCfl predict_block(const ImagePlan& plan, std::size_t i, const std::vector<std:
 }
 
 // Codes block i at the plan's steps with RDOQ, its parent read from (and its indices written
-// to) the index planes q. A chroma detail block is coded with its prediction and without (both
-// codewords carry the weights) and keeps the one of less squared error + lambda x bits, unless
-// `choice` (Coder::choice) says which an earlier pass kept; a block that codes nothing has no
-// prediction (the decoder sees no weights).
+// to) the index planes q. A chroma detail block is coded once: with its prediction when `choice`
+// (Coder::choice) says so, or, in the first pass that weighs it, when pc_cfl_pays estimates its
+// residual cheaper (then `choice` keeps that for later passes); a block that codes nothing has no
+// prediction (the decoder sees no weights), so a residual that codes nothing is coded again plain.
 void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<std::int32_t>>& q, Pass& out,
                 std::int8_t& choice) {
   const CodeBlock& b = plan.blocks[i];
   const Extent& dims = plan.header.dims;
   thread_local std::vector<float> u, ur, pred;
-  thread_local std::vector<std::int32_t> v, vr;  // RDOQ overwrites every index
+  thread_local std::vector<std::int32_t> v;  // RDOQ overwrites every index
   u.resize(b.count());
   v.resize(b.count());
   const float inv = 1.0f / plan.header.steps[b.component * plan.bands.size() + b.band];
@@ -177,37 +166,31 @@ void code_block(const ImagePlan& plan, std::size_t i, std::vector<std::vector<st
   const PcModels* start = &pc_block_priors(plan.bands, b, plan.header.channels);
   PcCfl none;
   none.count = cfl ? pc_cfl_count(b) : 0;
-  const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
-  CoefCodeword w;
-  bool plain = false;  // w holds the coding without prediction
-  const auto code_plain = [&] {
-    w = pc_encode_block(v, b.size[0], b.size[1], parent, &rdoq, luma, cfl ? &none : nullptr, start);
-    plain = true;
-  };
   PcCfl chosen = none;
+  CoefCodeword w;
   const PcCfl k = cfl && choice != 1 ? predict_block(plan, i, q, out, pred) : none;
-  if (!cfl || pc_cfl_none(k) || choice == 0) code_plain();
   if (cfl && !pc_cfl_none(k)) {
     ur.resize(b.count());
-    vr.resize(b.count());
     for (std::size_t y = 0; y < b.size[1]; ++y) {
       const float* row = plan.coef[b.component].data() + b.offset[0] + dims[0] * (b.offset[1] + y);
       for (std::size_t x = 0; x < b.size[0]; ++x)
         ur[y * b.size[0] + x] = (row[x] - pred[y * b.size[0] + x]) * inv;
     }
-    const PcRdoq residual{ur, kPcLambda, plan.header.delta};
-    CoefCodeword wr = pc_encode_block(vr, b.size[0], b.size[1], parent, &residual, luma, &k, start);
-    const double bits = 8.0 * double(w.bytes.size()), bits_r = 8.0 * double(wr.bytes.size());
-    const bool take = wr.bits > 0 && (!plain || index_error(ur, vr, plan.header.delta) + kPcLambda * bits_r <
-                                                    index_error(u, v, plan.header.delta) + kPcLambda * bits);
-    if (choice == 0) choice = take ? 2 : 1;
-    if (take) {
-      w = std::move(wr);
-      v.swap(vr);
-      chosen = k;
-    } else if (!plain) {
-      code_plain();
+    const bool deciding = choice == 0;
+    if (deciding) choice = pc_cfl_pays(u, ur, plan.header.delta, kPcLambda) ? 2 : 1;
+    if (choice == 2) {
+      const PcRdoq residual{ur, kPcLambda, plan.header.delta};
+      w = pc_encode_block(v, b.size[0], b.size[1], parent, &residual, luma, &k, start);
+      if (w.bits > 0)
+        chosen = k;
+      else if (deciding)  // as when both were coded: a residual that codes nothing loses for good
+        choice = 1;
     }
+  }
+  if (pc_cfl_none(chosen)) {  // plain: no prediction, or a residual that coded nothing
+    const PcRdoq rdoq{u, kPcLambda, plan.header.delta};
+    w = pc_encode_block(v, b.size[0], b.size[1], parent, &rdoq, luma, cfl ? &none : nullptr, start);
+    chosen = none;
   }
   copy_block_in(v.data(), dims, b, plane);
   out.cfl[i] = w.bits > 0 ? chosen : PcCfl{};

@@ -58,11 +58,12 @@ TEST(GoldenStream, LossyStreamsAreUnchanged) {
 
 // A --step stream pins the pc coder alone (no search): the same values before and after the
 // pcfast helper's model-guided search and in-place decoder (changed by version 5's contexts and
-// version 6's chroma from luma and trained model starts).
+// version 6's chroma from luma and trained model starts; the RGB one by the encoder-only
+// chroma-from-luma choice from pc_cfl_pays, helper cflcheap).
 TEST(GoldenStream, PcStepStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::step, 4.0, "cdf97",
                        EntropyCoder::pc),
-            1910065645u);
+            2647769617u);
   EXPECT_EQ(stream_crc(testing::synthetic_image(61, 47, 1, SampleType::u8, 26), RateMode::step, 1.5, "cdf97",
                        EntropyCoder::pc),
             1687506337u);

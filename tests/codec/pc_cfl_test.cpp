@@ -1,11 +1,13 @@
 // Chroma from luma in the pc coder (codec/entropy/pc_cfl.h, docs/bitstream.md): the least-squares
 // weights and their rounding to sixteenths, the prediction's float expression, and the weights'
-// codes round-tripping at the head of a codeword (and refused beyond [-32, 32]).
+// codes round-tripping at the head of a codeword (and refused beyond [-32, 32]), and the
+// encoder's estimate of whether a block's prediction pays (pc_cfl_pays).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "codec/entropy/pc_blocks.h"
@@ -113,6 +115,54 @@ TEST(PcCfl, CodesBeyondTheRangeAreRefused) {
   PcCfl got;
   got.count = 1;
   EXPECT_THROW(pc_decode_block(bytes, 1, 4, 4, LcParent{}, out.data(), 4, {}, &got), DecodeError);
+}
+
+TEST(PcCfl, ProxyCostCountsRoundingErrorEntropyAndNonZeros) {
+  const std::vector<float> zeros(64, 0.0f);
+  EXPECT_EQ(pc_cfl_proxy_cost(zeros, 0.05, 0.1), 0.0);
+  // One index 1 (reconstructed at 1.05): its error, one class (no entropy), a sign bit, a non-zero.
+  const std::vector<float> one = {1.0f};
+  EXPECT_NEAR(pc_cfl_proxy_cost(one, 0.05, 0.1), 0.0025 + 0.1 * (0.25 * 1.0 + 2.0), 1e-9);
+  // Half zeros, half index 1: one bit of class entropy per value on top.
+  const std::vector<float> half = {0.0f, 1.05f, 0.0f, -1.05f};
+  EXPECT_NEAR(pc_cfl_proxy_cost(half, 0.05, 0.1), 0.1 * (0.25 * (4.0 + 2.0) + 2.0 * 2.0), 1e-9);
+}
+
+// A block's values u (index units) and a residual ur: squared index-unit error + lambda x bits
+// of each coded for real with RDOQ (the both-ways test the encoder made before pc_cfl_pays).
+double coded_cost(std::span<const float> x, std::size_t w, std::size_t h, const PcCfl& k) {
+  std::vector<std::int32_t> q(x.size());
+  const PcRdoq rdoq{x, 0.1, 0.05};
+  const CoefCodeword word = pc_encode_block(q, w, h, LcParent{}, &rdoq, {}, &k);
+  double e = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double r = q[i] == 0 ? 0.0 : (q[i] < 0 ? double(q[i]) - 0.05 : double(q[i]) + 0.05);
+    e += (double(x[i]) - r) * (double(x[i]) - r);
+  }
+  return e + 0.1 * 8.0 * double(word.bytes.size());
+}
+
+TEST(PcCfl, PredictionIsChosenWhereItClearlyPaysAndNotWhereItDoesNot) {
+  const std::size_t w = 64, h = 64;
+  std::mt19937 rng(5);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  std::vector<float> luma(w * h), noise(w * h), u(w * h), ur(w * h);
+  for (auto& l : luma) l = 4.0f * g(rng);
+  for (auto& n : noise) n = 0.3f * g(rng);
+  PcCfl k;
+  k.count = 1;
+  k.code[0] = 12;
+  // Chroma that follows luma (weight 0.75): the residual is the small noise alone.
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = 0.75f * luma[i] + noise[i], ur[i] = noise[i];
+  EXPECT_TRUE(pc_cfl_pays(u, ur, 0.05, 0.1));
+  EXPECT_LT(coded_cost(ur, w, h, k), coded_cost(u, w, h, k));  // coding both ways agrees
+  // Chroma that barely codes (almost all under half a step) and a weak prediction that spreads
+  // luma's values into it: the residual codes more non-zeros than it removes.
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = noise[i], ur[i] = noise[i] - 0.125f * luma[i];
+  EXPECT_FALSE(pc_cfl_pays(u, ur, 0.05, 0.1));
+  EXPECT_GT(coded_cost(ur, w, h, k), coded_cost(u, w, h, k));
+  // No gain at all (the same values): no prediction.
+  EXPECT_FALSE(pc_cfl_pays(u, u, 0.05, 0.1));
 }
 
 }  // namespace
