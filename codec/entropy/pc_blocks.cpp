@@ -178,25 +178,28 @@ CoefCodeword pc_encode_block(std::vector<std::int32_t>& q, std::size_t width, st
         throw std::invalid_argument("pc_encode_block: chroma-from-luma code beyond [-32, 32]");
   if (q.size() != width * height)
     throw std::invalid_argument("pc_encode_block: index count differs from the size");
+  std::uint64_t all = 0;  // the magnitudes or'ed: zero for a block of zeros
   if (rdoq) {
     if (rdoq->coefficients.size() != q.size())
       throw std::invalid_argument("pc_encode_block: coefficient count differs from the size");
     // The nearest reconstruction points floor(|u| - delta + 0.5), 0 below 0: truncation of a
-    // non-negative value, and the range checked once after the loop, so that it vectorizes.
+    // non-negative value clamped to the range's end, whose largest index (an integer maximum, so
+    // that the loop vectorizes) tells after the loop whether one left the range.
     const double delta = rdoq->delta, limit = double(1u << kCoefMaxBits);
-    double largest = 0.0;
+    std::int32_t largest = 0;
     for (std::size_t k = 0; k < q.size(); ++k) {
       const float u = rdoq->coefficients[k];
       const double v = (double(std::fabs(u)) - delta) + 0.5;
       const double y = v > 0.0 ? v : 0.0;  // NaN too
-      largest = y > largest ? y : largest;
       const auto n = std::int32_t(y < limit ? y : limit);
+      largest = n > largest ? n : largest;
       q[k] = u < 0 ? -n : n;
     }
-    if (!(largest < limit)) throw IndexRangeError("index too large for the pc coder");
+    if (largest >= (1 << kCoefMaxBits)) throw IndexRangeError("index too large for the pc coder");
+    all = std::uint64_t(largest);
+  } else {
+    for (std::int32_t v : q) all |= std::uint64_t(v < 0 ? -std::int64_t(v) : v);
   }
-  std::uint64_t all = 0;
-  for (std::int32_t v : q) all |= std::uint64_t(v < 0 ? -std::int64_t(v) : v);
   if (all >= (std::uint64_t(1) << kCoefMaxBits)) throw IndexRangeError("index too large for the pc coder");
   CoefCodeword out;
   auto models = std::make_unique<PcModels>(start ? *start : PcModels{});
