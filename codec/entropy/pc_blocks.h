@@ -62,39 +62,70 @@ class PcContext {
   PcCtx at(std::size_t x, std::size_t y) const {
     const std::size_t p = (y + 1) * nx_ + x + 1;
     const std::uint64_t in = 2 * (std::uint64_t(a_[p - 1]) + a_[p - nx_]) + a_[p - 1 - nx_] + a_[p + 1 - nx_];
-    std::uint64_t s3 = in_weight_ * in;  // three times the activity (P's neighbours count a third)
-    int ps = 0, ls = 0;
+    return row(y).at(x, in, sg_[p - 1], sg_[p - nx_]);
+  }
+  // What at() reads of row y besides the in-band neighbours, as plain pointers a caller keeps in
+  // registers along the row (pc_visit): the parent's row and side row, the luma and Cb rows.
+  struct Row {
+    const std::uint32_t* parent = nullptr;  // null: no parent
+    const std::uint32_t* side = nullptr;
+    const std::int8_t* parent_sign = nullptr;
+    const std::size_t* cols = nullptr;  // parent_cols_
+    const std::int32_t* luma = nullptr;  // null: no luma parent
+    const std::int32_t* cb = nullptr;
+    std::uint64_t in_weight = 0, parent_weight = 0;
+    // The context from the in-band sum in = 2 (W + N) + NW + NE and the signs of W and N.
+    PcCtx at(std::size_t x, std::uint64_t in, int sign_w, int sign_n) const {
+      std::uint64_t s3 = in_weight * in;  // three times the activity (P's neighbours count a third)
+      int ps = 0, ls = 0;
+      if (parent) {
+        const std::size_t px = cols[2 * x], nx = cols[2 * x + 1];
+        s3 += parent_weight * parent[px] + parent[nx] + side[px] + side[nx];
+        ps = parent_sign[px];
+      }
+      if (luma) {
+        s3 += 3 * magnitude(luma[x]);
+        ls = sign_of(luma[x]);
+        if (cb) {  // Cr: Cb's magnitude weighs 8 and its sign replaces luma's
+          s3 += kCbWeight * magnitude(cb[x]);
+          ls = sign_of(cb[x]);
+        }
+      }
+      const std::uint64_t s = (2 * s3 + 3) / 6;  // s3 / 3 rounded
+      const int w = int(std::bit_width(s));
+      const int cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
+      return {cls, std::size_t(27 * (ls + 1) + 9 * (sign_w + 1) + 3 * (sign_n + 1) + (ps + 1))};
+    }
+  };
+  Row row(std::size_t y) const {
+    Row r;
+    r.in_weight = in_weight_;
+    r.parent_weight = parent_weight_;
     if (parent_.origin) {
-      const std::uint32_t* row = pmag_.data() + parent_rows_[2 * y];
-      const std::uint32_t* side = pmag_.data() + parent_rows_[2 * y + 1];
-      const std::size_t px = parent_cols_[2 * x], nx = parent_cols_[2 * x + 1];
-      s3 += parent_weight_ * row[px] + row[nx] + side[px] + side[nx];
-      ps = psign_[parent_rows_[2 * y] + px];
+      r.parent = pmag_.data() + parent_rows_[2 * y];
+      r.side = pmag_.data() + parent_rows_[2 * y + 1];
+      r.parent_sign = psign_.data() + parent_rows_[2 * y];
+      r.cols = parent_cols_.data();
     }
     if (luma_.origin) {
-      const std::int32_t l = luma_.origin[y * luma_.stride + x];
-      s3 += 3 * magnitude(l);
-      ls = sign_of(l);
-      if (luma_.cb) {  // Cr: Cb's magnitude weighs 8 and its sign replaces luma's
-        const std::int32_t c = luma_.cb[y * luma_.stride + x];
-        s3 += kCbWeight * magnitude(c);
-        ls = sign_of(c);
-      }
+      r.luma = luma_.origin + y * luma_.stride;
+      if (luma_.cb) r.cb = luma_.cb + y * luma_.stride;
     }
-    const std::uint64_t s = (2 * s3 + 3) / 6;  // s3 / 3 rounded
-    const int w = int(std::bit_width(s));
-    const int cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
-    return {cls, std::size_t(27 * (ls + 1) + 9 * (sg_[p - 1] + 1) + 3 * (sg_[p - nx_] + 1) + (ps + 1))};
+    return r;
   }
+  // The magnitudes and signs of the row above row y (padded: entry x + 1 is above x).
+  const std::uint32_t* magnitudes_above(std::size_t y) const { return a_.data() + y * nx_; }
+  const std::int32_t* signs_above(std::size_t y) const { return sg_.data() + y * nx_; }
   void set(std::size_t x, std::size_t y, std::int32_t v) {
     const std::size_t p = (y + 1) * nx_ + x + 1;
     a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
     sg_[p] = sign_of(v);
   }
 
- private:
   static std::uint64_t magnitude(std::int32_t v) { return std::uint64_t(v < 0 ? -std::int64_t(v) : v); }
   static int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
+
+ private:
 
   std::size_t nx_;
   std::vector<std::uint32_t> a_;
@@ -178,16 +209,29 @@ double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, 
                          std::size_t x, std::size_t y, int cls, const PcRdoq& rdoq);
 
 // Visits a block in coding order: `code(x, y, ctx)` codes coefficient (x, y) and
-// returns its signed index, which joins the contexts. Returns the largest magnitude.
+// returns its signed index, which joins the contexts. Returns the largest magnitude. The
+// neighbours W, NW, N and their signs move along the row in registers (only NE and N's sign are
+// loaded), the same contexts as PcContext::at(x, y).
 template <class Code>
 std::uint32_t pc_visit(std::size_t width, std::size_t height, PcContext& ctx, Code code) {
   std::uint32_t largest = 0;
-  for (std::size_t y = 0; y < height; ++y)
+  for (std::size_t y = 0; y < height; ++y) {
+    const PcContext::Row row = ctx.row(y);
+    const std::uint32_t* above = ctx.magnitudes_above(y);
+    const std::int32_t* signs = ctx.signs_above(y);
+    std::uint64_t w = 0, nw = above[0], n = above[1];  // the left padding column is zero
+    int sign_w = 0;
     for (std::size_t x = 0; x < width; ++x) {
-      const std::int32_t v = code(x, y, ctx.at(x, y));
+      const std::uint64_t ne = above[x + 2];
+      const std::int32_t v = code(x, y, row.at(x, 2 * (w + n) + nw + ne, sign_w, signs[x + 1]));
       ctx.set(x, y, v);
-      largest = std::max(largest, std::uint32_t(v < 0 ? -std::int64_t(v) : v));
+      w = PcContext::magnitude(v);
+      sign_w = PcContext::sign_of(v);
+      nw = n;
+      n = ne;
+      largest = std::max(largest, std::uint32_t(w));
     }
+  }
   return largest;
 }
 
