@@ -113,9 +113,12 @@ class PcContext {
     }
     return r;
   }
-  // The magnitudes and signs of the row above row y (padded: entry x + 1 is above x).
+  // The magnitudes and signs of row y - 1 (y: padded, row 0 above the block; entry x + 1 is
+  // column x), and row y's to write, for pc_visit.
   const std::uint32_t* magnitudes_above(std::size_t y) const { return a_.data() + y * nx_; }
   const std::int32_t* signs_above(std::size_t y) const { return sg_.data() + y * nx_; }
+  std::uint32_t* magnitudes_of(std::size_t y) { return a_.data() + (y + 1) * nx_ + 1; }
+  std::int32_t* signs_of(std::size_t y) { return sg_.data() + (y + 1) * nx_ + 1; }
   void set(std::size_t x, std::size_t y, std::int32_t v) {
     const std::size_t p = (y + 1) * nx_ + x + 1;
     a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
@@ -219,14 +222,17 @@ std::uint32_t pc_visit(std::size_t width, std::size_t height, PcContext& ctx, Co
     const PcContext::Row row = ctx.row(y);
     const std::uint32_t* above = ctx.magnitudes_above(y);
     const std::int32_t* signs = ctx.signs_above(y);
+    std::uint32_t* magnitudes_out = ctx.magnitudes_of(y);  // ctx.set(x, y, v) as the row goes
+    std::int32_t* signs_out = ctx.signs_of(y);
     std::uint64_t w = 0, nw = above[0], n = above[1];  // the left padding column is zero
     int sign_w = 0;
     for (std::size_t x = 0; x < width; ++x) {
       const std::uint64_t ne = above[x + 2];
       const std::int32_t v = code(x, y, row.at(x, 2 * (w + n) + nw + ne, sign_w, signs[x + 1]));
-      ctx.set(x, y, v);
       w = PcContext::magnitude(v);
       sign_w = PcContext::sign_of(v);
+      magnitudes_out[x] = std::uint32_t(w);
+      signs_out[x] = sign_w;
       nw = n;
       n = ne;
       largest = std::max(largest, std::uint32_t(w));
