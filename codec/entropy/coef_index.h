@@ -35,6 +35,23 @@ inline std::uint64_t get_coef_raw(RangeDecoder& dec, int n) {
   return n > 0 ? dec.decode_raw(n) : 0;
 }
 
+// code_coef_index's k low bits of q: the top ones with models (a binary tree per high part h
+// zero / non-zero), the rest raw. Apart, so that the classes without low bits (the quiet ones,
+// where most indices are coded) skip it whole.
+template <class Sink, class Low>
+inline void code_coef_low_bits(Sink& sink, Low& low, int k, std::uint32_t h, std::uint32_t q) {
+  const int modelled = std::min(k, kCoefModelledLow);
+  std::size_t node = 1;
+  const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
+  for (int b = k - 1; b >= k - modelled; --b) {
+    const int bit = int((q >> b) & 1u);
+    sink.bit(bit, low[tree + node]);
+    node = 2 * node + std::size_t(bit);
+  }
+  const int rest_bits = k - modelled;
+  sink.rest(q & ((1u << rest_bits) - 1u), rest_bits);
+}
+
 // The decisions of index q (sign `negative`, ignored for 0) in activity class `ctx` and sign
 // context `sign_ctx`, handed to `sink`: bit(b, model) for a modelled bit, escape(e) for the
 // Elias-gamma raw tail of a long high part, rest(v, n) for the n raw low bits. One binarisation
@@ -52,18 +69,7 @@ inline void code_coef_index(Sink& sink, Models& m, int ctx, std::size_t sign_ctx
     sink.bit(0, unary[std::min<std::size_t>(h, kCoefUnaryModels - 1)]);
   else
     sink.escape(h - kCoefEscape);
-  // The top low bits with models (a binary tree per high part zero / non-zero), the rest raw.
-  const int modelled = std::min(k, kCoefModelledLow);
-  auto& low = m.low[std::size_t(ctx)];
-  std::size_t node = 1;
-  const std::size_t tree = h > 0 ? std::size_t(1) << kCoefModelledLow : 0;
-  for (int b = k - 1; b >= k - modelled; --b) {
-    const int bit = int((q >> b) & 1u);
-    sink.bit(bit, low[tree + node]);
-    node = 2 * node + std::size_t(bit);
-  }
-  const int rest_bits = k - modelled;
-  sink.rest(q & ((1u << rest_bits) - 1u), rest_bits);
+  if (k > 0) code_coef_low_bits(sink, m.low[std::size_t(ctx)], k, h, q);
   if (q != 0) sink.bit(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? Models::kSignContexts : 0)]);
 }
 
