@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -57,6 +58,14 @@ constexpr double kTrimShare = 0.1;
 constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings) before none
 // A band's model is scaled to its real bytes when it estimates at least this many.
 constexpr double kFitBytes = 16.0;
+// A --bpp pass may be abandoned before each of its last kAbandonGroups groups (the two finest
+// resolutions' luma, Cb and Cr groups) when the bytes of the groups coded, with the model of the
+// rest scaled as they are, project it out of the byte window by more than kAbandonMargin (log)
+// over the share of the samples coded (the projection's error falls as the share grows: at most
+// 6% at a quarter, 2% at a half on the test photographs). Fitted on the training photographs.
+constexpr int kAbandonGroups = 6;
+constexpr double kAbandonMargin = 0.03;
+constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whole
 
 // One coding pass: every block's entry and codeword (its indices stay in the coder's planes
 // until the next pass).
@@ -66,8 +75,10 @@ struct Pass {
   std::vector<BlockEntry> entries;
   std::vector<std::vector<std::uint8_t>> words;
   std::vector<PcCfl> cfl;  // per block: its chroma-from-luma weights (none for most)
-  std::size_t bytes = 0;   // the whole file
+  std::size_t bytes = 0;   // the whole file (an abandoned pass: the projection's)
   double score = 0.0;      // log bytes or PSNR, by the search
+  int groups = 0;          // pc groups coded (all of them unless abandoned)
+  bool abandoned = false;  // stopped before its finest groups: no stream, only a calibration
 };
 
 // The passes' shared state: one set of index planes (Mallat layout per component), which hold
@@ -82,6 +93,10 @@ struct Coder {
   // Per block, the chroma-from-luma choice of the first pass that weighed it (0: not yet, 1:
   // without, 2: with the prediction): later passes code only that one (half the chroma coding).
   std::vector<std::int8_t> choice;
+  // Asked before each of the last groups of a pass (the finest resolutions, most of the samples):
+  // true abandons the pass there (its projection set in the pass), which a search then takes as
+  // a calibration only. None for --step and --psnr.
+  std::function<bool(Pass&, int)> abandon;
 };
 
 // Real bytes over the model's estimate in a band before any pass, by its level (1: finest) and
@@ -234,6 +249,7 @@ void by_resolution(const ImagePlan& plan, const F& f, const std::vector<std::siz
 // range.
 thread_local int passes_coded = 0;
 thread_local int trims_coded = 0;
+thread_local double abandoned_share = 0.0;  // samples coded by abandoned passes, in passes
 
 Pass code_pass(Coder& coder, double t) {
   ImagePlan& plan = coder.plan;
@@ -251,15 +267,31 @@ Pass code_pass(Coder& coder, double t) {
                    std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
   coder.held = std::nan("");
   std::atomic<bool> out_of_range{false};
-  by_resolution(plan, [&](std::size_t i) {
-    if (out_of_range) return;
-    try {
-      code_block(plan, i, coder.q, p, coder.choice[i]);
-    } catch (const IndexRangeError&) {
-      out_of_range = true;
+  const int groups = kPcGroupsPerResolution * (plan.header.levels + 1);
+  std::size_t coded = 0;  // samples
+  for (int g = 0; g < groups; ++g) {
+    std::vector<std::size_t> ids;
+    for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+      if (pc_group(plan.blocks[i], plan.header.channels) == g) ids.push_back(i);
+    if (ids.empty()) continue;
+    if (coder.abandon && g >= groups - kAbandonGroups && coder.abandon(p, g)) {
+      p.abandoned = true;
+      --passes_coded;
+      abandoned_share += double(coded) / double(plan.samples);
+      return p;
     }
-  });
-  if (out_of_range) throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
+    plan.executor->run(ids.size(), [&](std::size_t k) {
+      if (out_of_range) return;
+      try {
+        code_block(plan, ids[k], coder.q, p, coder.choice[ids[k]]);
+      } catch (const IndexRangeError&) {
+        out_of_range = true;
+      }
+    });
+    if (out_of_range) throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
+    for (std::size_t i : ids) coded += plan.blocks[i].count();
+    p.groups = g + 1;
+  }
   coder.held = t;
   std::size_t data = 0;
   for (const auto& w : p.words) data += w.size();
@@ -513,10 +545,10 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     }
     refit(*p);  // the model itself calibrated by the pass, where it can be
     cal.seen.emplace_back(p->t, p->score);
-    const bool fits = ok(p->score);
+    const bool fits = !p->abandoned && ok(p->score);
     if (fits && (!best || std::abs(p->score - goal) < std::abs(best->score - goal))) best = *p;
     if (fits && close(p->score)) return best;
-    if (below && trims_left > 0) {  // a budget missed by a little: a trim of a few bands may land it
+    if (below && trims_left > 0 && !p->abandoned) {  // a budget missed by a little: a trim of a few bands may land it
       const int coded = trims_coded;
       if (std::optional<Pass> trimmed = trim(coder, *p, goal, tolerance)) return trimmed;
       if (trims_coded > coded) --trims_left;  // tried and missed: bytes this jumpy (small images) stop trims
@@ -525,7 +557,9 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     Pass last;
     last.t = p->t;
     last.score = p->score;
-    if (p->score > goal)
+    if (p->abandoned)  // a projection, not bytes: a calibration, never a bracket's end
+      ;
+    else if (p->score > goal)
       fine = std::move(p);
     else
       coarse = std::move(p);
@@ -577,14 +611,16 @@ EncodeResult result_of(Coder& coder, Pass& p, std::optional<double> psnr) {
 
 int pc_passes_of_last_encode() { return passes_coded; }
 int pc_trims_of_last_encode() { return trims_coded; }
+double pc_abandoned_share_of_last_encode() { return abandoned_share; }
 
 EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
   passes_coded = trims_coded = 0;
+  abandoned_share = 0.0;
   if (plan.header.reversible || options.mode == RateMode::lossless)
     throw std::invalid_argument("the pc coder codes lossy streams only (--bpp, --psnr or --step)");
   plan.header.delta = std::round(kPcDelta * 65536.0) / 65536.0;  // as the header stores it
   transform_all_components(plan);
-  Coder coder{image, plan, {}, std::nan(""), {}, {}};
+  Coder coder{image, plan, {}, std::nan(""), {}, {}, {}};
   const double finest = std::log(plan.peak * kFinestStep), coarsest = std::log(plan.peak * 4.0);
   if (options.mode == RateMode::step) {
     Pass p = code_pass(coder, std::log(options.target));
@@ -593,34 +629,89 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
   const PcRateModel model(plan, plan.header.delta);
   if (options.mode == RateMode::bpp) {
     const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
-    // The bytes besides the codewords (header, steps, index), about: the calibration takes the rest.
-    double overhead = double(container_size(plan.header, 4 * plan.blocks.size(), 0));
-    std::vector<double> scale(model.band_count());
+    const double goal = std::log(budget), tolerance = -std::log1p(-kSizeTolerance);
+    // The model of the bytes: the container's (header, steps, index; about, until a pass says),
+    // each band's model times its scale, or a band's real bytes (`fixed`) where the model gives
+    // almost nothing.
+    double container = double(container_size(plan.header, 4 * plan.blocks.size(), 0));
+    std::vector<double> scale(model.band_count()), fixed(model.band_count(), 0.0);
     for (std::size_t k = 0; k < scale.size(); ++k) scale[k] = prior_scale(plan, k);
+    double overhead = container;  // container + the fixed bands
     const auto log_bytes = [&](double t) {
       return std::log(overhead + model.bits(std::exp(t), &scale) / 8.0);
     };
-    // Each band's model scaled to its bytes in the pass (the bands' ratios differ, and their mix
-    // moves with the step); bands the model gives almost nothing keep their bytes as a constant.
-    const auto refit = [&](const Pass& p) {
-      std::vector<double> real(scale.size(), 0.0);
-      std::size_t data = 0;
-      for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
-        real[plan.blocks[i].component * plan.bands.size() + plan.blocks[i].band] += double(p.words[i].size());
-        data += p.words[i].size();
+    // Each band the pass coded (its first `groups` pc groups) scaled to its bytes in it (the bands'
+    // ratios differ, and their mix moves with the step); the bands it did not code (an abandoned
+    // pass's finest) take their component's ratio of real to modelled bytes in its finest coded
+    // level, which tracks theirs.
+    const auto fit = [&](const Pass& p, int groups, std::vector<double>& s, std::vector<double>& f) {
+      const std::size_t per = plan.bands.size();
+      std::vector<double> real(s.size(), 0.0);
+      std::vector<bool> coded(s.size(), false);
+      for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+        if (pc_group(plan.blocks[i], plan.header.channels) < groups) {
+          const std::size_t k = plan.blocks[i].component * per + plan.blocks[i].band;
+          real[k] += double(p.words[i].size());
+          coded[k] = true;
+        }
+      std::vector<int> level(plan.header.channels, 1 << 20);  // per component: its finest coded level
+      for (std::size_t k = 0; k < s.size(); ++k)
+        if (coded[k] && plan.bands[k % per].orientation != 0 && s[k] > 0.0)
+          level[k / per] = std::min(level[k / per], plan.bands[k % per].level);
+      std::vector<double> got(plan.header.channels, 0.0), modelled(plan.header.channels, 0.0);
+      for (std::size_t k = 0; k < s.size(); ++k) {
+        if (!coded[k] || plan.bands[k % per].level != level[k / per] || plan.bands[k % per].orientation == 0)
+          continue;
+        got[k / per] += real[k];
+        modelled[k / per] += s[k] * model.bits_of_band(k, std::exp(p.t)) / 8.0;
       }
-      overhead = double(p.bytes - data);
-      for (std::size_t k = 0; k < scale.size(); ++k) {
-        const double estimate = model.bits_of_band(k, std::exp(p.t)) / 8.0;
-        scale[k] = estimate >= kFitBytes ? real[k] / estimate : 0.0;
-        if (scale[k] == 0.0) overhead += real[k];
+      for (std::size_t k = 0; k < s.size(); ++k) {
+        if (coded[k]) {
+          const double estimate = model.bits_of_band(k, std::exp(p.t)) / 8.0;
+          s[k] = estimate >= kFitBytes ? real[k] / estimate : 0.0;
+          f[k] = s[k] == 0.0 ? real[k] : 0.0;
+        } else if (modelled[k / per] >= kFitBytes) {
+          s[k] *= got[k / per] / modelled[k / per];
+        }
       }
     };
+    const auto sum = [](const std::vector<double>& v) {
+      double total = 0.0;
+      for (double x : v) total += x;
+      return total;
+    };
+    const auto refit = [&](const Pass& p) {
+      if (!p.abandoned) {
+        std::size_t data = 0;
+        for (const auto& w : p.words) data += w.size();
+        container = double(p.bytes - data);
+      }
+      fit(p, p.abandoned ? p.groups : kPcGroupsPerResolution * (plan.header.levels + 1), scale, fixed);
+      overhead = container + sum(fixed);
+    };
+    int abandons_left = kAbandonPasses;
+    coder.abandon = [&](Pass& p, int groups) {
+      std::vector<double> s = scale, f = fixed;
+      fit(p, groups, s, f);
+      const double projected = container + sum(f) + model.bits(std::exp(p.t), &s) / 8.0;
+      const double score = std::log(projected);
+      std::size_t n = 0;
+      for (const CodeBlock& b : plan.blocks)
+        if (pc_group(b, plan.header.channels) < groups) n += b.count();
+      const double margin = kAbandonMargin * double(plan.samples) / double(n);
+      if (abandons_left == 0 || (score <= goal + margin && score >= goal - tolerance - margin))
+        return false;
+      --abandons_left;
+      p.groups = groups;
+      p.bytes = std::size_t(projected);
+      return true;
+    };
     auto best = search(
-        coder, std::log(budget), -std::log1p(-kSizeTolerance), true, kSizeSlope, finest, coarsest,
+        coder, goal, tolerance, true, kSizeSlope, finest, coarsest,
         [](const Pass& p) { return std::log(double(p.bytes)); }, log_bytes, 0.0, kBytesResidualSlope, refit);
     if (best) return result_of(coder, *best, std::nullopt);
     // Under the smallest stream (header and steps alone): that stream, as the other coders do.
+    coder.abandon = nullptr;  // the stream itself
     Pass smallest = code_pass(coder, coarsest);
     return result_of(coder, smallest, std::nullopt);
   }
