@@ -47,7 +47,7 @@ constexpr double kMaxResidualSlope = 0.5;
 constexpr double kBracketMargin = 0.02;
 // After the per-band fit the residual still grows as the step gets finer (the bands' ratios
 // themselves drift): its median slope in log bytes per log step on the test photographs.
-constexpr double kBytesResidualSlope = -0.08;
+constexpr double kBytesResidualSlope = -0.04;
 // A bracket narrower than this in log step (a sixth of the byte window's width) ends the search.
 constexpr double kNarrowestBracket = 5e-4;
 // A trim (trim()) moves the steps of a few finest bands by at most this factor (log), in at
@@ -64,7 +64,7 @@ constexpr double kFitBytes = 16.0;
 // over the share of the samples coded (the projection's error falls as the share grows: at most
 // 6% at a quarter, 2% at a half on the test photographs). Fitted on the training photographs.
 constexpr int kAbandonGroups = 6;
-constexpr double kAbandonMargin = 0.03;
+constexpr double kAbandonMargin = 0.02;
 constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whole
 
 // One coding pass: every block's entry and codeword (its indices stay in the coder's planes
@@ -98,21 +98,6 @@ struct Coder {
   // a calibration only. None for --step and --psnr.
   std::function<bool(Pass&, int)> abandon;
 };
-
-// Real bytes over the model's estimate in a band before any pass, by its level (1: finest) and
-// whether it is luma or a single component (chroma bands gain more from their contexts): the
-// means of the per-band fits at 1 bpp on the test photographs (0.63-0.76 for the finest luma
-// bands, 1.0-1.1 for the coarsest); the chroma ones times the bytes of version 5's chroma
-// contexts over version 4's at the same steps (0.90-0.97 by level, same photographs).
-double prior_scale(const ImagePlan& plan, std::size_t k) {
-  static constexpr double kLuma[] = {0.70, 0.79, 0.88, 0.96, 1.04, 1.09};
-  static constexpr double kChroma[] = {0.54, 0.59, 0.75, 0.87, 0.97, 1.06};
-  const Subband& band = plan.bands[k % plan.bands.size()];
-  const bool chroma = k >= plan.bands.size() && plan.header.colour != ColourTransform::none;
-  if (band.orientation == 0) return chroma ? 0.9 : 1.0;
-  const int level = std::clamp(band.level, 1, 6);
-  return (chroma ? kChroma : kLuma)[level - 1];
-}
 
 // The Cb block of Cr block i (same band, same place).
 std::size_t cb_block(const ImagePlan& plan, std::size_t i) {
@@ -631,15 +616,18 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
     const double goal = std::log(budget), tolerance = -std::log1p(-kSizeTolerance);
     // The model of the bytes: the container's (header, steps, index; about, until a pass says),
-    // each band's model times its scale, or a band's real bytes (`fixed`) where the model gives
-    // almost nothing.
+    // each band's estimate times its scale, or a band's real bytes (`fixed`) where the model
+    // gives almost nothing. The estimates carry the coder's ratio to the model by the band's
+    // density (PcRateModel::coded_bits_of_band), which also calibrates the first pass.
     double container = double(container_size(plan.header, 4 * plan.blocks.size(), 0));
-    std::vector<double> scale(model.band_count()), fixed(model.band_count(), 0.0);
-    for (std::size_t k = 0; k < scale.size(); ++k) scale[k] = prior_scale(plan, k);
-    double overhead = container;  // container + the fixed bands
-    const auto log_bytes = [&](double t) {
-      return std::log(overhead + model.bits(std::exp(t), &scale) / 8.0);
+    std::vector<double> scale(model.band_count(), 1.0), fixed(model.band_count(), 0.0);
+    const auto estimate = [&](std::size_t k, double t) { return model.coded_bits_of_band(k, std::exp(t)) / 8.0; };
+    const auto bytes = [&](double t, const std::vector<double>& s, const std::vector<double>& f, double c) {
+      double total = c;
+      for (std::size_t k = 0; k < s.size(); ++k) total += s[k] > 0.0 ? s[k] * estimate(k, t) : f[k];
+      return total;
     };
+    const auto log_bytes = [&](double t) { return std::log(bytes(t, scale, fixed, container)); };
     // Each band the pass coded (its first `groups` pc groups) scaled to its bytes in it (the bands'
     // ratios differ, and their mix moves with the step); the bands it did not code (an abandoned
     // pass's finest) take their component's ratio of real to modelled bytes in its finest coded
@@ -663,22 +651,17 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
         if (!coded[k] || plan.bands[k % per].level != level[k / per] || plan.bands[k % per].orientation == 0)
           continue;
         got[k / per] += real[k];
-        modelled[k / per] += s[k] * model.bits_of_band(k, std::exp(p.t)) / 8.0;
+        modelled[k / per] += s[k] * estimate(k, p.t);
       }
       for (std::size_t k = 0; k < s.size(); ++k) {
         if (coded[k]) {
-          const double estimate = model.bits_of_band(k, std::exp(p.t)) / 8.0;
-          s[k] = estimate >= kFitBytes ? real[k] / estimate : 0.0;
+          const double e = estimate(k, p.t);
+          s[k] = e >= kFitBytes ? real[k] / e : 0.0;
           f[k] = s[k] == 0.0 ? real[k] : 0.0;
         } else if (modelled[k / per] >= kFitBytes) {
           s[k] *= got[k / per] / modelled[k / per];
         }
       }
-    };
-    const auto sum = [](const std::vector<double>& v) {
-      double total = 0.0;
-      for (double x : v) total += x;
-      return total;
     };
     const auto refit = [&](const Pass& p) {
       if (!p.abandoned) {
@@ -687,13 +670,33 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
         container = double(p.bytes - data);
       }
       fit(p, p.abandoned ? p.groups : kPcGroupsPerResolution * (plan.header.levels + 1), scale, fixed);
-      overhead = container + sum(fixed);
     };
+    // The container of pass p with the blocks past its first `groups` groups at their bands'
+    // estimates s, f (the index's size moves with the blocks' lengths).
+    const auto container_of = [&](const Pass& p, int groups, const std::vector<double>& s,
+                                  const std::vector<double>& f) {
+      std::vector<BlockEntry> entries = p.entries;
+      int planes = 0;
+      for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+        if (pc_group(plan.blocks[i], plan.header.channels) < groups) planes = std::max(planes, entries[i].planes);
+      for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
+        const CodeBlock& b = plan.blocks[i];
+        if (pc_group(b, plan.header.channels) < groups) continue;
+        const std::size_t k = b.component * plan.bands.size() + b.band;
+        const double share = double(b.count()) / double(plan.bands[b.band].count());
+        const double length = share * (s[k] > 0.0 ? s[k] * estimate(k, p.t) : f[k]);
+        entries[i] = {length >= 1.0 ? planes : 0, length >= 1.0 ? 1 : 0, std::uint32_t(std::lround(length))};
+      }
+      return double(container_size(plan.header, encode_index(entries).size(), 0));
+    };
+    // Pass p abandoned before group `groups` when its projection misses the window by more than
+    // the margin (its projected bytes then stand for its own, and the model of the rest is fitted
+    // by refit as here).
     int abandons_left = kAbandonPasses;
     coder.abandon = [&](Pass& p, int groups) {
       std::vector<double> s = scale, f = fixed;
       fit(p, groups, s, f);
-      const double projected = container + sum(f) + model.bits(std::exp(p.t), &s) / 8.0;
+      const double c = container_of(p, groups, s, f), projected = bytes(p.t, s, f, c);
       const double score = std::log(projected);
       std::size_t n = 0;
       for (const CodeBlock& b : plan.blocks)
@@ -702,6 +705,7 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
       if (abandons_left == 0 || (score <= goal + margin && score >= goal - tolerance - margin))
         return false;
       --abandons_left;
+      container = c;
       p.groups = groups;
       p.bytes = std::size_t(projected);
       return true;
