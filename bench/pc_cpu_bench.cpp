@@ -69,8 +69,8 @@ int print_passes(std::vector<std::string> names) {
         const int trims = pupwave::pc_trims_of_last_encode();
         const double abandoned = pupwave::pc_abandoned_share_of_last_encode();
         const double budget = std::floor(target * double(image.plane_size()) / 8.0);
-        std::printf("%s %g%s %d %d %.2f %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes, trims, abandoned,
-                    bpp ? double(r.bytes.size()) / budget : r.psnr);
+        std::printf("%s %g%s %d %d %.2f %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes, trims,
+                    abandoned, bpp ? double(r.bytes.size()) / budget : r.psnr);
         if (bpp) total += passes, trims_total += trims, abandoned_total += abandoned, ++count;
       }
   }

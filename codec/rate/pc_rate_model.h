@@ -38,8 +38,8 @@ class PcRateModel {
   struct Band {
     std::size_t count = 0;
     std::vector<std::uint32_t> below;  // below[k]: magnitudes in bins under k (kBins + 1 entries)
-    bool coarse = false;  // the coarse (LL) band
-    bool chroma = false;  // a detail band of a colour-transformed chroma component
+    bool coarse = false;               // the coarse (LL) band
+    bool chroma = false;               // a detail band of a colour-transformed chroma component
   };
   double count_below(const Band& band, double magnitude) const;  // interpolated inside a bin
   double band_bits(const Band& band, double base_step) const;

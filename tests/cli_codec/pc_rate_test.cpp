@@ -74,7 +74,8 @@ TEST(PcRate, SearchesCostUnderTwoAndAQuarterPasses) {
       passes += pc_passes_of_last_encode();
       trims += pc_trims_of_last_encode();
       abandoned += pc_abandoned_share_of_last_encode();
-      EXPECT_LT(pc_abandoned_share_of_last_encode(), 1.5) << name << " at " << bpp;  // at most two, each under 3/4
+      EXPECT_LT(pc_abandoned_share_of_last_encode(), 1.5)
+          << name << " at " << bpp;  // at most two, each under 3/4
       ++searches;
     }
   }
