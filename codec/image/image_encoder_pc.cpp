@@ -65,7 +65,7 @@ constexpr double kFitBytes = 16.0;
 // resolutions' luma, Cb and Cr groups) when the bytes of the groups coded, with the model of the
 // rest scaled as they are, project it out of the byte window by more than kAbandonMargin (log)
 // over the share of the samples coded (the projection's error falls as the share grows: at most
-// 6% at a quarter, 2% at a half on the test photographs). Fitted on the training photographs.
+// 6% at a quarter, 3% at a half on the training photographs, where the margin was chosen).
 constexpr int kAbandonGroups = 6;
 constexpr double kAbandonMargin = 0.02;
 constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whole
