@@ -51,8 +51,9 @@ PC_CPU("coffee.png", coffee);
 // the budget (bpp) or the PSNR reached (dB).
 int print_passes(std::vector<std::string> names) {
   if (names.empty()) names.assign(std::begin(kPhotos), std::end(kPhotos));
-  std::printf("photo target passes trims result\n");
+  std::printf("photo target passes trims abandoned result\n");
   int total = 0, trims_total = 0, count = 0;
+  double abandoned_total = 0.0;
   for (const std::string& name : names) {
     const pupwave::Image image = photo(name);
     const std::vector<double> rates{0.125, 0.25, 0.5, 1.0, 2.0}, psnrs{30.0, 35.0, 40.0};
@@ -66,13 +67,15 @@ int print_passes(std::vector<std::string> names) {
         const auto r = pupwave::encode_image(image, o);
         const int passes = pupwave::pc_passes_of_last_encode();
         const int trims = pupwave::pc_trims_of_last_encode();
+        const double abandoned = pupwave::pc_abandoned_share_of_last_encode();
         const double budget = std::floor(target * double(image.plane_size()) / 8.0);
-        std::printf("%s %g%s %d %d %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes, trims,
-                    bpp ? double(r.bytes.size()) / budget : r.psnr);
-        if (bpp) total += passes, trims_total += trims, ++count;
+        std::printf("%s %g%s %d %d %.2f %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes, trims,
+                    abandoned, bpp ? double(r.bytes.size()) / budget : r.psnr);
+        if (bpp) total += passes, trims_total += trims, abandoned_total += abandoned, ++count;
       }
   }
-  std::printf("mean passes (bpp) %.2f, trims %.2f\n", double(total) / count, double(trims_total) / count);
+  std::printf("mean passes (bpp) %.2f, trims %.2f, abandoned %.2f\n", double(total) / count,
+              double(trims_total) / count, abandoned_total / count);
   return 0;
 }
 

@@ -4,12 +4,14 @@
 // with greedy RDOQ against the models' own costs, into one set of index planes. Rate targets
 // search the base step with whole passes, each step where a rate model (codec/rate/
 // pc_rate_model.h: per-band magnitude histograms) calibrated by the passes so far meets the
-// target: about 2-3 passes a search where a plain secant took 3-5.
+// target: about 2 passes a search where a plain secant took 3-5. A --bpp pass whose coarser
+// groups already project it out of the byte window stops there (a calibration only).
 #include "codec/image/image_encoder_pc.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -45,8 +47,10 @@ constexpr double kPsnrPrior = 0.0;
 constexpr double kMaxResidualSlope = 0.5;
 constexpr double kBracketMargin = 0.02;
 // After the per-band fit the residual still grows as the step gets finer (the bands' ratios
-// themselves drift): its median slope in log bytes per log step on the test photographs.
-constexpr double kBytesResidualSlope = -0.08;
+// drift beyond what coded_bits_of_band's density shape carries): the slope in log bytes per log
+// step that best predicted the next pass from one on the training photographs (it was -0.08
+// with constant per-band scales).
+constexpr double kBytesResidualSlope = -0.04;
 // A bracket narrower than this in log step (a sixth of the byte window's width) ends the search.
 constexpr double kNarrowestBracket = 5e-4;
 // A trim (trim()) moves the steps of a few finest bands by at most this factor (log), in at
@@ -57,6 +61,14 @@ constexpr double kTrimShare = 0.1;
 constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings) before none
 // A band's model is scaled to its real bytes when it estimates at least this many.
 constexpr double kFitBytes = 16.0;
+// A --bpp pass may be abandoned before each of its last kAbandonGroups groups (the two finest
+// resolutions' luma, Cb and Cr groups) when the bytes of the groups coded, with the model of the
+// rest scaled as they are, project it out of the byte window by more than kAbandonMargin (log)
+// over the share of the samples coded (the projection's error falls as the share grows: at most
+// 6% at a quarter, 3% at a half on the training photographs, where the margin was chosen).
+constexpr int kAbandonGroups = 6;
+constexpr double kAbandonMargin = 0.02;
+constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whole
 
 // One coding pass: every block's entry and codeword (its indices stay in the coder's planes
 // until the next pass).
@@ -66,8 +78,10 @@ struct Pass {
   std::vector<BlockEntry> entries;
   std::vector<std::vector<std::uint8_t>> words;
   std::vector<PcCfl> cfl;  // per block: its chroma-from-luma weights (none for most)
-  std::size_t bytes = 0;   // the whole file
+  std::size_t bytes = 0;   // the whole file (an abandoned pass: the projection's)
   double score = 0.0;      // log bytes or PSNR, by the search
+  int groups = 0;          // pc groups coded (all of them unless abandoned)
+  bool abandoned = false;  // stopped before its finest groups: no stream, only a calibration
 };
 
 // The passes' shared state: one set of index planes (Mallat layout per component), which hold
@@ -82,22 +96,11 @@ struct Coder {
   // Per block, the chroma-from-luma choice of the first pass that weighed it (0: not yet, 1:
   // without, 2: with the prediction, by pc_cfl_pays' estimate): later passes keep it.
   std::vector<std::int8_t> choice;
+  // Asked before each of the last groups of a pass (the finest resolutions, most of the samples):
+  // true abandons the pass there (its projection set in the pass), which a search then takes as
+  // a calibration only. None for --step and --psnr.
+  std::function<bool(Pass&, int)> abandon;
 };
-
-// Real bytes over the model's estimate in a band before any pass, by its level (1: finest) and
-// whether it is luma or a single component (chroma bands gain more from their contexts): the
-// means of the per-band fits at 1 bpp on the test photographs (0.63-0.76 for the finest luma
-// bands, 1.0-1.1 for the coarsest); the chroma ones times the bytes of version 5's chroma
-// contexts over version 4's at the same steps (0.90-0.97 by level, same photographs).
-double prior_scale(const ImagePlan& plan, std::size_t k) {
-  static constexpr double kLuma[] = {0.70, 0.79, 0.88, 0.96, 1.04, 1.09};
-  static constexpr double kChroma[] = {0.54, 0.59, 0.75, 0.87, 0.97, 1.06};
-  const Subband& band = plan.bands[k % plan.bands.size()];
-  const bool chroma = k >= plan.bands.size() && plan.header.colour != ColourTransform::none;
-  if (band.orientation == 0) return chroma ? 0.9 : 1.0;
-  const int level = std::clamp(band.level, 1, 6);
-  return (chroma ? kChroma : kLuma)[level - 1];
-}
 
 // The Cb block of Cr block i (same band, same place).
 std::size_t cb_block(const ImagePlan& plan, std::size_t i) {
@@ -217,6 +220,7 @@ void by_resolution(const ImagePlan& plan, const F& f, const std::vector<std::siz
 // range.
 thread_local int passes_coded = 0;
 thread_local int trims_coded = 0;
+thread_local double abandoned_share = 0.0;  // samples coded by abandoned passes, in passes
 
 Pass code_pass(Coder& coder, double t) {
   ImagePlan& plan = coder.plan;
@@ -234,15 +238,31 @@ Pass code_pass(Coder& coder, double t) {
                    std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
   coder.held = std::nan("");
   std::atomic<bool> out_of_range{false};
-  by_resolution(plan, [&](std::size_t i) {
-    if (out_of_range) return;
-    try {
-      code_block(plan, i, coder.q, p, coder.choice[i]);
-    } catch (const IndexRangeError&) {
-      out_of_range = true;
+  const int groups = kPcGroupsPerResolution * (plan.header.levels + 1);
+  std::size_t coded = 0;  // samples
+  for (int g = 0; g < groups; ++g) {
+    std::vector<std::size_t> ids;
+    for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+      if (pc_group(plan.blocks[i], plan.header.channels) == g) ids.push_back(i);
+    if (ids.empty()) continue;
+    if (coder.abandon && g >= groups - kAbandonGroups && coder.abandon(p, g)) {
+      p.abandoned = true;
+      --passes_coded;
+      abandoned_share += double(coded) / double(plan.samples);
+      return p;
     }
-  });
-  if (out_of_range) throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
+    plan.executor->run(ids.size(), [&](std::size_t k) {
+      if (out_of_range) return;
+      try {
+        code_block(plan, ids[k], coder.q, p, coder.choice[ids[k]]);
+      } catch (const IndexRangeError&) {
+        out_of_range = true;
+      }
+    });
+    if (out_of_range) throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
+    for (std::size_t i : ids) coded += plan.blocks[i].count();
+    p.groups = g + 1;
+  }
   coder.held = t;
   std::size_t data = 0;
   for (const auto& w : p.words) data += w.size();
@@ -496,10 +516,11 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     }
     refit(*p);  // the model itself calibrated by the pass, where it can be
     cal.seen.emplace_back(p->t, p->score);
-    const bool fits = ok(p->score);
+    const bool fits = !p->abandoned && ok(p->score);
     if (fits && (!best || std::abs(p->score - goal) < std::abs(best->score - goal))) best = *p;
     if (fits && close(p->score)) return best;
-    if (below && trims_left > 0) {  // a budget missed by a little: a trim of a few bands may land it
+    if (below && trims_left > 0 &&
+        !p->abandoned) {  // a budget missed by a little: a trim of a few bands may land it
       const int coded = trims_coded;
       if (std::optional<Pass> trimmed = trim(coder, *p, goal, tolerance)) return trimmed;
       if (trims_coded > coded) --trims_left;  // tried and missed: bytes this jumpy (small images) stop trims
@@ -508,7 +529,9 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     Pass last;
     last.t = p->t;
     last.score = p->score;
-    if (p->score > goal)
+    if (p->abandoned)  // a projection, not bytes: a calibration, never a bracket's end
+      ;
+    else if (p->score > goal)
       fine = std::move(p);
     else
       coarse = std::move(p);
@@ -560,14 +583,16 @@ EncodeResult result_of(Coder& coder, Pass& p, std::optional<double> psnr) {
 
 int pc_passes_of_last_encode() { return passes_coded; }
 int pc_trims_of_last_encode() { return trims_coded; }
+double pc_abandoned_share_of_last_encode() { return abandoned_share; }
 
 EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
   passes_coded = trims_coded = 0;
+  abandoned_share = 0.0;
   if (plan.header.reversible || options.mode == RateMode::lossless)
     throw std::invalid_argument("the pc coder codes lossy streams only (--bpp, --psnr or --step)");
   plan.header.delta = std::round(kPcDelta * 65536.0) / 65536.0;  // as the header stores it
   transform_all_components(plan);
-  Coder coder{image, plan, {}, std::nan(""), {}, {}};
+  Coder coder{image, plan, {}, std::nan(""), {}, {}, {}};
   const double finest = std::log(plan.peak * kFinestStep), coarsest = std::log(plan.peak * 4.0);
   if (options.mode == RateMode::step) {
     Pass p = code_pass(coder, std::log(options.target));
@@ -576,34 +601,110 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
   const PcRateModel model(plan, plan.header.delta);
   if (options.mode == RateMode::bpp) {
     const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
-    // The bytes besides the codewords (header, steps, index), about: the calibration takes the rest.
-    double overhead = double(container_size(plan.header, 4 * plan.blocks.size(), 0));
-    std::vector<double> scale(model.band_count());
-    for (std::size_t k = 0; k < scale.size(); ++k) scale[k] = prior_scale(plan, k);
-    const auto log_bytes = [&](double t) {
-      return std::log(overhead + model.bits(std::exp(t), &scale) / 8.0);
+    const double goal = std::log(budget), tolerance = -std::log1p(-kSizeTolerance);
+    // The model of the bytes: the container's (header, steps, index; about, until a pass says),
+    // each band's estimate times its scale, or a band's real bytes (`fixed`) where the model
+    // gives almost nothing. The estimates carry the coder's ratio to the model by the band's
+    // density (PcRateModel::coded_bits_of_band), which also calibrates the first pass.
+    double container = double(container_size(plan.header, 4 * plan.blocks.size(), 0));
+    std::vector<double> scale(model.band_count(), 1.0), fixed(model.band_count(), 0.0);
+    const auto estimate = [&](std::size_t k, double t) {
+      return model.coded_bits_of_band(k, std::exp(t)) / 8.0;
     };
-    // Each band's model scaled to its bytes in the pass (the bands' ratios differ, and their mix
-    // moves with the step); bands the model gives almost nothing keep their bytes as a constant.
+    const auto bytes = [&](double t, const std::vector<double>& s, const std::vector<double>& f, double c) {
+      double total = c;
+      for (std::size_t k = 0; k < s.size(); ++k) total += s[k] > 0.0 ? s[k] * estimate(k, t) : f[k];
+      return total;
+    };
+    const auto log_bytes = [&](double t) { return std::log(bytes(t, scale, fixed, container)); };
+    // Each band the pass coded (its first `groups` pc groups) scaled to its bytes in it (the bands'
+    // ratios differ, and their mix moves with the step); the bands it did not code (an abandoned
+    // pass's finest) take their component's ratio of real to modelled bytes in its finest coded
+    // level, which tracks theirs.
+    const auto fit = [&](const Pass& p, int groups, std::vector<double>& s, std::vector<double>& f) {
+      const std::size_t per = plan.bands.size();
+      std::vector<double> real(s.size(), 0.0);
+      std::vector<bool> coded(s.size(), false);
+      for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+        if (pc_group(plan.blocks[i], plan.header.channels) < groups) {
+          const std::size_t k = plan.blocks[i].component * per + plan.blocks[i].band;
+          real[k] += double(p.words[i].size());
+          coded[k] = true;
+        }
+      std::vector<int> level(plan.header.channels, 1 << 20);  // per component: its finest coded level
+      for (std::size_t k = 0; k < s.size(); ++k)
+        if (coded[k] && plan.bands[k % per].orientation != 0 && s[k] > 0.0)
+          level[k / per] = std::min(level[k / per], plan.bands[k % per].level);
+      std::vector<double> got(plan.header.channels, 0.0), modelled(plan.header.channels, 0.0);
+      for (std::size_t k = 0; k < s.size(); ++k) {
+        if (!coded[k] || plan.bands[k % per].level != level[k / per] || plan.bands[k % per].orientation == 0)
+          continue;
+        got[k / per] += real[k];
+        modelled[k / per] += s[k] * estimate(k, p.t);
+      }
+      for (std::size_t k = 0; k < s.size(); ++k) {
+        if (coded[k]) {
+          const double e = estimate(k, p.t);
+          s[k] = e >= kFitBytes ? real[k] / e : 0.0;
+          f[k] = s[k] == 0.0 ? real[k] : 0.0;
+        } else if (modelled[k / per] >= kFitBytes) {
+          s[k] *= got[k / per] / modelled[k / per];
+        }
+      }
+    };
     const auto refit = [&](const Pass& p) {
-      std::vector<double> real(scale.size(), 0.0);
-      std::size_t data = 0;
+      if (!p.abandoned) {
+        std::size_t data = 0;
+        for (const auto& w : p.words) data += w.size();
+        container = double(p.bytes - data);
+      }
+      fit(p, p.abandoned ? p.groups : kPcGroupsPerResolution * (plan.header.levels + 1), scale, fixed);
+    };
+    // The container of pass p with the blocks past its first `groups` groups at their bands'
+    // estimates s, f (the index's size moves with the blocks' lengths).
+    const auto container_of = [&](const Pass& p, int groups, const std::vector<double>& s,
+                                  const std::vector<double>& f) {
+      std::vector<BlockEntry> entries = p.entries;
+      int planes = 0;
+      for (std::size_t i = 0; i < plan.blocks.size(); ++i)
+        if (pc_group(plan.blocks[i], plan.header.channels) < groups)
+          planes = std::max(planes, entries[i].planes);
       for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
-        real[plan.blocks[i].component * plan.bands.size() + plan.blocks[i].band] += double(p.words[i].size());
-        data += p.words[i].size();
+        const CodeBlock& b = plan.blocks[i];
+        if (pc_group(b, plan.header.channels) < groups) continue;
+        const std::size_t k = b.component * plan.bands.size() + b.band;
+        const double share = double(b.count()) / double(plan.bands[b.band].count());
+        const double length = share * (s[k] > 0.0 ? s[k] * estimate(k, p.t) : f[k]);
+        entries[i] = {length >= 1.0 ? planes : 0, length >= 1.0 ? 1 : 0, std::uint32_t(std::lround(length))};
       }
-      overhead = double(p.bytes - data);
-      for (std::size_t k = 0; k < scale.size(); ++k) {
-        const double estimate = model.bits_of_band(k, std::exp(p.t)) / 8.0;
-        scale[k] = estimate >= kFitBytes ? real[k] / estimate : 0.0;
-        if (scale[k] == 0.0) overhead += real[k];
-      }
+      return double(container_size(plan.header, encode_index(entries).size(), 0));
+    };
+    // Pass p abandoned before group `groups` when its projection misses the window by more than
+    // the margin (its projected bytes then stand for its own, and the model of the rest is fitted
+    // by refit as here).
+    int abandons_left = kAbandonPasses;
+    coder.abandon = [&](Pass& p, int groups) {
+      std::vector<double> s = scale, f = fixed;
+      fit(p, groups, s, f);
+      const double c = container_of(p, groups, s, f), projected = bytes(p.t, s, f, c);
+      const double score = std::log(projected);
+      std::size_t n = 0;
+      for (const CodeBlock& b : plan.blocks)
+        if (pc_group(b, plan.header.channels) < groups) n += b.count();
+      const double margin = kAbandonMargin * double(plan.samples) / double(n);
+      if (abandons_left == 0 || (score <= goal + margin && score >= goal - tolerance - margin)) return false;
+      --abandons_left;
+      container = c;
+      p.groups = groups;
+      p.bytes = std::size_t(projected);
+      return true;
     };
     auto best = search(
-        coder, std::log(budget), -std::log1p(-kSizeTolerance), true, kSizeSlope, finest, coarsest,
+        coder, goal, tolerance, true, kSizeSlope, finest, coarsest,
         [](const Pass& p) { return std::log(double(p.bytes)); }, log_bytes, 0.0, kBytesResidualSlope, refit);
     if (best) return result_of(coder, *best, std::nullopt);
     // Under the smallest stream (header and steps alone): that stream, as the other coders do.
+    coder.abandon = nullptr;  // the stream itself
     Pass smallest = code_pass(coder, coarsest);
     return result_of(coder, smallest, std::nullopt);
   }

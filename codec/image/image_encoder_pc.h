@@ -20,5 +20,8 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
 int pc_passes_of_last_encode();
 // Trims (codings of a few finest bands, about a quarter of a pass each) of the last encode_pc.
 int pc_trims_of_last_encode();
+// Samples coded by the passes of the last encode_pc abandoned before their end (not counted by
+// pc_passes_of_last_encode), in whole passes.
+double pc_abandoned_share_of_last_encode();
 
 }  // namespace pupwave

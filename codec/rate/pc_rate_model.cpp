@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <iterator>
 
 #include "codec/entropy/pc_cfl.h"
 #include "codec/rate/rate_guess.h"
@@ -26,6 +27,15 @@ constexpr double kRoundBias = 0.07;
 constexpr int kFirstOctave = 8;
 // Bins wider than two indices hold a uniform error of a twelfth of a squared step.
 constexpr double kUniformFrom = 2.0 * kBinsPerOctave;
+
+// Real bytes of the pc coder over the model's (bits_of_band) in a detail band, by the model's
+// log2 bits per sample of the band from -4 to 3 (linear between, flat beyond), luma and chroma,
+// and in the coarse band: bytes summed over the last pass of every --bpp search (0.125-2 bpp) on
+// the training photographs (/work/photosets/train; bench/results/rd_issue20.md, session 13).
+constexpr double kLumaShare[] = {0.42, 0.44, 0.48, 0.58, 0.69, 0.78, 0.86, 0.94};
+constexpr double kChromaShare[] = {0.41, 0.38, 0.54, 0.67, 0.87, 0.90, 0.93, 0.97};
+constexpr double kCoarseShare = 0.95;
+constexpr int kShareFrom = -4;
 
 double cube(double x) { return x * x * x; }
 
@@ -70,6 +80,8 @@ PcRateModel::PcRateModel(const ImagePlan& plan, double delta) : delta_(delta) {
       }
       Band out;
       out.count = band.size[0] * band.size[1];
+      out.coarse = band.orientation == 0;
+      out.chroma = c > 0 && plan.header.colour != ColourTransform::none;
       out.below.assign(kBins + 1, 0u);
       for (int k = 0; k < kBins; ++k) out.below[k + 1] = out.below[k] + counts[k];
       bands_.push_back(std::move(out));
@@ -108,6 +120,19 @@ double PcRateModel::band_bits(const Band& band, double step) const {
     above = next;
   }
   return bits;
+}
+
+double PcRateModel::coded_bits_of_band(std::size_t k, double base_step) const {
+  const Band& band = bands_[k];
+  const double bits = band_bits(band, base_step);
+  if (band.coarse) return kCoarseShare * bits;
+  const double* share = band.chroma ? kChromaShare : kLumaShare;
+  constexpr int last = int(std::size(kLumaShare)) - 1;
+  const double x = bits > 0.0 ? std::log2(bits / double(band.count)) - kShareFrom : 0.0;
+  if (x <= 0.0) return share[0] * bits;
+  if (x >= last) return share[last] * bits;
+  const int i = int(x);
+  return (share[i] + (x - i) * (share[i + 1] - share[i])) * bits;
 }
 
 double PcRateModel::band_error(const Band& band, double step) const {

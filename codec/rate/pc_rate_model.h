@@ -25,6 +25,10 @@ class PcRateModel {
   // header's steps) multiplied by scale[k] when given (a calibration by a coded pass).
   double bits(double base_step, const std::vector<double>* scale = nullptr) const;
   double bits_of_band(std::size_t k, double base_step) const { return band_bits(bands_[k], base_step); }
+  // bits_of_band times the pc coder's typical ratio of real to zero-order bits at the band's
+  // density (its modelled bits per sample; contexts gain most in sparse bands), so a calibration
+  // by one pass carries to other steps: a prior before any pass, the shape of the ratio after.
+  double coded_bits_of_band(std::size_t k, double base_step) const;
   std::size_t band_count() const { return bands_.size(); }
   // Estimated squared error of all samples at `base_step`, in output units (the PSNR's).
   double squared_error(double base_step) const;
@@ -34,6 +38,8 @@ class PcRateModel {
   struct Band {
     std::size_t count = 0;
     std::vector<std::uint32_t> below;  // below[k]: magnitudes in bins under k (kBins + 1 entries)
+    bool coarse = false;               // the coarse (LL) band
+    bool chroma = false;               // a detail band of a colour-transformed chroma component
   };
   double count_below(const Band& band, double magnitude) const;  // interpolated inside a bin
   double band_bits(const Band& band, double base_step) const;
