@@ -83,7 +83,7 @@ PcRateModel::PcRateModel(const ImagePlan& plan, double delta) : delta_(delta) {
       out.coarse = band.orientation == 0;
       out.chroma = c > 0 && plan.header.colour != ColourTransform::none;
       out.below.assign(kBins + 1, 0u);
-      for (int k = 0; k < kBins; ++k) out.below[k + 1] = out.below[k] + counts[k];
+      for (int bin = 0; bin < kBins; ++bin) out.below[bin + 1] = out.below[bin] + counts[bin];
       bands_.push_back(std::move(out));
     }
 }
