@@ -39,7 +39,7 @@ struct CompressOptions {
   int levels = -1;
   double bpp = 0.0, psnr = 0.0, step = 0.0;
   bool lossless = false;
-  std::string entropy;  // empty: lc with --lossless, else ebcot
+  std::string entropy;  // empty: the library's default choice (encode_image_default_coder)
   int effort = 0;       // 0: not given (1)
   unsigned threads = 0;
   bool report_psnr = false;
@@ -277,11 +277,14 @@ void run_compress(const CompressOptions& opt) {
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
   // Without --entropy the library's default coder choice applies (encode_image_default_coder:
-  // lc for lossless, the bit-plane coder for rate targets).
+  // lc for lossless, pc or the bit-plane coder for rate targets).
   if (!opt.entropy.empty()) enc.entropy = entropy_coder(opt.entropy);
-  // Only the byte-budget search has more than one effort; elsewhere the option would be ignored.
+  // Only the bit-plane coder's byte-budget search has more than one effort; elsewhere the option
+  // would be ignored.
   if (opt.effort != 0 && !(opt.bpp > 0.0))
     throw std::invalid_argument("--effort applies to --bpp targets only");
+  if (opt.effort != 0 && opt.entropy != "ebcot")
+    throw std::invalid_argument("--effort applies to the bit-plane coder: add --entropy ebcot");
   enc.effort = opt.effort == 0 ? 1 : opt.effort;
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
@@ -370,15 +373,17 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--brick", opt->brick, "volumes: brick edge (power of two, 8..256, default 64)");
   cmd->add_option(
          "--entropy", opt->entropy,
-         "entropy coder: ebcot (bit-plane, default for lossy), ht (high-throughput, no arithmetic coding), "
-         "zstd, or lc (lossless only, the default with --lossless: weighted prediction and context "
-         "modelling, the smallest lossless files), or pc (lossy only: one pass per band with parent contexts "
-         "and rate-distortion optimised quantization, about 10% fewer bits than ebcot at equal PSNR on "
-         "photographs, about 2.4x its encode time; no quality layers)")
+         "entropy coder: pc (lossy only, the default for rate targets on integer images of up to 4 "
+         "Mpixel: one pass per band with parent contexts, chroma from luma and rate-distortion optimised "
+         "quantization; about 10% fewer bits than ebcot at equal PSNR on photographs; holds the "
+         "transformed image), ebcot (bit-plane, the default for larger and float images: encodes 8-bit "
+         "PGM/PPM by strips in bounded memory), ht (high-throughput, no arithmetic coding), zstd, or lc "
+         "(lossless only, the default with --lossless: weighted prediction and context modelling, the "
+         "smallest lossless files)")
       ->transform(CLI::IsMember({"ebcot", "ht", "zstd", "lc", "pc"}, CLI::ignore_case));
   cmd->add_option("--effort", opt->effort,
-                  "images, --bpp: 1 (default, fastest) or 2 (three base steps per band and RDOQ: about 1% "
-                  "smaller at equal PSNR, up to 1.9x the encode time)")
+                  "images, --bpp, --entropy ebcot: 1 (default, fastest) or 2 (three base steps per band and "
+                  "RDOQ: about 1% smaller at equal PSNR, up to 1.9x the encode time)")
       ->check(CLI::Range(1, 2));
   cmd->add_flag("--keep-nonfinite", opt->keep_nonfinite,
                 "float images: code NaN and infinite samples exactly in a side list (default: refuse them)");

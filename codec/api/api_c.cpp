@@ -21,6 +21,7 @@ struct pupwave_options {
   bool zstd = false;
   bool ht = false;
   bool pc = false;
+  bool ebcot = false;
   int effort = 1;
 };
 
@@ -113,6 +114,7 @@ pupwave::api::ImageOptions image_options(const pupwave_options* o) {
   out.zstd = o->zstd;
   out.ht = o->ht;
   out.pc = o->pc;
+  out.ebcot = o->ebcot;
   out.effort = o->effort;
   return out;
 }
@@ -218,6 +220,13 @@ pupwave_status pupwave_options_set_pc(pupwave_options* options, int pc) {
   return guarded([&] {
     require(options != nullptr, "options is null");
     options->pc = pc != 0;
+  });
+}
+
+pupwave_status pupwave_options_set_ebcot(pupwave_options* options, int ebcot) {
+  return guarded([&] {
+    require(options != nullptr, "options is null");
+    options->ebcot = ebcot != 0;
   });
 }
 

@@ -73,8 +73,8 @@ void store_interleaved(const pupwave::Image& image, std::byte* out) {
 EncodeOptions encode_options(const ImageOptions& options) {
   EncodeOptions enc;
   enc.levels = options.levels;
-  if (int(options.zstd) + int(options.ht) + int(options.pc) > 1)
-    detail::fail("choose one entropy coder: zstd, ht or pc");
+  if (int(options.zstd) + int(options.ht) + int(options.pc) + int(options.ebcot) > 1)
+    detail::fail("choose one entropy coder: zstd, ht, pc or ebcot");
   enc.entropy = options.ht     ? EntropyCoder::ht
                 : options.zstd ? EntropyCoder::zstd
                 : options.pc   ? EntropyCoder::pc
@@ -146,7 +146,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOpti
     view.pixel_stride = image.pixel_stride;
     view.row_stride = image.row_stride;
     // No coder chosen: the default choice, as the CLI makes it (lc for lossless).
-    const bool chosen = options.zstd || options.ht || options.pc;
+    const bool chosen = options.zstd || options.ht || options.pc || options.ebcot;
     std::vector<std::uint8_t> bytes =
         (chosen ? encode_image(view, enc) : encode_image_default_coder(view, enc)).bytes;
     check_decodable(bytes);

@@ -5,12 +5,18 @@
 
 namespace pupwave {
 
+bool pc_is_default_for(const ImageView& image) {
+  return is_integer(image.type) && image.plane_size() <= kPcDefaultPixels;
+}
+
 EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions options) {
   if (options.mode == RateMode::lossless) {
     options.entropy = EntropyCoder::lc;
     return encode_image(image, options);
   }
-  options.entropy = EntropyCoder::ebcot;
+  if (options.effort != 1)  // the bit-plane coder's search: pc has one, and codes smaller
+    throw std::invalid_argument("effort 2 applies to the bit-plane coder (ebcot): choose it explicitly");
+  options.entropy = pc_is_default_for(image) ? EntropyCoder::pc : EntropyCoder::ebcot;
   EncodeResult first = encode_image(image, options);
   // A rate target that gave the bit-plane coder's lossless stream gives the lossless default
   // (lc, smaller) instead, so no rate target exceeds the lossless file.

@@ -75,12 +75,18 @@ static void test_image_rates(void) {
   CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
   small = pupwave_stream_size(s);
   CHECK(small * 8 <= w * h + 64);
+  CHECK(pupwave_stream_data(s)[5 + 8 + 15] == 4); /* the default coder for a small image: pc */
   pupwave_stream_destroy(s);
   CHECK(pupwave_options_set_effort(o, 3) == PUPWAVE_ERROR_ARGUMENT);
   CHECK(pupwave_options_set_effort(o, 2) == PUPWAVE_OK);
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_ERROR_ARGUMENT);
+  CHECK(strstr(pupwave_last_error(), "ebcot") != NULL); /* effort 2 is the bit-plane coder's */
+  CHECK(pupwave_options_set_ebcot(o, 1) == PUPWAVE_OK);
   CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
   CHECK(pupwave_stream_size(s) * 8 <= w * h + 64); /* effort 2 keeps the budget too */
+  CHECK(pupwave_stream_data(s)[5 + 8 + 15] == 0);  /* the bit-plane coder */
   pupwave_stream_destroy(s);
+  CHECK(pupwave_options_set_ebcot(o, 0) == PUPWAVE_OK);
   CHECK(pupwave_options_set_effort(o, 1) == PUPWAVE_OK);
   CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_STEP, 1.0) == PUPWAVE_OK);
   CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);

@@ -238,9 +238,10 @@ TEST_F(RateCli, QuietPrintsNothingAndVerboseMore) {
 // --effort 2 (issue 20's per-band base-step choice and RDOQ) fits the same budget at a higher
 // PSNR than the default on a photograph; --effort is refused where it would be ignored.
 TEST_F(RateCli, EffortTwoGivesAHigherPsnrWithinTheSameBudget) {
-  const auto fast = run_cli({"compress", image("coffee.png"), out("e1.pw"), "--bpp", "1", "--report-psnr"});
-  const auto slow = run_cli(
-      {"compress", image("coffee.png"), out("e2.pw"), "--bpp", "1", "--effort", "2", "--report-psnr"});
+  const auto fast = run_cli(
+      {"compress", image("coffee.png"), out("e1.pw"), "--bpp", "1", "--entropy", "ebcot", "--report-psnr"});
+  const auto slow = run_cli({"compress", image("coffee.png"), out("e2.pw"), "--bpp", "1", "--entropy", "ebcot",
+                             "--effort", "2", "--report-psnr"});
   ASSERT_EQ(fast.exit_code, 0) << fast.output;
   ASSERT_EQ(slow.exit_code, 0) << slow.output;
   const auto budget = std::uintmax_t(1.0 * 600 * 400 / 8);  // coffee.png is 600x400
@@ -248,6 +249,9 @@ TEST_F(RateCli, EffortTwoGivesAHigherPsnrWithinTheSameBudget) {
   EXPECT_GT(number_after(slow.output, "PSNR "), number_after(fast.output, "PSNR ") + 0.02) << slow.output;
   expect_error(run_cli({"compress", image("coffee.png"), out("a.pw"), "--psnr", "40", "--effort", "2"}),
                "--effort applies to --bpp targets only");
+  // The default coder of a photograph (pc) has one search: effort is the bit-plane coder's.
+  expect_error(run_cli({"compress", image("coffee.png"), out("a.pw"), "--bpp", "1", "--effort", "2"}),
+               "--effort applies to the bit-plane coder: add --entropy ebcot");
   const auto bad = run_cli({"compress", image("coffee.png"), out("a.pw"), "--bpp", "1", "--effort", "3"});
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("--effort"), std::string::npos) << bad.output;

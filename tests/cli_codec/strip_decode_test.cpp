@@ -150,7 +150,7 @@ TEST(StripDecode, CompressFromAMappedPpmGivesTheLibrarysStream) {
   fs::create_directories(dir);
   const Image image = photo("chelsea.png");
   cli::write_image(image, dir / "c.ppm");
-  const std::string command = std::string(PUPWAVE_CLI) + " compress -q --bpp 0.8 " +
+  const std::string command = std::string(PUPWAVE_CLI) + " compress -q --entropy ebcot --bpp 0.8 " +
                               (dir / "c.ppm").string() + " " + (dir / "c.pw").string();
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream in(dir / "c.pw", std::ios::binary);

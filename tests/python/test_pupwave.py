@@ -57,10 +57,19 @@ def test_rate_modes_and_levels(real_image):
     assert half.dtype == np.uint8
     assert pupwave.compress(a, bpp=1, transform="cdf53", levels=3) != pupwave.compress(a, bpp=1)
     assert pupwave.info(pupwave.compress(a, bpp=1, levels=3))["levels"] == 3
-    slow = pupwave.compress(a, bpp=1, effort=2)
-    assert len(slow) * 8 <= a.shape[0] * a.shape[1] + 64 and slow != pupwave.compress(a, bpp=1)
+    # The default coder of a photograph this size is pc; effort 2 is the bit-plane coder's search.
+    coder = 5 + 8 + 15  # the entropy coder's byte in the header (docs/bitstream.md): 4 pc, 0 ebcot
+    assert pupwave.compress(a, bpp=1)[coder] == 4
+    assert pupwave.compress(a, bpp=1) == pupwave.compress(a, bpp=1, entropy="pc")
+    slow = pupwave.compress(a, bpp=1, effort=2, entropy="ebcot")
+    assert len(slow) * 8 <= a.shape[0] * a.shape[1] + 64 and slow != pupwave.compress(a, bpp=1, entropy="ebcot")
+    assert slow[coder] == 0
+    with pytest.raises(ValueError, match="ebcot"):
+        pupwave.compress(a, bpp=1, effort=2)
+    with pytest.raises(ValueError, match="entropy"):
+        pupwave.compress(a, bpp=1, entropy="jpeg")
     with pytest.raises(ValueError, match="effort"):
-        pupwave.compress(a, bpp=1, effort=3)
+        pupwave.compress(a, bpp=1, effort=3, entropy="ebcot")
 
 
 def test_image_bytes_identical_to_cli(cli, real_image, tmp_path):

@@ -106,7 +106,7 @@ int count_set(std::initializer_list<bool> flags) {
 
 py::bytes compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
                    std::optional<double> step, bool lossless, const std::string& transform,
-                   std::optional<int> levels, int effort) {
+                   std::optional<int> levels, int effort, const std::string& entropy) {
   const py::array a = as_array(obj);
   const api::SampleType type = image_type(a);
   if (a.ndim() != 2 && a.ndim() != 3)
@@ -132,6 +132,16 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   options.transform = lossless && transform == "cdf97" ? "cdf53" : transform;
   options.levels = levels.value_or(-1);
   options.effort = effort;
+  if (entropy == "pc")
+    options.pc = true;
+  else if (entropy == "ebcot")
+    options.ebcot = true;
+  else if (entropy == "ht")
+    options.ht = true;
+  else if (entropy == "zstd")
+    options.zstd = true;
+  else if (entropy != "default")
+    throw py::value_error("entropy must be default, pc, ebcot, ht or zstd, got " + entropy);
   std::vector<std::uint8_t> out;
   {
     py::gil_scoped_release release;
@@ -250,10 +260,12 @@ PYBIND11_MODULE(_pupwave, m) {
   m.attr("__version__") = PUPWAVE_VERSION_STRING;
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = "cdf97",
-        py::arg("levels") = py::none(), py::arg("effort") = 1,
+        py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "default",
         "Compress a 2-D (grey) or HxWxC (C 1..4) array of uint8/uint16/float16/float32 to .pw bytes. At most "
-        "one of bpp, psnr, step, lossless (default psnr=40). effort=2: bpp targets search three base steps "
-        "per band (about 1% smaller, up to 1.9x slower).");
+        "one of bpp, psnr, step, lossless (default psnr=40). entropy: default (pc for rate targets on "
+        "integer images up to 4 Mpixel, else ebcot; lc for lossless), pc, ebcot, ht or zstd. effort=2 "
+        "(with entropy='ebcot'): bpp targets search three base steps per band (about 1% smaller, up to "
+        "1.9x slower).");
   m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0,
         "Decode .pw image bytes to an array of the original dtype and shape (halved per level).");
   m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),

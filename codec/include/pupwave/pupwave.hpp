@@ -74,11 +74,14 @@ struct ImageOptions {
   double target = 40.0;   // dB, bits per pixel or step; ignored for lossless
   std::string transform;  // transform spec (cdf97, cdf53, pups:..., kobbelt:...); "": cdf97, cdf53 lossless
   int levels = -1;        // decomposition levels, -1: from the image size
-  bool zstd = false;  // entropy coder: true = zstd; neither this nor ht: the bit-plane coder, lc for lossless
-  bool ht = false;    // entropy coder: high-throughput block coder (not with zstd)
-  bool pc = false;    // entropy coder: parent-context coder, lossy only (not with zstd or ht)
+  // Entropy coder, at most one of these; none: the default choice (lc for lossless; for rate
+  // targets pc on integer images of up to 4 Mpixel, the bit-plane coder on larger or float ones).
+  bool zstd = false;   // zstd
+  bool ht = false;     // high-throughput block coder
+  bool pc = false;     // parent-context coder, lossy only
+  bool ebcot = false;  // bit-plane coder (embedded; the one effort 2 applies to)
   unsigned threads = 0;  // most worker threads (0: all cores, 1: the calling thread)
-  // Encoder effort for bpp targets: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
+  // Encoder effort for bpp targets with ebcot: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
   // and more memory (same format; other rates ignore it).
   int effort = 1;
 };

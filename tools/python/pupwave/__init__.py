@@ -1,6 +1,7 @@
 """Pupwave wavelet codec for numpy arrays (docs/api.md).
 
-compress(array, bpp=None, psnr=None, step=None, lossless=False, transform="cdf97", levels=None, effort=1) -> bytes
+compress(array, bpp=None, psnr=None, step=None, lossless=False, transform="cdf97", levels=None, effort=1,
+         entropy="default") -> bytes
 decompress(data, level=0) -> numpy.ndarray
 compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False) -> bytes
 decompress_volume(data, level=0) -> numpy.ndarray
