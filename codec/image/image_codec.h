@@ -95,8 +95,9 @@ bool pc_is_default_for(const ImageView& image);
 // encode_image with the default coder (options.entropy is ignored): lossless uses the lc coder
 // (smaller than the bit-plane coder's lossless stream, bench/results/lossless.md), rate targets
 // the pc coder (pc_is_default_for) or the bit-plane coder, and a rate target that ends lossless
-// (switched_to_lossless) gives the lc stream when it is the smaller. The CLI without --entropy
-// and the library both encode here.
+// (switched_to_lossless) or gives an integer image's lossy file of over a quarter of its raw size
+// gives the lc stream when it is the smaller. The CLI without --entropy and the library both
+// encode here.
 EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions options);
 
 // Decodes a stream, at full resolution (level 0) or at 1/2^level resolution, reading only
