@@ -240,8 +240,8 @@ TEST_F(RateCli, QuietPrintsNothingAndVerboseMore) {
 TEST_F(RateCli, EffortTwoGivesAHigherPsnrWithinTheSameBudget) {
   const auto fast = run_cli(
       {"compress", image("coffee.png"), out("e1.pw"), "--bpp", "1", "--entropy", "ebcot", "--report-psnr"});
-  const auto slow = run_cli({"compress", image("coffee.png"), out("e2.pw"), "--bpp", "1", "--entropy", "ebcot",
-                             "--effort", "2", "--report-psnr"});
+  const auto slow = run_cli({"compress", image("coffee.png"), out("e2.pw"), "--bpp", "1", "--entropy",
+                             "ebcot", "--effort", "2", "--report-psnr"});
   ASSERT_EQ(fast.exit_code, 0) << fast.output;
   ASSERT_EQ(slow.exit_code, 0) << slow.output;
   const auto budget = std::uintmax_t(1.0 * 600 * 400 / 8);  // coffee.png is 600x400

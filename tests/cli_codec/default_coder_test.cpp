@@ -14,7 +14,9 @@
 namespace pupwave::test {
 namespace {
 
-EntropyCoder coder_of(const std::vector<std::uint8_t>& bytes) { return parse_container(bytes).header.entropy; }
+EntropyCoder coder_of(const std::vector<std::uint8_t>& bytes) {
+  return parse_container(bytes).header.entropy;
+}
 
 EncodeOptions rate(RateMode mode, double target) {
   EncodeOptions o;
@@ -43,7 +45,8 @@ TEST(DefaultCoder, PcUpToFourMegapixelsOfIntegerSamples) {
 TEST(DefaultCoder, PhotographsTakeThePcCoder) {
   for (const char* name : {"camera.png", "coffee.png"}) {
     const Image image = photo(name);
-    for (const auto& [mode, target] : {std::pair{RateMode::bpp, 0.5}, {RateMode::psnr, 36.0}, {RateMode::step, 8.0}}) {
+    for (const auto& [mode, target] :
+         {std::pair{RateMode::bpp, 0.5}, {RateMode::psnr, 36.0}, {RateMode::step, 8.0}}) {
       const auto chosen = encode_image_default_coder(view_of(image), rate(mode, target)).bytes;
       EncodeOptions pc = rate(mode, target);
       pc.entropy = EntropyCoder::pc;

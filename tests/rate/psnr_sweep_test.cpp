@@ -77,7 +77,8 @@ void sweep(bool default_coder) {
     exact.executor = executor.get();
     if (!default_coder) exact.entropy = EntropyCoder::ebcot;
     const std::size_t lossless_bytes =
-        (default_coder ? encode_image_default_coder(view_of(image), exact) : encode_image(image, exact)).bytes.size();
+        (default_coder ? encode_image_default_coder(view_of(image), exact) : encode_image(image, exact))
+            .bytes.size();
     std::vector<Point> points;
     // The offset per image makes the strided sweeps together cover the 0.1 dB grid.
     const double offset = stride > 0.1 + 1e-9 ? 0.1 * double((4 * n) % 13) : 0.0;
@@ -88,7 +89,8 @@ void sweep(bool default_coder) {
       o.mode = RateMode::psnr;
       o.target = target;
       o.executor = executor.get();
-      const EncodeResult r = default_coder ? encode_image_default_coder(view_of(image), o) : encode_image(image, o);
+      const EncodeResult r =
+          default_coder ? encode_image_default_coder(view_of(image), o) : encode_image(image, o);
       points.push_back({target, r.bytes.size(), r.psnr, r.switched_to_lossless});
       SCOPED_TRACE("target " + std::to_string(target));
       ASSERT_LE(r.bytes.size(), lossless_bytes);
@@ -121,8 +123,8 @@ void sweep(bool default_coder) {
                                   << points[i].target << " dB";
     }
     if (report.is_open())
-      report << "| " << paths[n].filename().string() << (default_coder ? " (default: pc)" : " (ebcot)") << " | " << points.size() << " | " << lossless_bytes
-             << " | "
+      report << "| " << paths[n].filename().string() << (default_coder ? " (default: pc)" : " (ebcot)")
+             << " | " << points.size() << " | " << lossless_bytes << " | "
              << (std::isnan(switched_from) ? std::string("-")
                                            : std::to_string(switched_from).substr(0, 4) + " dB")
              << " | " << worst_excess << " | " << largest_drop * 100.0 << "% |" << std::endl;
