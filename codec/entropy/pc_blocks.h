@@ -70,7 +70,7 @@ class PcContext {
     const std::uint32_t* parent = nullptr;  // null: no parent
     const std::uint32_t* side = nullptr;
     const std::int8_t* parent_sign = nullptr;
-    const std::size_t* cols = nullptr;  // parent_cols_
+    const std::size_t* cols = nullptr;   // parent_cols_
     const std::int32_t* luma = nullptr;  // null: no luma parent
     const std::int32_t* cb = nullptr;
     std::uint64_t in_weight = 0, parent_weight = 0;
@@ -129,7 +129,6 @@ class PcContext {
   static int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
 
  private:
-
   std::size_t nx_;
   std::vector<std::uint32_t> a_;
   // int32, not int8: a store through a character type may alias anything, and the loop would

@@ -87,8 +87,8 @@ pupwave_status pupwave_options_set_pc(pupwave_options* options, int pc);
  * photographs, encodes in less time and, from 8-bit PGM/PPM files, in bounded memory), also on small
  * images. One coder only. */
 pupwave_status pupwave_options_set_ebcot(pupwave_options* options, int ebcot);
-/* Images, BPP targets with the bit-plane coder (set_ebcot): encoder effort 1 (default, fastest) or 2 (three base steps per band
- * and RDOQ: about 1 % less rate at equal PSNR for up to 1.9x the encode time). */
+/* Images, BPP targets with the bit-plane coder (set_ebcot): encoder effort 1 (default, fastest) or 2 (three
+ * base steps per band and RDOQ: about 1 % less rate at equal PSNR for up to 1.9x the encode time). */
 pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort);
 
 /* Compressed bytes. */
