@@ -119,11 +119,6 @@ class PcContext {
   const std::int32_t* signs_above(std::size_t y) const { return sg_.data() + y * nx_; }
   std::uint32_t* magnitudes_of(std::size_t y) { return a_.data() + (y + 1) * nx_ + 1; }
   std::int32_t* signs_of(std::size_t y) { return sg_.data() + (y + 1) * nx_ + 1; }
-  void set(std::size_t x, std::size_t y, std::int32_t v) {
-    const std::size_t p = (y + 1) * nx_ + x + 1;
-    a_[p] = std::uint32_t(v < 0 ? -std::int64_t(v) : v);
-    sg_[p] = sign_of(v);
-  }
 
   static std::uint64_t magnitude(std::int32_t v) { return std::uint64_t(v < 0 ? -std::int64_t(v) : v); }
   static int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
@@ -221,7 +216,7 @@ std::uint32_t pc_visit(std::size_t width, std::size_t height, PcContext& ctx, Co
     const PcContext::Row row = ctx.row(y);
     const std::uint32_t* above = ctx.magnitudes_above(y);
     const std::int32_t* signs = ctx.signs_above(y);
-    std::uint32_t* magnitudes_out = ctx.magnitudes_of(y);  // ctx.set(x, y, v) as the row goes
+    std::uint32_t* magnitudes_out = ctx.magnitudes_of(y);  // each coefficient joins the contexts here
     std::int32_t* signs_out = ctx.signs_of(y);
     std::uint64_t w = 0, nw = above[0], n = above[1];  // the left padding column is zero
     int sign_w = 0;
