@@ -52,13 +52,17 @@ inline void code_coef_low_bits(Sink& sink, Low& low, int k, std::uint32_t h, std
   sink.rest(q & ((1u << rest_bits) - 1u), rest_bits);
 }
 
+// A sign context given as its index (the volume coder's); pc_index.h overloads it for a context
+// whose sign index is only worked out when a non-zero index needs it.
+inline std::size_t coef_sign_index(std::size_t sign_ctx) { return sign_ctx; }
+
 // The decisions of index q (sign `negative`, ignored for 0) in activity class `ctx` and sign
-// context `sign_ctx`, handed to `sink`: bit(b, model) for a modelled bit, escape(e) for the
+// context `sign_ctx` (coef_sign_index), handed to `sink`: bit(b, model) for a modelled bit, escape(e) for the
 // Elias-gamma raw tail of a long high part, rest(v, n) for the n raw low bits. One binarisation
 // for the coder (CoefIndexWriter) and the rate estimates (CoefIndexCounter).
 // Models: CoefModels, or the pc coder's PcModels (pc_index.h), whose bits adapt their own way.
-template <class Sink, class Models>
-inline void code_coef_index(Sink& sink, Models& m, int ctx, std::size_t sign_ctx, std::uint32_t q,
+template <class Sink, class Models, class SignCtx>
+inline void code_coef_index(Sink& sink, Models& m, int ctx, const SignCtx& sign_ctx, std::uint32_t q,
                             bool negative) {
   const int k = coef_rice_k(ctx);
   const std::uint32_t h = q >> k;
@@ -70,7 +74,8 @@ inline void code_coef_index(Sink& sink, Models& m, int ctx, std::size_t sign_ctx
   else
     sink.escape(h - kCoefEscape);
   if (k > 0) code_coef_low_bits(sink, m.low[std::size_t(ctx)], k, h, q);
-  if (q != 0) sink.bit(negative ? 1 : 0, m.sign[sign_ctx + (q > 1 ? Models::kSignContexts : 0)]);
+  if (q != 0)
+    sink.bit(negative ? 1 : 0, m.sign[coef_sign_index(sign_ctx) + (q > 1 ? Models::kSignContexts : 0)]);
 }
 
 // The range coder as code_coef_index's sink.
@@ -96,8 +101,8 @@ inline void put_coef_index(RangeEncoder& enc, CoefModels& m, int ctx, std::size_
 inline int decode_model_bit(RangeDecoder& dec, BitModel& model) { return dec.decode(model); }
 
 // Inverse of put_coef_index: the magnitude, clamped to `limit` (corrupt input only), and its sign.
-template <class Models>
-inline std::uint32_t get_coef_index(RangeDecoder& dec, Models& m, int ctx, std::size_t sign_ctx,
+template <class Models, class SignCtx>
+inline std::uint32_t get_coef_index(RangeDecoder& dec, Models& m, int ctx, const SignCtx& sign_ctx,
                                     std::uint64_t limit, bool& negative) {
   const int k = coef_rice_k(ctx);
   auto& unary = m.unary[std::size_t(ctx)];
@@ -117,7 +122,8 @@ inline std::uint32_t get_coef_index(RangeDecoder& dec, Models& m, int ctx, std::
   const int rest_bits = k - modelled;
   const std::uint64_t value = (top << rest_bits) | get_coef_raw(dec, rest_bits);
   negative =
-      value != 0 && decode_model_bit(dec, m.sign[sign_ctx + (value > 1 ? Models::kSignContexts : 0)]) != 0;
+      value != 0 &&
+      decode_model_bit(dec, m.sign[coef_sign_index(sign_ctx) + (value > 1 ? Models::kSignContexts : 0)]) != 0;
   return std::uint32_t(std::min(value, limit));
 }
 

@@ -20,10 +20,7 @@ namespace pupwave {
 
 PcContext::PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma,
                      int parent_weight, int scale)
-    : nx_(w + 2),
-      a_((h + 1) * nx_, 0u),
-      sg_((h + 1) * nx_, 0),
-      parent_(parent),
+    : parent_(parent),
       luma_(luma),
       in_weight_(parent.origin ? 6 * std::uint64_t(scale) : 3),
       parent_weight_(3 * std::uint64_t(parent_weight)) {

@@ -41,9 +41,9 @@ struct PcCfl {
   int code[2] = {0, 0};
 };
 
-// A block's contexts as the codeword goes: causal magnitudes and signs (padded by one column
-// each side and one row above), the parent band and, for chroma, the luma parent. The coder's
-// weights are 1 and 1; the bench estimate (bench/nonembedded_coef.h) tries others.
+// A block's contexts from outside it: the parent band and, for chroma, the luma parent (pc_visit
+// adds the causal in-band neighbours as the codeword goes). The coder's weights are 1 and 1; the
+// bench estimate (bench/nonembedded_coef.h) tries others.
 class PcContext {
  public:
   // Weight of Cb's magnitude in Cr's S (3 x the activity): measured best of 3 .. 48 (the
@@ -53,17 +53,14 @@ class PcContext {
   PcContext(std::size_t w, std::size_t h, const LcParent& parent, const PcLuma& luma = {},
             int parent_weight = 1, int scale = 1);
 
-  // Activity class and sign context of coefficient (x, y). Activity: the in-band sum
+  // Activity class and sign context of coefficient (x, y) of a block with no coefficient coded
+  // yet (its in-band neighbours zero; pc_visit adds theirs as it goes). Activity: the in-band sum
   // 2 (W + N) + NW + NE (the volume coder's), with a parent doubled (x scale) plus weight x |P|
   // plus the mean of P's three neighbours towards the child (horizontal, vertical, diagonal: the
   // parent band's values nearest the child's position), plus |L| (the co-located luma index) for
   // chroma and 8 |Cb| (Cb's co-located index) for Cr; rounded to an integer. Sign context: the
   // signs of W, N, the parent and the luma parent (Cb for Cr).
-  PcCtx at(std::size_t x, std::size_t y) const {
-    const std::size_t p = (y + 1) * nx_ + x + 1;
-    const std::uint64_t in = 2 * (std::uint64_t(a_[p - 1]) + a_[p - nx_]) + a_[p - 1 - nx_] + a_[p + 1 - nx_];
-    return row(y).at(x, in, sg_[p - 1], sg_[p - nx_]);
-  }
+  PcCtx at(std::size_t x, std::size_t y) const { return row(y).at(x, 0, 0, 0); }
   // What at() reads of row y besides the in-band neighbours, as plain pointers a caller keeps in
   // registers along the row (pc_visit): the parent's row and side row, the luma and Cb rows.
   struct Row {
@@ -77,24 +74,25 @@ class PcContext {
     // The context from the in-band sum in = 2 (W + N) + NW + NE and the signs of W and N.
     PcCtx at(std::size_t x, std::uint64_t in, int sign_w, int sign_n) const {
       std::uint64_t s3 = in_weight * in;  // three times the activity (P's neighbours count a third)
-      int ps = 0, ls = 0;
+      PcCtx c;
+      c.neighbours = std::size_t(9 * (sign_w + 1) + 3 * (sign_n + 1));
       if (parent) {
         const std::size_t px = cols[2 * x], nx = cols[2 * x + 1];
         s3 += parent_weight * parent[px] + parent[nx] + side[px] + side[nx];
-        ps = parent_sign[px];
+        c.parent = parent_sign + px;
       }
       if (luma) {
         s3 += 3 * magnitude(luma[x]);
-        ls = sign_of(luma[x]);
+        c.luma = luma + x;
         if (cb) {  // Cr: Cb's magnitude weighs 8 and its sign replaces luma's
           s3 += kCbWeight * magnitude(cb[x]);
-          ls = sign_of(cb[x]);
+          c.luma = cb + x;
         }
       }
       const std::uint64_t s = (2 * s3 + 3) / 6;  // s3 / 3 rounded
       const int w = int(std::bit_width(s));
-      const int cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
-      return {cls, std::size_t(27 * (ls + 1) + 9 * (sign_w + 1) + 3 * (sign_n + 1) + (ps + 1))};
+      c.cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
+      return c;
     }
   };
   Row row(std::size_t y) const {
@@ -113,22 +111,10 @@ class PcContext {
     }
     return r;
   }
-  // The magnitudes and signs of row y - 1 (y: padded, row 0 above the block; entry x + 1 is
-  // column x), and row y's to write, for pc_visit.
-  const std::uint32_t* magnitudes_above(std::size_t y) const { return a_.data() + y * nx_; }
-  const std::int32_t* signs_above(std::size_t y) const { return sg_.data() + y * nx_; }
-  std::uint32_t* magnitudes_of(std::size_t y) { return a_.data() + (y + 1) * nx_ + 1; }
-  std::int32_t* signs_of(std::size_t y) { return sg_.data() + (y + 1) * nx_ + 1; }
-
   static std::uint64_t magnitude(std::int32_t v) { return std::uint64_t(v < 0 ? -std::int64_t(v) : v); }
   static int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
 
  private:
-  std::size_t nx_;
-  std::vector<std::uint32_t> a_;
-  // int32, not int8: a store through a character type may alias anything, and the loop would
-  // reload every pointer it reads after each coefficient.
-  std::vector<std::int32_t> sg_;
   LcParent parent_;
   PcLuma luma_;
   std::uint64_t in_weight_, parent_weight_;  // 3 (x 2 x scale with a parent) and 3 x weight
@@ -211,18 +197,28 @@ double pc_neighbour_bits(const std::vector<std::int32_t>& q, std::size_t width, 
 // loaded), the same contexts as PcContext::at(x, y).
 template <class Code>
 std::uint32_t pc_visit(std::size_t width, std::size_t height, PcContext& ctx, Code code) {
+  // Two rows of magnitudes and signs, each padded by a zero column on both sides: the row above
+  // (zero above the block) and the row being coded, alternating. Signs as int32, not int8: a store
+  // through a character type may alias anything, and the loop would reload every pointer it reads
+  // after each coefficient.
+  thread_local std::vector<std::uint32_t> magnitudes;
+  thread_local std::vector<std::int32_t> signs;
+  const std::size_t stride = width + 2;
+  magnitudes.assign(2 * stride, 0u);
+  signs.assign(2 * stride, 0);
   std::uint32_t largest = 0;
   for (std::size_t y = 0; y < height; ++y) {
     const PcContext::Row row = ctx.row(y);
-    const std::uint32_t* above = ctx.magnitudes_above(y);
-    const std::int32_t* signs = ctx.signs_above(y);
-    std::uint32_t* magnitudes_out = ctx.magnitudes_of(y);  // each coefficient joins the contexts here
-    std::int32_t* signs_out = ctx.signs_of(y);
+    const std::size_t above_at = ((y + 1) & 1u) * stride, out_at = (y & 1u) * stride + 1;
+    const std::uint32_t* above = magnitudes.data() + above_at;
+    const std::int32_t* signs_above = signs.data() + above_at;
+    std::uint32_t* magnitudes_out = magnitudes.data() + out_at;  // each coefficient joins the contexts here
+    std::int32_t* signs_out = signs.data() + out_at;
     std::uint64_t w = 0, nw = above[0], n = above[1];  // the left padding column is zero
     int sign_w = 0;
     for (std::size_t x = 0; x < width; ++x) {
       const std::uint64_t ne = above[x + 2];
-      const std::int32_t v = code(x, y, row.at(x, 2 * (w + n) + nw + ne, sign_w, signs[x + 1]));
+      const std::int32_t v = code(x, y, row.at(x, 2 * (w + n) + nw + ne, sign_w, signs_above[x + 1]));
       w = PcContext::magnitude(v);
       sign_w = PcContext::sign_of(v);
       magnitudes_out[x] = std::uint32_t(w);

@@ -24,11 +24,22 @@ namespace pupwave {
 // zero or positive; zero where there is none).
 inline constexpr int kPcSignContexts = 81;
 
-// A coefficient's contexts: activity class (coef_rice_k's class) and sign context.
+// A coefficient's contexts: activity class (coef_rice_k's class) and sign context (sign()). The
+// sign context is kept in parts and worked out only for a non-zero index, so that the zero ones,
+// most of them, never load the parent's and the luma parent's signs.
 struct PcCtx {
   int cls = 0;
-  std::size_t sign = 0;
+  std::size_t neighbours = 9 + 3;       // 9 (sign of W + 1) + 3 (sign of N + 1)
+  const std::int8_t* parent = nullptr;  // the parent's sign; null: none (0)
+  const std::int32_t* luma = nullptr;   // the luma parent's index (Cb's for Cr); null: none
+  // 27 (sign of the luma parent + 1) + 9 (W's + 1) + 3 (N's + 1) + (the parent's + 1), in [0, 81).
+  std::size_t sign() const {
+    const int ps = parent ? *parent : 0;
+    const int ls = luma ? int(*luma > 0) - int(*luma < 0) : 0;
+    return std::size_t(27 * (ls + 1) + ps + 1) + neighbours;
+  }
 };
+inline std::size_t coef_sign_index(const PcCtx& c) { return c.sign(); }
 
 // Adaptive models of one pc block (started per block, from its band class's trained states in the
 // coder, pc_priors.h: each block's codeword decodes alone).
@@ -48,7 +59,7 @@ struct PcModels {
 // code_coef_index with pc's models: the decisions of q handed to `sink`.
 template <class Sink>
 inline void code_pc_index(Sink& sink, PcModels& m, const PcCtx& c, std::uint32_t q, bool negative) {
-  code_coef_index(sink, m, c.cls, c.sign, q, negative);
+  code_coef_index(sink, m, c.cls, c, q, negative);
 }
 
 // The range coder as code_pc_index's sink.
@@ -81,7 +92,7 @@ inline int decode_model_bit(RangeDecoder& dec, PcBit& model) {
 // Inverse of put_pc_index: the magnitude, clamped to `limit` (corrupt input only), and its sign.
 inline std::uint32_t get_pc_index(RangeDecoder& dec, PcModels& m, const PcCtx& c, std::uint64_t limit,
                                   bool& negative) {
-  return get_coef_index(dec, m, c.cls, c.sign, limit, negative);
+  return get_coef_index(dec, m, c.cls, c, limit, negative);
 }
 
 // -log2(p / 2^15) for every 15-bit probability p: the counter's cost of a decision, looked up

@@ -129,8 +129,8 @@ TEST(PcCoder, ActivityCountsTheParentsNeighbourOnTheChildsSideOnly) {
   EXPECT_EQ(ctx.at(2, 2).cls, 0);
   // Child (4, 2): parent (2, 1) itself: S = 3 x 9, s = 9, class 2 x 4 - 2 + 0; its sign counts.
   EXPECT_EQ(ctx.at(4, 2).cls, 6);
-  EXPECT_EQ(ctx.at(4, 2).sign, 27 + 9 + 3 + 0u);
-  EXPECT_EQ(ctx.at(3, 2).sign, 27 + 9 + 3 + 1u);  // a neighbour's sign does not
+  EXPECT_EQ(ctx.at(4, 2).sign(), 27 + 9 + 3 + 0u);
+  EXPECT_EQ(ctx.at(3, 2).sign(), 27 + 9 + 3 + 1u);  // a neighbour's sign does not
 }
 
 TEST(PcCoder, LumaParentJoinsActivityAndSignContext) {
@@ -139,9 +139,9 @@ TEST(PcCoder, LumaParentJoinsActivityAndSignContext) {
   luma[1 * w + 2] = -5;
   const PcContext ctx(w, h, LcParent{}, PcLuma{luma.data(), w});
   EXPECT_EQ(ctx.at(2, 1).cls, 2 * 3 - 2 + 0);  // s = 5: bit width 3, next bit 0
-  EXPECT_EQ(ctx.at(2, 1).sign, 0 + 9 + 3 + 1u);
+  EXPECT_EQ(ctx.at(2, 1).sign(), 0 + 9 + 3 + 1u);
   EXPECT_EQ(ctx.at(1, 1).cls, 0);
-  EXPECT_EQ(ctx.at(1, 1).sign, 27 + 9 + 3 + 1u);
+  EXPECT_EQ(ctx.at(1, 1).sign(), 27 + 9 + 3 + 1u);
 }
 
 TEST(PcCoder, CbParentOfCrWeighsEightAndGivesTheSign) {
@@ -150,8 +150,8 @@ TEST(PcCoder, CbParentOfCrWeighsEightAndGivesTheSign) {
   luma[1 * w + 2] = -5;
   cb[1 * w + 2] = 1;
   const PcContext ctx(w, h, LcParent{}, PcLuma{luma.data(), w, cb.data()});
-  EXPECT_EQ(ctx.at(2, 1).cls, 2 * 4 - 2 + 1);     // S = 15 + 24, s = 13: bit width 4, next bit 1
-  EXPECT_EQ(ctx.at(2, 1).sign, 54 + 9 + 3 + 1u);  // Cb's sign (+), not luma's
+  EXPECT_EQ(ctx.at(2, 1).cls, 2 * 4 - 2 + 1);       // S = 15 + 24, s = 13: bit width 4, next bit 1
+  EXPECT_EQ(ctx.at(2, 1).sign(), 54 + 9 + 3 + 1u);  // Cb's sign (+), not luma's
 }
 
 TEST(PcCoder, LumaParentRoundTripsAndShortensCorrelatedChroma) {
