@@ -22,13 +22,24 @@ struct PcBit {
   // As BitModel::update with kMaxShift = max_shift (identical at 6): rate 1 / 2^min(bit_width(
   // count + 1), max_shift), the probability kept inside [kMinP, 2^15 - kMinP].
   void update(int bit) {
-    const int shift = std::min(int(std::bit_width(unsigned(count) + 1u)), int(max_shift));
+    const int ramp = int(std::bit_width(unsigned(count) + 1u));
     const std::uint32_t p = p0;
-    const std::uint32_t down = p - (p >> shift), up = p + ((kProbabilityOne - p) >> shift);
+    count = std::uint8_t(count + (count < 255 ? 1 : 0));
+    if (ramp >= max_shift) {
+      // Settled (the common case): at the final shift (5 or 6, kMinShift) a probability inside
+      // [kMinP, 2^15 - kMinP] stays inside, so no clamp is needed; the step is selected by a
+      // mask, not a branch, as in BitModel::update.
+      const std::uint32_t one = 0u - std::uint32_t(bit != 0);
+      p0 = std::uint16_t(p +
+                         ((((kProbabilityOne - p) >> max_shift) & ~one) | ((0u - (p >> max_shift)) & one)));
+      return;
+    }
+    const std::uint32_t down = p - (p >> ramp), up = p + ((kProbabilityOne - p) >> ramp);
     p0 = std::uint16_t(
         std::clamp<std::uint32_t>(bit ? down : up, BitModel::kMinP, kProbabilityOne - BitModel::kMinP));
-    count = std::uint8_t(count + (count < 255 ? 1 : 0));
   }
+  // The smallest final shift update() may skip the clamp at (a step of p >> 5 never crosses kMinP).
+  static constexpr int kMinShift = 5;
 };
 
 }  // namespace pupwave

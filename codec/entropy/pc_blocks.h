@@ -11,8 +11,11 @@
 // the residual of a prediction from luma (and Cb) (pc_cfl.h). Figures: bench/results/rd_issue20.md.
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <span>
 #include <utility>
 #include <vector>
@@ -40,6 +43,21 @@ struct PcCfl {
   int count = 0;
   int code[2] = {0, 0};
 };
+
+// The activity class of three times the activity s3 (PcContext::at): s = s3 / 3 rounded, its
+// bit length and next bit (s < 2: s itself), capped at the last class.
+constexpr int pc_activity_class(std::uint64_t s3) {
+  const std::uint64_t s = (2 * s3 + 3) / 6;
+  const int w = int(std::bit_width(s));
+  return std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
+}
+
+// pc_activity_class of the small activities, where most coefficients are: a load, not a division.
+inline constexpr std::array<std::uint8_t, 3 * 256> kPcActivityClasses = [] {
+  std::array<std::uint8_t, 3 * 256> t{};
+  for (std::size_t k = 0; k < t.size(); ++k) t[k] = std::uint8_t(pc_activity_class(k));
+  return t;
+}();
 
 // A block's contexts from outside it: the parent band and, for chroma, the luma parent (pc_visit
 // adds the causal in-band neighbours as the codeword goes). The coder's weights are 1 and 1; the
@@ -75,7 +93,8 @@ class PcContext {
     PcCtx at(std::size_t x, std::uint64_t in, int sign_w, int sign_n) const {
       std::uint64_t s3 = in_weight * in;  // three times the activity (P's neighbours count a third)
       PcCtx c;
-      c.neighbours = std::size_t(9 * (sign_w + 1) + 3 * (sign_n + 1));
+      c.sign_w = sign_w;
+      c.sign_n = sign_n;
       if (parent) {
         const std::size_t px = cols[2 * x], nx = cols[2 * x + 1];
         s3 += parent_weight * parent[px] + parent[nx] + side[px] + side[nx];
@@ -89,9 +108,7 @@ class PcContext {
           c.luma = cb + x;
         }
       }
-      const std::uint64_t s = (2 * s3 + 3) / 6;  // s3 / 3 rounded
-      const int w = int(std::bit_width(s));
-      c.cls = std::min(s < 2 ? int(s) : 2 * w - 2 + int((s >> (w - 2)) & 1u), kCoefClasses - 1);
+      c.cls = s3 < kPcActivityClasses.size() ? kPcActivityClasses[s3] : pc_activity_class(s3);
       return c;
     }
   };
@@ -111,7 +128,8 @@ class PcContext {
     }
     return r;
   }
-  static std::uint64_t magnitude(std::int32_t v) { return std::uint64_t(v < 0 ? -std::int64_t(v) : v); }
+  // Indices stay within +-2^kCoefMaxBits, so abs cannot overflow.
+  static std::uint64_t magnitude(std::int32_t v) { return std::uint32_t(std::abs(v)); }
   static int sign_of(std::int32_t v) { return v == 0 ? 0 : (v < 0 ? -1 : 1); }
 
  private:

@@ -29,14 +29,14 @@ inline constexpr int kPcSignContexts = 81;
 // most of them, never load the parent's and the luma parent's signs.
 struct PcCtx {
   int cls = 0;
-  std::size_t neighbours = 9 + 3;       // 9 (sign of W + 1) + 3 (sign of N + 1)
+  int sign_w = 0, sign_n = 0;           // the signs of W and N
   const std::int8_t* parent = nullptr;  // the parent's sign; null: none (0)
   const std::int32_t* luma = nullptr;   // the luma parent's index (Cb's for Cr); null: none
   // 27 (sign of the luma parent + 1) + 9 (W's + 1) + 3 (N's + 1) + (the parent's + 1), in [0, 81).
   std::size_t sign() const {
     const int ps = parent ? *parent : 0;
     const int ls = luma ? int(*luma > 0) - int(*luma < 0) : 0;
-    return std::size_t(27 * (ls + 1) + ps + 1) + neighbours;
+    return std::size_t(27 * (ls + 1) + 9 * (sign_w + 1) + 3 * (sign_n + 1) + ps + 1);
   }
 };
 inline std::size_t coef_sign_index(const PcCtx& c) { return c.sign(); }
@@ -51,6 +51,7 @@ struct PcModels {
 
   // Class 0's unary models adapt faster (pc_bit.h).
   static constexpr int kSilentShift = 5;
+  static_assert(kSilentShift >= PcBit::kMinShift && BitModel::kMaxShift >= PcBit::kMinShift);
   PcModels() {
     for (PcBit& b : unary[0]) b.max_shift = kSilentShift;
   }
