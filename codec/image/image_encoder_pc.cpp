@@ -4,8 +4,11 @@
 // with greedy RDOQ against the models' own costs, into one set of index planes. Rate targets
 // search the base step with whole passes, each step where a rate model (codec/rate/
 // pc_rate_model.h: per-band magnitude histograms) calibrated by the passes so far meets the
-// target: about 2 passes a search where a plain secant took 3-5. A --bpp pass whose coarser
-// groups already project it out of the byte window stops there (a calibration only).
+// target. A --bpp pass is steered as it goes: before each band of its two finest resolutions the
+// bands left take the step that projects the file into the byte window (within kSteerReach), or
+// the pass stops there when it cannot land (a calibration only); a pass that ends a little off is
+// trimmed (a set of bands no other band reads coded again at a step of their own). About 1.5
+// passes a search (bench/results/rd_issue20.md), where a plain secant took 3-5.
 #include "codec/image/image_encoder_pc.h"
 
 #include <algorithm>
@@ -27,6 +30,7 @@
 #include "codec/image/lc_parent.h"
 #include "codec/image/pc_decoder.h"
 #include "codec/rate/pc_rate_model.h"
+#include "codec/rate/quantizer.h"
 #include "transforms/separable.h"
 
 namespace pupwave {
@@ -53,11 +57,11 @@ constexpr double kBracketMargin = 0.02;
 constexpr double kBytesResidualSlope = -0.04;
 // A bracket narrower than this in log step (a sixth of the byte window's width) ends the search.
 constexpr double kNarrowestBracket = 5e-4;
-// A trim (trim()) moves the steps of a few finest bands by at most this factor (log), in at
-// most kTrimTries codings of those bands, when they hold kTrimShare of the bytes at least.
-constexpr double kTrimReach = 0.1;
+// A trim (trim()) moves the steps of a set of bands by at most kTrimReach (log), in at most
+// kTrimTries codings of those bands, when they hold kTrimShare of the bytes at least.
+constexpr double kTrimReach = 0.15;
+constexpr double kTrimShare = 0.03;
 constexpr int kTrimTries = 3;
-constexpr double kTrimShare = 0.1;
 constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings) before none
 // The coarsest base step a search tries, times the peak: coarse enough that the lowest PSNR
 // targets (20 dB on the test photographs, where 4 x the peak still codes the coarse band at
@@ -65,14 +69,21 @@ constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings
 constexpr double kCoarsestStep = 64.0;
 // A band's model is scaled to its real bytes when it estimates at least this many.
 constexpr double kFitBytes = 16.0;
-// A --bpp pass may be abandoned before each of its last kAbandonGroups groups (the two finest
-// resolutions' luma, Cb and Cr groups) when the bytes of the groups coded, with the model of the
-// rest scaled as they are, project it out of the byte window by more than kAbandonMargin (log)
-// over the share of the samples coded (the projection's error falls as the share grows: at most
-// 6% at a quarter, 3% at a half on the training photographs, where the margin was chosen).
+// A --bpp pass may be abandoned before each band of its last kAbandonGroups groups (the two finest
+// resolutions' luma, Cb and Cr groups) when the bytes of the bands coded, with the model of the
+// rest scaled as they are (and steered, below), project it out of the byte window by more than kAbandonMargin
+// (log) over the share of the samples coded (the projection's error falls as the share grows: at most 6% at a
+// quarter, 3% at a half on the training photographs, where the margin was chosen).
 constexpr int kAbandonGroups = 6;
 constexpr double kAbandonMargin = 0.02;
 constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whole
+// Before a quarter of the samples are coded, the margin is this instead (an abandon costs little).
+constexpr double kEarlyMargin = 0.01;
+// At those checkpoints (before each band of those groups) the bands left may be steered by up to
+// this factor (log) in step: a pass that lands within the byte window saves a second one, while
+// steps that move further from the others' cost rate-distortion (0.075 against 0.05 to 0.25
+// measured on the training, test and held-out photographs: bench/results/rd_issue20.md).
+constexpr double kSteerReach = 0.075;
 
 // One coding pass: every block's entry and codeword (its indices stay in the coder's planes
 // until the next pass).
@@ -81,11 +92,20 @@ struct Pass {
   std::vector<float> steps;
   std::vector<BlockEntry> entries;
   std::vector<std::vector<std::uint8_t>> words;
-  std::vector<PcCfl> cfl;  // per block: its chroma-from-luma weights (none for most)
-  std::size_t bytes = 0;   // the whole file (an abandoned pass: the projection's)
-  double score = 0.0;      // log bytes or PSNR, by the search
-  int groups = 0;          // pc groups coded (all of them unless abandoned)
-  bool abandoned = false;  // stopped before its finest groups: no stream, only a calibration
+  std::vector<PcCfl> cfl;   // per block: its chroma-from-luma weights (none for most)
+  std::size_t bytes = 0;    // the whole file (an abandoned pass: the projection's)
+  double score = 0.0;       // log bytes or PSNR, by the search
+  std::vector<bool> coded;  // per band (as shift): coded (all of them unless abandoned)
+  bool abandoned = false;   // stopped before its finest groups: no stream, only a calibration
+  // Per band (component x bands + band, as the steps): its log step's offset from t, non-zero
+  // where the pass was steered (Coder::checkpoint moved the finest groups' steps).
+  std::vector<double> shift;
+  double band_t(std::size_t k) const { return t + shift[k]; }
+  // The log steps a plain pass would need to be finer (lo) or coarser (hi) than this one in
+  // every band: t for an unsteered pass, the bracket ends a steered one stands for.
+  double finest_t() const { return t + std::min(0.0, *std::min_element(shift.begin(), shift.end())); }
+  double coarsest_t() const { return t + std::max(0.0, *std::max_element(shift.begin(), shift.end())); }
+  bool steered() const { return finest_t() != coarsest_t(); }
 };
 
 // The passes' shared state: one set of index planes (Mallat layout per component), which hold
@@ -101,9 +121,11 @@ struct Coder {
   // without, 2: with the prediction, by pc_cfl_pays' estimate): later passes keep it.
   std::vector<std::int8_t> choice;
   // Asked before each of the last groups of a pass (the finest resolutions, most of the samples):
-  // true abandons the pass there (its projection set in the pass), which a search then takes as
-  // a calibration only. None for --step and --psnr.
-  std::function<bool(Pass&, int)> abandon;
+  // it may move the steps of the groups left (plan.header.steps, the pass's steps and shift) to
+  // steer the pass into the byte window, or return true to abandon the pass there (its
+  // projection set in the pass), which a search then takes as a calibration only. None for
+  // --step and --psnr.
+  std::function<bool(Pass&)> checkpoint;
 };
 
 // The Cb block of Cr block i (same band, same place).
@@ -233,6 +255,7 @@ Pass code_pass(Coder& coder, double t) {
   Pass p;
   p.t = t;
   p.steps = plan.header.steps;
+  p.shift.assign(p.steps.size(), 0.0);
   p.entries.resize(plan.blocks.size());
   p.words.resize(plan.blocks.size());
   p.cfl.resize(plan.blocks.size());
@@ -241,31 +264,53 @@ Pass code_pass(Coder& coder, double t) {
     coder.q.assign(plan.header.channels,
                    std::vector<std::int32_t>(plan.header.dims[0] * plan.header.dims[1]));
   coder.held = std::nan("");
+  p.coded.assign(p.steps.size(), false);
   std::atomic<bool> out_of_range{false};
   const int groups = kPcGroupsPerResolution * (plan.header.levels + 1);
+  const std::size_t per = plan.bands.size();
   std::size_t coded = 0;  // samples
   for (int g = 0; g < groups; ++g) {
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < plan.blocks.size(); ++i)
       if (pc_group(plan.blocks[i], plan.header.channels) == g) ids.push_back(i);
     if (ids.empty()) continue;
-    if (coder.abandon && g >= groups - kAbandonGroups && coder.abandon(p, g)) {
-      p.abandoned = true;
-      --passes_coded;
-      abandoned_share += double(coded) / double(plan.samples);
-      return p;
+    // The finest groups go band by band (a group's bands are independent), each after a
+    // checkpoint, so that a steer sees the real bytes of as much of the pass as it can.
+    const bool checked = coder.checkpoint && g >= groups - kAbandonGroups;
+    std::vector<std::vector<std::size_t>> parts;
+    for (std::size_t i : ids) {
+      const std::size_t k = plan.blocks[i].component * per + plan.blocks[i].band;
+      auto part = std::find_if(parts.begin(), parts.end(), [&](const auto& q) {
+        return plan.blocks[q[0]].component * per + plan.blocks[q[0]].band == k;
+      });
+      if (!checked || part == parts.end())
+        parts.push_back({i});
+      else
+        part->push_back(i);
     }
-    plan.executor->run(ids.size(), [&](std::size_t k) {
-      if (out_of_range) return;
-      try {
-        code_block(plan, ids[k], coder.q, p, coder.choice[ids[k]]);
-      } catch (const IndexRangeError&) {
-        out_of_range = true;
+    if (!checked) parts = {ids};
+    for (const std::vector<std::size_t>& part : parts) {
+      if (checked && coder.checkpoint(p)) {
+        p.abandoned = true;
+        --passes_coded;
+        abandoned_share += double(coded) / double(plan.samples);
+        return p;
       }
-    });
-    if (out_of_range) throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
-    for (std::size_t i : ids) coded += plan.blocks[i].count();
-    p.groups = g + 1;
+      plan.executor->run(part.size(), [&](std::size_t k) {
+        if (out_of_range) return;
+        try {
+          code_block(plan, part[k], coder.q, p, coder.choice[part[k]]);
+        } catch (const IndexRangeError&) {
+          out_of_range = true;
+        }
+      });
+      if (out_of_range)
+        throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
+      for (std::size_t i : part) {
+        coded += plan.blocks[i].count();
+        p.coded[plan.blocks[i].component * per + plan.blocks[i].band] = true;
+      }
+    }
   }
   coder.held = t;
   std::size_t data = 0;
@@ -401,40 +446,42 @@ double solve_model(const Calibration<Model>& cal, double aim, double lo, double 
   return 0.5 * (lo + hi);
 }
 
-// The finest detail bands with the most bytes in pass p, up to a quarter of the samples (the
-// luma's three of a grey one; of an RGB image one band in all three components, since a luma or
-// Cb band's Cb / Cr blocks have it as a parent (pc_luma) and are coded again with it): the bands
-// a trim codes again.
+// The bands a trim codes again: of the sets that no band outside reads, a detail band with the finer
+// bands of its orientation (its children) and the same bands of the components that take them as
+// their luma / Cb parent (pc_luma: Cb and Cr of luma's, Cr of Cb's), the one with the most bytes
+// in pass p among those of at most a third of the samples.
 std::vector<std::size_t> trim_bands(const ImagePlan& plan, const Pass& p) {
-  const std::size_t per = plan.bands.size();
-  std::vector<double> bytes(plan.header.channels * per, 0.0);
+  const std::size_t per = plan.bands.size(), channels = plan.header.channels;
+  std::vector<double> bytes(channels * per, 0.0);
   for (std::size_t i = 0; i < plan.blocks.size(); ++i)
     bytes[plan.blocks[i].component * per + plan.blocks[i].band] += double(p.words[i].size());
-  std::vector<std::size_t> finest;
-  for (std::size_t k = 0; k < bytes.size(); ++k)
-    if (plan.bands[k % per].level == 1 && plan.bands[k % per].orientation != 0) finest.push_back(k);
-  std::sort(finest.begin(), finest.end(), [&](std::size_t a, std::size_t b) { return bytes[a] > bytes[b]; });
-  std::vector<std::size_t> chosen;
-  std::size_t samples = 0;
-  for (std::size_t k : finest) {
-    std::vector<std::size_t> with = {k};  // k and the bands that take it as a luma / Cb parent
-    if (plan.header.channels >= 3)        // pc_has_luma: components 1 and 2
-      for (std::size_t c = k / per + 1; c < 3; ++c) with.push_back(c * per + k % per);
-    std::size_t n = 0;
-    for (std::size_t b : with)
-      if (std::find(chosen.begin(), chosen.end(), b) == chosen.end()) n += plan.bands[b % per].count();
-    if (samples + n > plan.samples / 4 + 1) break;
-    for (std::size_t b : with)
-      if (std::find(chosen.begin(), chosen.end(), b) == chosen.end()) chosen.push_back(b);
-    samples += n;
+  std::vector<std::size_t> best;
+  double most = -1.0;
+  for (std::size_t c0 = 0; c0 < channels; ++c0) {
+    const std::size_t c1 = pc_has_luma(c0 + 1, channels) ? 3 : c0 + 1;  // the components reading c0's
+    for (unsigned o = 1; o < (1u << 2); ++o)
+      for (int level = 1; level <= plan.header.levels; ++level) {
+        std::vector<std::size_t> set;
+        std::size_t samples = 0;
+        double sum = 0.0;
+        for (std::size_t c = c0; c < c1; ++c)
+          for (std::size_t b = 0; b < per; ++b)
+            if (plan.bands[b].orientation == o && plan.bands[b].level <= level) {
+              set.push_back(c * per + b);
+              samples += plan.bands[b].count();
+              sum += bytes[c * per + b];
+            }
+        if (set.empty() || 3 * samples > plan.samples) break;  // deeper sets only grow
+        if (sum > most) most = sum, best = std::move(set);
+      }
   }
-  return chosen;
+  return best;
 }
 
 // Pass p, which missed the byte window by a little, brought into it by coding again only the
-// blocks of a few finest bands (trim_bands: no band is their parent, so nothing else changes)
+// blocks of a set of bands (trim_bands: no band outside reads them, so nothing else changes)
 // at a step of their own, k x their step in p: a 1D search of log k, its first guess from the
-// bands' share of the bytes. About a quarter of a pass each; the steps stay within kTrimReach (log) of
+// bands' share of the bytes. At most a third of a pass each; the steps stay within kTrimReach (log) of
 // the others', so the allocation barely moves. nullopt when it does not land.
 std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
   ImagePlan& plan = coder.plan;
@@ -519,7 +566,8 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
       continue;
     }
     refit(*p);  // the model itself calibrated by the pass, where it can be
-    cal.seen.emplace_back(p->t, p->score);
+    // A steered pass has no one step: refit has fitted the model to it (its residual is none).
+    cal.seen.emplace_back(p->t, p->steered() ? model(p->t) : p->score);
     const bool fits = !p->abandoned && ok(p->score);
     if (fits && (!best || std::abs(p->score - goal) < std::abs(best->score - goal))) best = *p;
     if (fits && close(p->score)) return best;
@@ -535,10 +583,10 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     last.score = p->score;
     if (p->abandoned)  // a projection, not bytes: a calibration, never a bracket's end
       ;
-    else if (p->score > goal)
-      fine = std::move(p);
+    else if (p->score > goal)  // a steered pass: a plain one finer in every band is too
+      fine = std::move(p), fine->t = fine->finest_t();
     else
-      coarse = std::move(p);
+      coarse = std::move(p), coarse->t = coarse->coarsest_t();
     // A miss at the end of the step range: nothing can fit.
     const std::optional<Pass>& miss = below ? fine : coarse;
     if (!best && miss && (below ? miss->t >= coarsest : miss->t <= finest)) return best;
@@ -625,16 +673,12 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     // ratios differ, and their mix moves with the step); the bands it did not code (an abandoned
     // pass's finest) take their component's ratio of real to modelled bytes in its finest coded
     // level, which tracks theirs.
-    const auto fit = [&](const Pass& p, int groups, std::vector<double>& s, std::vector<double>& f) {
+    const auto fit = [&](const Pass& p, std::vector<double>& s, std::vector<double>& f) {
       const std::size_t per = plan.bands.size();
       std::vector<double> real(s.size(), 0.0);
-      std::vector<bool> coded(s.size(), false);
       for (std::size_t i = 0; i < plan.blocks.size(); ++i)
-        if (pc_group(plan.blocks[i], plan.header.channels) < groups) {
-          const std::size_t k = plan.blocks[i].component * per + plan.blocks[i].band;
-          real[k] += double(p.words[i].size());
-          coded[k] = true;
-        }
+        real[plan.blocks[i].component * per + plan.blocks[i].band] += double(p.words[i].size());
+      const std::vector<bool>& coded = p.coded;
       std::vector<int> level(plan.header.channels, 1 << 20);  // per component: its finest coded level
       for (std::size_t k = 0; k < s.size(); ++k)
         if (coded[k] && plan.bands[k % per].orientation != 0 && s[k] > 0.0)
@@ -644,11 +688,11 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
         if (!coded[k] || plan.bands[k % per].level != level[k / per] || plan.bands[k % per].orientation == 0)
           continue;
         got[k / per] += real[k];
-        modelled[k / per] += s[k] * estimate(k, p.t);
+        modelled[k / per] += s[k] * estimate(k, p.band_t(k));
       }
       for (std::size_t k = 0; k < s.size(); ++k) {
         if (coded[k]) {
-          const double e = estimate(k, p.t);
+          const double e = estimate(k, p.band_t(k));
           s[k] = e >= kFitBytes ? real[k] / e : 0.0;
           f[k] = s[k] == 0.0 ? real[k] : 0.0;
         } else if (modelled[k / per] >= kFitBytes) {
@@ -662,53 +706,95 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
         for (const auto& w : p.words) data += w.size();
         container = double(p.bytes - data);
       }
-      fit(p, p.abandoned ? p.groups : kPcGroupsPerResolution * (plan.header.levels + 1), scale, fixed);
+      fit(p, scale, fixed);
     };
-    // The container of pass p with the blocks past its first `groups` groups at their bands'
+    // The container of pass p with the blocks of the bands it has not coded at their bands'
     // estimates s, f (the index's size moves with the blocks' lengths).
-    const auto container_of = [&](const Pass& p, int groups, const std::vector<double>& s,
-                                  const std::vector<double>& f) {
+    const auto container_of = [&](const Pass& p, const std::vector<double>& s, const std::vector<double>& f) {
+      const std::size_t per = plan.bands.size();
       std::vector<BlockEntry> entries = p.entries;
       int planes = 0;
       for (std::size_t i = 0; i < plan.blocks.size(); ++i)
-        if (pc_group(plan.blocks[i], plan.header.channels) < groups)
+        if (p.coded[plan.blocks[i].component * per + plan.blocks[i].band])
           planes = std::max(planes, entries[i].planes);
       for (std::size_t i = 0; i < plan.blocks.size(); ++i) {
         const CodeBlock& b = plan.blocks[i];
-        if (pc_group(b, plan.header.channels) < groups) continue;
-        const std::size_t k = b.component * plan.bands.size() + b.band;
+        const std::size_t k = b.component * per + b.band;
+        if (p.coded[k]) continue;
         const double share = double(b.count()) / double(plan.bands[b.band].count());
         const double length = share * (s[k] > 0.0 ? s[k] * estimate(k, p.t) : f[k]);
         entries[i] = {length >= 1.0 ? planes : 0, length >= 1.0 ? 1 : 0, std::uint32_t(std::lround(length))};
       }
       return double(container_size(plan.header, encode_index(entries).size(), 0));
     };
-    // Pass p abandoned before group `groups` when its projection misses the window by more than
-    // the margin (its projected bytes then stand for its own, and the model of the rest is fitted
-    // by refit as here).
+    // Pass p's projected log bytes with the bands it has not coded at log step p.t + k: the
+    // bands coded with their real bytes, the rest by the model fitted to them (fit), the
+    // container with the rest at p.t (its index barely moves with k).
+    const auto projection = [&](const Pass& p, std::vector<double>& s, std::vector<double>& f, double& c) {
+      s = scale, f = fixed;
+      fit(p, s, f);
+      c = container_of(p, s, f);
+      double coded = c;
+      for (std::size_t i = 0; i < plan.blocks.size(); ++i) coded += double(p.words[i].size());
+      return [&, coded](double k) {
+        double total = coded;
+        for (std::size_t b = 0; b < s.size(); ++b)
+          if (!p.coded[b]) total += s[b] > 0.0 ? s[b] * estimate(b, p.t + k) : f[b];
+        return std::log(total);
+      };
+    };
+    // Pass p, before each band of its finest groups, steered into the byte window: the bands left
+    // take the log step p.t + k (|k| <= kSteerReach) that projects the file to the aim, so a pass
+    // lands without a second whole pass when the model's first step was a little off. Abandoned
+    // instead when even that projection misses the window by more than the margin (its projected
+    // bytes at k = 0 then stand for its own, and the model of the rest is fitted by refit as here).
+    const double aim = goal - 0.5 * tolerance;
     int abandons_left = kAbandonPasses;
-    coder.abandon = [&](Pass& p, int groups) {
-      std::vector<double> s = scale, f = fixed;
-      fit(p, groups, s, f);
-      const double c = container_of(p, groups, s, f), projected = bytes(p.t, s, f, c);
-      const double score = std::log(projected);
+    coder.checkpoint = [&](Pass& p) {
+      std::vector<double> s, f;
+      double c = 0.0;
+      const auto projected = projection(p, s, f, c);
+      const double at0 = projected(0.0);
+      double k = 0.0;
+      if (at0 > goal || at0 < goal - tolerance) {    // inside the window: the steps stay
+        double lo = -kSteerReach, hi = kSteerReach;  // projected falls as k grows
+        for (int i = 0; i < 40 && hi - lo > 1e-4; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (projected(mid) > aim ? lo : hi) = mid;
+        }
+        k = 0.5 * (lo + hi);
+        // Bands that barely move the bytes (nearly empty ones) are not worth moving off the steps.
+        if (std::abs(projected(k) - at0) < 0.25 * std::abs(at0 - aim)) k = 0.0;
+      }
+      const double score = projected(k);
       std::size_t n = 0;
       for (const CodeBlock& b : plan.blocks)
-        if (pc_group(b, plan.header.channels) < groups) n += b.count();
-      const double margin = kAbandonMargin * double(plan.samples) / double(n);
-      if (abandons_left == 0 || (score <= goal + margin && score >= goal - tolerance - margin)) return false;
-      --abandons_left;
-      container = c;
-      p.groups = groups;
-      p.bytes = std::size_t(projected);
-      return true;
+        if (p.coded[b.component * plan.bands.size() + b.band]) n += b.count();
+      // Before a quarter of the samples are coded an abandon costs little, and a pass that even
+      // steered will miss by more than kEarlyMargin most likely needs another pass anyway.
+      const double margin =
+          4 * n < plan.samples ? kEarlyMargin : kAbandonMargin * double(plan.samples) / double(n);
+      if (abandons_left > 0 && (score > goal + margin || score < goal - tolerance - margin)) {
+        --abandons_left;
+        container = c;
+        p.bytes = std::size_t(std::exp(at0));
+        return true;
+      }
+      if (k == 0.0) return false;
+      const std::vector<float> steered = subband_steps(std::exp(p.t + k), plan.norms, plan.weights);
+      for (std::size_t b = 0; b < s.size(); ++b)
+        if (!p.coded[b]) {
+          p.shift[b] = k;
+          p.steps[b] = plan.header.steps[b] = steered[b];
+        }
+      return false;
     };
     auto best = search(
         coder, goal, tolerance, true, kSizeSlope, finest, coarsest,
         [](const Pass& p) { return std::log(double(p.bytes)); }, log_bytes, 0.0, kBytesResidualSlope, refit);
     if (best) return result_of(coder, *best, std::nullopt);
     // Under the smallest stream (header and steps alone): that stream, as the other coders do.
-    coder.abandon = nullptr;  // the stream itself
+    coder.checkpoint = nullptr;  // the stream itself
     Pass smallest = code_pass(coder, coarsest);
     return result_of(coder, smallest, std::nullopt);
   }

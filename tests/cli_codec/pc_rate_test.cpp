@@ -64,7 +64,10 @@ TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
 // samples coded by passes abandoned before their finest groups, and trims (a quarter of the
 // samples each). Session 13 measured 1.75 passes + 0.21 abandoned + 0.50 trims a search (2.08
 // passes' worth) where the per-level prior scales without abandoning took 2.25 + 0.40 trims (2.35).
-TEST(PcRate, SearchesCostUnderTwoAndAQuarterPasses) {
+// The steered search (codec/image/image_encoder_pc.cpp) lands most budgets with one whole pass:
+// 1.46 pass-equivalents on these photographs, a trim counted as the third of the samples it codes
+// at most (the search before the steering took 2.1).
+TEST(PcRate, SearchesCostUnderOneAndSixTenthsPasses) {
   int passes = 0, trims = 0, searches = 0;
   double abandoned = 0.0;
   for (const char* name : kPhotos) {
@@ -80,8 +83,9 @@ TEST(PcRate, SearchesCostUnderTwoAndAQuarterPasses) {
     }
   }
   EXPECT_GT(abandoned, 0.0);  // the abandoning path is exercised
-  EXPECT_LE(double(passes) / searches, 2.0);
-  EXPECT_LE((double(passes) + abandoned + 0.25 * double(trims)) / searches, 2.25);
+  EXPECT_GT(trims, 0);        // and the trims
+  EXPECT_LE(double(passes) / searches, 1.25);
+  EXPECT_LE((double(passes) + abandoned + double(trims) / 3.0) / searches, 1.6);
 }
 
 TEST(PcRate, PsnrTargetsTakeAboutTwoPasses) {

@@ -72,8 +72,8 @@ TEST(GoldenStream, PcStepStreamsAreUnchanged) {
 TEST(GoldenStream, PcStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97",
                        EntropyCoder::pc),
-            2323365520u);  // version 6; session 13's encoder: pc_cfl_pays' choice with pcsearch's search
-                           // (abandoned passes, density-shaped model) lands at another step
+            139638909u);  // version 6; session 14's encoder: the steered search lands with the finest
+                          // bands' steps moved from the base step's (the format is unchanged)
 }
 
 }  // namespace
