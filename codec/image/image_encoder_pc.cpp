@@ -59,7 +59,7 @@ constexpr double kBytesResidualSlope = -0.04;
 constexpr double kNarrowestBracket = 5e-4;
 // A trim (trim()) moves the steps of a set of bands by at most kTrimReach (log), in at most
 // kTrimTries codings of those bands, when they hold kTrimShare of the bytes at least.
-constexpr double kTrimReach = 0.15;
+constexpr double kTrimReach = 0.125;
 constexpr double kTrimShare = 0.03;
 constexpr int kTrimTries = 3;
 constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings) before none
@@ -69,20 +69,18 @@ constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings
 constexpr double kCoarsestStep = 64.0;
 // A band's model is scaled to its real bytes when it estimates at least this many.
 constexpr double kFitBytes = 16.0;
-// A --bpp pass may be abandoned before each band of its last kAbandonGroups groups (the two finest
-// resolutions' luma, Cb and Cr groups) when the bytes of the bands coded, with the model of the
-// rest scaled as they are (and steered, below), project it out of the byte window by more than kAbandonMargin
-// (log) over the share of the samples coded (the projection's error falls as the share grows: at most 6% at a
-// quarter, 3% at a half on the training photographs, where the margin was chosen).
+// A --bpp pass is checked before each band of its last kAbandonGroups groups (the two finest
+// resolutions' luma, Cb and Cr groups): the bytes of the bands coded, with the model of the rest
+// scaled as they are, project its file. Before a quarter of the samples are coded, a pass whose
+// projection, even steered, misses the byte window by more than kEarlyMargin (log) is abandoned
+// (at most kAbandonPasses in a search).
 constexpr int kAbandonGroups = 6;
-constexpr double kAbandonMargin = 0.02;
-constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whole
-// Before a quarter of the samples are coded, the margin is this instead (an abandon costs little).
 constexpr double kEarlyMargin = 0.01;
-// At those checkpoints (before each band of those groups) the bands left may be steered by up to
-// this factor (log) in step: a pass that lands within the byte window saves a second one, while
-// steps that move further from the others' cost rate-distortion (0.075 against 0.05 to 0.25
-// measured on the training, test and held-out photographs: bench/results/rd_issue20.md).
+constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whole
+// At those checkpoints the bands left may be steered by up to this factor (log) in step: a pass
+// that lands within the byte window saves a second one, while steps that move further from the
+// others' cost rate-distortion (0.075 against 0.05 to 0.25 measured on the training, test and
+// held-out photographs: bench/results/rd_issue20.md).
 constexpr double kSteerReach = 0.075;
 
 // One coding pass: every block's entry and codeword (its indices stay in the coder's planes
@@ -770,11 +768,10 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
       std::size_t n = 0;
       for (const CodeBlock& b : plan.blocks)
         if (p.coded[b.component * plan.bands.size() + b.band]) n += b.count();
-      // Before a quarter of the samples are coded an abandon costs little, and a pass that even
-      // steered will miss by more than kEarlyMargin most likely needs another pass anyway.
-      const double margin =
-          4 * n < plan.samples ? kEarlyMargin : kAbandonMargin * double(plan.samples) / double(n);
-      if (abandons_left > 0 && (score > goal + margin || score < goal - tolerance - margin)) {
+      // Before a quarter of the samples are coded an abandon costs little; later a pass is
+      // finished, since a trim brings a miss of a few percent in for a third of a pass at most.
+      if (abandons_left > 0 && 4 * n < plan.samples &&
+          (score > goal + kEarlyMargin || score < goal - tolerance - kEarlyMargin)) {
         --abandons_left;
         container = c;
         p.bytes = std::size_t(std::exp(at0));
