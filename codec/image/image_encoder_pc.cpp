@@ -744,8 +744,9 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     // Pass p, before each band of its finest groups, steered into the byte window: the bands left
     // take the log step p.t + k (|k| <= kSteerReach) that projects the file to the aim, so a pass
     // lands without a second whole pass when the model's first step was a little off. Abandoned
-    // instead when even that projection misses the window by more than the margin (its projected
-    // bytes at k = 0 then stand for its own, and the model of the rest is fitted by refit as here).
+    // instead, before a quarter of the samples, when even that projection misses the window by
+    // more than kEarlyMargin (its projected bytes at k = 0 then stand for its own, and the model
+    // of the rest is fitted by refit as here).
     const double aim = goal - 0.5 * tolerance;
     int abandons_left = kAbandonPasses;
     coder.checkpoint = [&](Pass& p) {
