@@ -275,18 +275,15 @@ Pass code_pass(Coder& coder, double t) {
     // The finest groups go band by band (a group's bands are independent), each after a
     // checkpoint, so that a steer sees the real bytes of as much of the pass as it can.
     const bool checked = coder.checkpoint && g >= groups - kAbandonGroups;
+    const auto band_of = [&](std::size_t i) { return plan.blocks[i].component * per + plan.blocks[i].band; };
     std::vector<std::vector<std::size_t>> parts;
-    for (std::size_t i : ids) {
-      const std::size_t k = plan.blocks[i].component * per + plan.blocks[i].band;
-      auto part = std::find_if(parts.begin(), parts.end(), [&](const auto& q) {
-        return plan.blocks[q[0]].component * per + plan.blocks[q[0]].band == k;
-      });
-      if (!checked || part == parts.end())
-        parts.push_back({i});
-      else
-        part->push_back(i);
-    }
-    if (!checked) parts = {ids};
+    if (!checked)
+      parts = {ids};
+    else
+      for (std::size_t i : ids) {  // a group's blocks come band by band (plan order)
+        if (parts.empty() || band_of(parts.back().front()) != band_of(i)) parts.emplace_back();
+        parts.back().push_back(i);
+      }
     for (const std::vector<std::size_t>& part : parts) {
       if (checked && coder.checkpoint(p)) {
         p.abandoned = true;
@@ -306,7 +303,7 @@ Pass code_pass(Coder& coder, double t) {
         throw IndexRangeError("quantization index beyond the pc coder's range (step too fine)");
       for (std::size_t i : part) {
         coded += plan.blocks[i].count();
-        p.coded[plan.blocks[i].component * per + plan.blocks[i].band] = true;
+        p.coded[band_of(i)] = true;
       }
     }
   }
@@ -661,9 +658,15 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
     const auto estimate = [&](std::size_t k, double t) {
       return model.coded_bits_of_band(k, std::exp(t)) / 8.0;
     };
+    // Band k's bytes at log step t: its estimate times its scale s, or its real bytes f where the
+    // model gives almost nothing.
+    const auto band_bytes = [&](std::size_t k, double t, const std::vector<double>& s,
+                                const std::vector<double>& f) {
+      return s[k] > 0.0 ? s[k] * estimate(k, t) : f[k];
+    };
     const auto bytes = [&](double t, const std::vector<double>& s, const std::vector<double>& f, double c) {
       double total = c;
-      for (std::size_t k = 0; k < s.size(); ++k) total += s[k] > 0.0 ? s[k] * estimate(k, t) : f[k];
+      for (std::size_t k = 0; k < s.size(); ++k) total += band_bytes(k, t, s, f);
       return total;
     };
     const auto log_bytes = [&](double t) { return std::log(bytes(t, scale, fixed, container)); };
@@ -720,7 +723,7 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
         const std::size_t k = b.component * per + b.band;
         if (p.coded[k]) continue;
         const double share = double(b.count()) / double(plan.bands[b.band].count());
-        const double length = share * (s[k] > 0.0 ? s[k] * estimate(k, p.t) : f[k]);
+        const double length = share * band_bytes(k, p.t, s, f);
         entries[i] = {length >= 1.0 ? planes : 0, length >= 1.0 ? 1 : 0, std::uint32_t(std::lround(length))};
       }
       return double(container_size(plan.header, encode_index(entries).size(), 0));
@@ -737,7 +740,7 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
       return [&, coded](double k) {
         double total = coded;
         for (std::size_t b = 0; b < s.size(); ++b)
-          if (!p.coded[b]) total += s[b] > 0.0 ? s[b] * estimate(b, p.t + k) : f[b];
+          if (!p.coded[b]) total += band_bytes(b, p.t + k, s, f);
         return std::log(total);
       };
     };
