@@ -5,8 +5,12 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <memory>
 #include <random>
 #include <stdexcept>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "tools/bench/progress.h"
 
@@ -25,6 +29,12 @@ std::string extension_for(const std::string& head) {
   auto starts = [&](const char* magic, std::size_t n) {
     return head.size() >= n && std::memcmp(head.data(), magic, n) == 0;
   };
+  if (starts("PUPW", 4) || starts("PUPV", 4)) return ".pw";
+  if (starts("PWMS", 4)) return ".pwm";
+  if (starts(" BDV", 4)) return ".vdb";  // OpenVDB's magic, the int64 0x56444220 little endian
+  if (starts("ply", 3)) return ".ply";
+  if (starts("OFF", 3)) return ".off";
+  if (starts("v ", 2) || starts("# ", 2) || starts("o ", 2) || starts("mtllib", 6)) return ".obj";
   if (starts("\x89PNG", 4)) return ".png";
   if (starts("\x76\x2f\x31\x01", 4)) return ".exr";
   if (starts("II*\0", 4) || starts("MM\0*", 4)) return ".tif";
@@ -35,6 +45,11 @@ std::string extension_for(const std::string& head) {
 }
 
 }  // namespace
+
+std::ostream& Verbosity::out() const {
+  static std::ostream sink(nullptr);  // no buffer: every write is dropped
+  return quiet ? sink : (to_stderr ? std::cerr : std::cout);
+}
 
 CLI::Validator existing_file_or_stdin() {
   return CLI::Validator(
@@ -51,6 +66,18 @@ void add_verbosity_flags(CLI::App& cmd, Verbosity& v) {
       ->excludes(quiet);
 }
 
+void add_report_verbosity_flags(CLI::App& cmd) {
+  auto v = std::make_shared<Verbosity>();
+  add_verbosity_flags(cmd, *v);
+  cmd.parse_complete_callback([v] {
+    if (!v->quiet) return;
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null < 0) return;  // nowhere to send it: the report is printed
+    ::dup2(null, STDOUT_FILENO);
+    ::close(null);
+  });
+}
+
 StdinFile::StdinFile() {
   std::string data{std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
   if (data.empty()) throw std::runtime_error("stdin is empty (input '-')");
@@ -63,18 +90,6 @@ StdinFile::StdinFile() {
 StdinFile::~StdinFile() {
   std::error_code ec;
   fs::remove(path_, ec);
-}
-
-ScratchFile::ScratchFile(const std::string& extension) : path_(temporary_path(extension)) {}
-
-ScratchFile::~ScratchFile() {
-  std::error_code ec;
-  fs::remove(path_, ec);
-}
-
-void write_stdout(std::span<const std::uint8_t> bytes) {
-  if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0)
-    throw std::runtime_error("cannot write to stdout");
 }
 
 ElapsedLine::ElapsedLine(std::string label, bool enabled) : label_(std::move(label)) {

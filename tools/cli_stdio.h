@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <optional>
+#include <ostream>
 #include <span>
 #include <string>
 #include <thread>
@@ -29,6 +31,8 @@ struct Verbosity {
   bool to_stderr = false;  // stdout carries the data
   // The stream for status lines (null with --quiet).
   std::FILE* stream() const { return quiet ? nullptr : (to_stderr ? stderr : stdout); }
+  // The same as an ostream: std::cout, std::cerr, or a sink that drops everything.
+  std::ostream& out() const;
 };
 
 // An existing file, or "-" for stdin.
@@ -37,8 +41,14 @@ CLI::Validator existing_file_or_stdin();
 // Adds --quiet and --verbose to a subcommand.
 void add_verbosity_flags(CLI::App& cmd, Verbosity& v);
 
+// The same for a command whose stdout is its report (info, psnr, filters, bench): --quiet
+// points stdout at the null device once parsing ends, so the command still runs its checks and
+// its exit status tells the result; --verbose is accepted and changes nothing.
+void add_report_verbosity_flags(CLI::App& cmd);
+
 // stdin saved to a temporary file (readers take paths), named with the extension its first
-// bytes identify (.png, .pnm, .pfm, .tif, .exr, .jpg, or .raw); removed on destruction.
+// bytes identify (.pw, .pwm, .vdb, .ply, .off, .png, .pnm, .pfm, .tif, .exr, .jpg, or .raw);
+// removed on destruction.
 class StdinFile {
  public:
   StdinFile();
@@ -51,22 +61,17 @@ class StdinFile {
   std::filesystem::path path_;
 };
 
-// A temporary file path with the given extension, removed on destruction (for writers that
-// take paths when the output is stdout).
-class ScratchFile {
- public:
-  explicit ScratchFile(const std::string& extension);
-  ~ScratchFile();
-  ScratchFile(const ScratchFile&) = delete;
-  ScratchFile& operator=(const ScratchFile&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
+// A command's input as a readable path: the file itself, or stdin saved to a temporary file
+// ("-"), since readers take paths.
+struct InputPath {
+  std::optional<StdinFile> spooled;
+  std::string path;
+  explicit InputPath(const std::string& input) : path(input) {
+    if (!is_stdio(input)) return;
+    spooled.emplace();
+    path = spooled->path().string();
+  }
 };
-
-// Writes bytes to stdout (binary); throws std::runtime_error if stdout fails.
-void write_stdout(std::span<const std::uint8_t> bytes);
 
 // An elapsed-time line on stderr while a long step runs, only when stderr is a terminal: it
 // appears after about a second and is erased when the step ends (the library reports no

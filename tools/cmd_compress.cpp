@@ -59,24 +59,6 @@ EntropyCoder entropy_coder(const std::string& name) {
   return name == "ht" ? EntropyCoder::ht : EntropyCoder::ebcot;
 }
 
-// The input as a readable path: the file itself, or stdin saved to a temporary file ("-").
-struct InputPath {
-  std::optional<StdinFile> spooled;
-  std::string path;
-  explicit InputPath(const std::string& input) : path(input) {
-    if (!is_stdio(input)) return;
-    spooled.emplace();
-    path = spooled->path().string();
-  }
-};
-
-void write_output(const CompressOptions& opt, std::span<const std::uint8_t> bytes) {
-  if (is_stdio(opt.output))
-    write_stdout(bytes);
-  else
-    write_bytes_atomically(opt.output, bytes);
-}
-
 bool is_volume_input(const CompressOptions& opt) { return !opt.dims.empty() || is_vdb_path(opt.input); }
 
 // The grids to encode and, for a raw file, the file mapped in its own type: `grids` then holds
@@ -179,21 +161,15 @@ void run_compress_volume(const CompressOptions& opt) {
   VolumeEncodeResult r;
   {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
-    if (is_stdio(opt.output)) {
-      r = encode_volumes(grids, in.views, enc);
-    } else {  // chunks go to the file as they are assembled; atomic: nothing is left on failure
-      write_atomically(opt.output, [&](const std::filesystem::path& path) {
-        std::ofstream file(path, std::ios::binary);
-        r = encode_volumes(grids, in.views, enc, [&](std::span<const std::uint8_t> piece) {
-          file.write(reinterpret_cast<const char*>(piece.data()), std::streamsize(piece.size()));
-        });
-        file.close();
-        if (!file) throw std::runtime_error("cannot write " + opt.output);
-      });
-    }
+    // Chunks go to the file as they are assembled; nothing is left on failure (write_output).
+    write_output(opt.output, [&](const std::filesystem::path& path) {
+      OutputFile file(path, opt.output);
+      r = encode_volumes(grids, in.views, enc,
+                         [&](std::span<const std::uint8_t> piece) { file.write(piece); });
+      file.close();
+    });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (is_stdio(opt.output)) write_output(opt, r.bytes);
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   if (r.switched_to_lossless)
@@ -299,7 +275,7 @@ void run_compress(const CompressOptions& opt) {
     return opt.entropy.empty() ? encode_image_default_coder(view, enc) : encode_image(view, enc);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_output(opt, r.bytes);
+  write_output_bytes(opt.output, r.bytes);
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   if (r.switched_to_lossless)

@@ -1,6 +1,6 @@
 // `pupwave decompress IN.pw OUT`: decode a stream (optionally at reduced resolution) and
-// write the image atomically in the format OUT's extension names; a volume stream is written
-// as .vdb (all grids) or as a dense raw file of its stored type.
+// write the image in the format OUT's extension (or --format) names, decided before decoding;
+// a volume stream is written as .vdb (all grids) or as a dense raw file of its stored type.
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -33,13 +33,13 @@ struct DecompressOptions {
   int level = 0;
   unsigned threads = 0;
   std::string grid;
-  DecodeLimits limits;  // --max-pixels
+  std::string format;               // --format: overrides OUT's extension
+  std::filesystem::path format_as;  // the name whose extension picks the output format
+  DecodeLimits limits;              // --max-pixels
   Verbosity verbosity;
 };
 
-// The extension that picks the format written to stdout: float samples keep their values in
-// EXR, integer ones go to PNG; a volume goes out raw.
-std::string stdout_extension(const Image& image) { return is_integer(image.type) ? ".png" : ".exr"; }
+bool wants_vdb(const DecompressOptions& opt) { return is_vdb_path(opt.format_as); }
 
 // Grids of a volume stream to .vdb, or one grid (--grid, or the only one) to raw.
 void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions& opt) {
@@ -47,15 +47,12 @@ void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions&
     std::erase_if(grids, [&](const VolumeGrid& g) { return g.name != opt.grid; });
     if (grids.empty()) throw std::invalid_argument("the stream has no grid named '" + opt.grid + "'");
   }
-  if (is_vdb_path(opt.output)) return write_vdb(grids, opt.output);
+  if (wants_vdb(opt)) return write_vdb(grids, opt.output);
   if (grids.size() != 1)
     throw std::invalid_argument("the stream holds " + std::to_string(grids.size()) +
                                 " grids; choose one with --grid NAME for raw output, or write .vdb");
   make_dense_box(grids[0], kMaxVdbBoxVoxels);  // raw output is the dense active bounding box
-  if (!is_stdio(opt.output)) return write_raw_volume(grids[0].volume, opt.output);
-  const ScratchFile scratch(".raw");
-  write_raw_volume(grids[0].volume, scratch.path());
-  write_stdout(read_file_bytes(scratch.path()));
+  write_raw_volume(grids[0].volume, opt.output);
 }
 
 // VolumeOutput::done_slabs for an output file mapped by MappedOutput: finished planes leave
@@ -69,7 +66,7 @@ void release_planes(const void* context, const VolumeOutput& out, std::size_t z0
 // double). False, having written nothing, when the grid needs decode_volumes (see
 // decode_volume_into) or the output is .vdb.
 bool decompress_raw_in_place(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
-  if (is_vdb_path(opt.output)) return false;
+  if (wants_vdb(opt)) return false;
   const auto start = std::chrono::steady_clock::now();
   std::optional<VolumeGrid> grid;
   // decode_volume_into asks for the output once it knows the grid's dims (never for the forms it
@@ -79,37 +76,25 @@ bool decompress_raw_in_place(const std::vector<std::uint8_t>& bytes, const Decom
     grid = decode_volume_into(bytes, opt.grid, opt.level, *make_pool_executor(opt.threads), opt.limits,
                               allocate);
   };
-  if (is_stdio(opt.output)) {
-    std::vector<std::uint8_t> voxels;
-    decode([&](const VolumeGrid& g) {
-      voxels.resize(g.volume.count() * bytes_per_voxel(g.volume.type));
-      return contiguous_output(voxels.data(), g.volume.dims, g.volume.type);
-    });
-    if (!grid) return false;
-    const ScratchFile scratch(".raw");
-    write_raw_bytes(std::move(voxels), grid->volume.type, scratch.path());
-    write_stdout(read_file_bytes(scratch.path()));
-  } else {
-    // Decoded straight into the output file, mapped under its temporary name (write_atomically).
-    struct NotInPlace {};
-    try {
-      write_atomically(opt.output, [&](const std::filesystem::path& tmp) {
-        std::unique_ptr<MappedOutput> file;
-        decode([&](const VolumeGrid& g) {
-          file = std::make_unique<MappedOutput>(tmp, g.volume.count() * bytes_per_voxel(g.volume.type),
-                                                opt.output);
-          VolumeOutput out = contiguous_output(file->bytes().data(), g.volume.dims, g.volume.type);
-          out.done_context = file.get();
-          out.done_slabs = release_planes;
-          return out;
-        });
-        if (!grid) throw NotInPlace{};  // nothing was created
-        swap_to_little_endian(file->bytes(), grid->volume.type);
-        file->finish();
+  // Decoded straight into the output file, mapped under its temporary name (write_output).
+  struct NotInPlace {};
+  try {
+    write_output(opt.output, [&](const std::filesystem::path& tmp) {
+      std::unique_ptr<MappedOutput> file;
+      decode([&](const VolumeGrid& g) {
+        file = std::make_unique<MappedOutput>(tmp, g.volume.count() * bytes_per_voxel(g.volume.type),
+                                              opt.output);
+        VolumeOutput out = contiguous_output(file->bytes().data(), g.volume.dims, g.volume.type);
+        out.done_context = file.get();
+        out.done_slabs = release_planes;
+        return out;
       });
-    } catch (const NotInPlace&) {
-      return false;
-    }
+      if (!grid) throw NotInPlace{};  // nothing was created
+      swap_to_little_endian(file->bytes(), grid->volume.type);
+      file->finish();
+    });
+  } catch (const NotInPlace&) {
+    return false;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (std::FILE* status = opt.verbosity.stream())
@@ -125,7 +110,7 @@ void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const Decompr
   auto grids = [&] {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
     // .vdb is sparse: a sparse box grid comes as blocks of its non-empty bricks (docs/bitstream.md).
-    const SparseBoxForm form = is_vdb_path(opt.output) ? SparseBoxForm::blocks : SparseBoxForm::box;
+    const SparseBoxForm form = wants_vdb(opt) ? SparseBoxForm::blocks : SparseBoxForm::box;
     return decode_volumes(bytes, opt.level, *make_pool_executor(opt.threads), opt.limits, form);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -146,16 +131,16 @@ constexpr std::size_t kStripRows = 16;
 // image nor its coefficients are ever whole in memory. False, having written nothing, when
 // the stream or the output needs the whole image (decode_image and write_image then).
 bool decompress_pnm_strips(std::span<const std::uint8_t> bytes, const DecompressOptions& opt) {
-  if (is_stdio(opt.output) || !opt.grid.empty() || is_volume_stream(bytes) ||
-      !binary_pnm_writable(opt.output, 1, SampleType::u8))  // not a .pgm/.ppm/.pnm name
+  if (!opt.grid.empty() || is_volume_stream(bytes) ||
+      !binary_pnm_writable(opt.format_as, 1, SampleType::u8))  // not a .pgm/.ppm/.pnm name
     return false;
   const auto start = std::chrono::steady_clock::now();
   const auto ex = make_pool_executor(opt.threads);
   const auto decoder = ImageStripDecoder::open(bytes, opt.level, *ex, opt.limits);
-  if (!decoder || !binary_pnm_writable(opt.output, decoder->channels(), decoder->type())) return false;
+  if (!decoder || !binary_pnm_writable(opt.format_as, decoder->channels(), decoder->type())) return false;
   {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
-    write_atomically(opt.output, [&](const std::filesystem::path& tmp) {
+    write_output(opt.output, [&](const std::filesystem::path& tmp) {
       write_binary_pnm_rows(tmp, decoder->width(), decoder->height(), decoder->channels(), decoder->type(),
                             [&] { return decoder->next(kStripRows); });
     });
@@ -168,15 +153,26 @@ bool decompress_pnm_strips(std::span<const std::uint8_t> bytes, const Decompress
   return true;
 }
 
+// Refuses an image output whose format cannot be told before anything is decoded.
+void check_image_output(const DecompressOptions& opt) {
+  if (opt.format_as.empty()) return;  // stdout without --format: stdout_image_format
+  check_image_format(opt.output, opt.format_as);
+}
+
 void run_decompress(const DecompressOptions& opt) {
-  if (!is_stdio(opt.output)) check_output_path(opt.output);
-  if (!is_stdio(opt.input) && !is_stdio(opt.output)) {
+  check_output_path(opt.output);
+  std::error_code ec;
+  const bool mappable = !is_stdio(opt.input) && std::filesystem::is_regular_file(opt.input, ec);
+  if (mappable) {
     const MappedFile input(opt.input);  // the strip decoder reads only the pages it needs
+    if (!is_volume_stream(input.bytes())) check_image_output(opt);
     if (decompress_pnm_strips(input.bytes(), opt)) return;
   }
-  const auto bytes = is_stdio(opt.input) ? read_file_bytes(StdinFile().path()) : read_file_bytes(opt.input);
+  // stdin, a FIFO or a device is read to its end.
+  const auto bytes = read_file_bytes(opt.input);
   if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
+  check_image_output(opt);
   const auto start = std::chrono::steady_clock::now();
   const Image image = [&] {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
@@ -184,13 +180,8 @@ void run_decompress(const DecompressOptions& opt) {
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   SampleType stored = image.type;
-  if (is_stdio(opt.output)) {
-    const ScratchFile scratch(stdout_extension(image));
-    write_image(image, scratch.path(), &stored);
-    write_stdout(read_file_bytes(scratch.path()));
-  } else {
-    write_image(image, opt.output, &stored);
-  }
+  write_image(image, opt.output, &stored,
+              opt.format_as.empty() ? stdout_image_format(image.type) : opt.format_as);
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   std::fprintf(status, "%s: %zux%zu, %zu channel(s), %s, decoded in %.3f s\n", opt.output.c_str(),
@@ -219,10 +210,15 @@ void add_decompress_command(CLI::App& app) {
                   "refuse a stream whose decoded pixels (images, at --level) or voxels (volumes, all grids) "
                   "exceed this (default 2^28)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--format", opt->format,
+                  "output format, overriding OUT's extension (png, tif, exr, ppm, pgm, jpg, ...; vdb or raw "
+                  "for volume streams): for outputs whose name tells none, as /dev/stdout or a FIFO");
   add_verbosity_flags(*cmd, opt->verbosity);
   cmd->callback([opt] {
     DecompressOptions o = *opt;
     o.verbosity.to_stderr = is_stdio(o.output);
+    // The format is decided from the name (or --format) before anything is decoded.
+    if (!o.format.empty() || !is_stdio(o.output)) o.format_as = format_name_path(o.output, o.format);
     run_decompress(o);
   });
 }

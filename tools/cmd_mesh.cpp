@@ -10,6 +10,7 @@
 #include "codec/mesh/mesh_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/cli_numbers.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/mesh_io.h"
@@ -26,6 +27,7 @@ struct MeshOptions {
   int level = 0;
   double max_error = 0;
   std::string sheet;
+  Verbosity verbosity;
 };
 
 void check_levels(int levels) {
@@ -68,8 +70,8 @@ void run_subdivide(const MeshOptions& o) {
   }
   const sqrt3::TriMesh out = sqrt3::subdivide(in, o.levels);
   write_mesh(out, o.output);
-  std::cout << o.input << " (" << sizes(in) << ") -> " << o.output << " (" << sizes(out) << "), " << o.levels
-            << " sqrt(3) steps\n";
+  o.verbosity.out() << o.input << " (" << sizes(in) << ") -> " << o.output << " (" << sizes(out) << "), "
+                    << o.levels << " sqrt(3) steps\n";
 }
 
 void run_decompose(const MeshOptions& o) {
@@ -85,19 +87,22 @@ void run_decompose(const MeshOptions& o) {
   } catch (const std::exception& e) {
     throw std::runtime_error(o.input + ": " + e.what());
   }
-  write_bytes_atomically(o.output, r.bytes);
+  write_output_bytes(o.output, r.bytes);
   const sqrt3::TriMesh& base = r.multiresolution.coarsest;
-  std::printf("%s (%s) -> %s: %zu bytes, %d levels, coarsest %s\n", o.input.c_str(), sizes(in).c_str(),
-              o.output.c_str(), r.bytes.size(), o.levels, sizes(base).c_str());
+  std::FILE* status = o.verbosity.stream();
+  if (status == nullptr) return;
+  std::fprintf(status, "%s (%s) -> %s: %zu bytes, %d levels, coarsest %s\n", o.input.c_str(),
+               sizes(in).c_str(), o.output.c_str(), r.bytes.size(), o.levels, sizes(base).c_str());
   if (eo.max_error) {
-    std::printf("quantised: step %.6g, max vertex error %.6g (bound %.6g)\n", r.step, r.measured_error,
-                o.max_error);
+    std::fprintf(status, "quantised: step %.6g, max vertex error %.6g (bound %.6g)\n", r.step,
+                 r.measured_error, o.max_error);
   } else {
-    std::printf("float64 details: max vertex error %.3g (rounding)\n", r.measured_error);
+    std::fprintf(status, "float64 details: max vertex error %.3g (rounding)\n", r.measured_error);
   }
   for (std::size_t v = 0; v < r.multiresolution.input_to_canonical.size(); ++v) {
     if (r.multiresolution.input_to_canonical[v] != v) {
-      std::printf("note: introduced vertices are reconstructed in the canonical order (docs/sqrt3.md)\n");
+      std::fprintf(status,
+                   "note: introduced vertices are reconstructed in the canonical order (docs/sqrt3.md)\n");
       break;
     }
   }
@@ -120,7 +125,7 @@ void run_reconstruct(const MeshOptions& o) {
     throw std::runtime_error(o.input + ": " + e.what());
   }
   write_mesh(m, o.output);
-  std::cout << o.input << " level " << o.level << " -> " << o.output << " (" << sizes(m) << ")\n";
+  o.verbosity.out() << o.input << " level " << o.level << " -> " << o.output << " (" << sizes(m) << ")\n";
 }
 
 void run_lod(const MeshOptions& o) {
@@ -147,26 +152,37 @@ void run_lod(const MeshOptions& o) {
   const Image sheet = o.sheet.empty() ? Image() : render_contact_sheet(meshes, labels);
   for (int j = 0; j <= o.levels; ++j) {
     write_mesh(meshes[std::size_t(j)], names[std::size_t(j)]);
-    std::cout << names[std::size_t(j)] << ": " << sizes(meshes[std::size_t(j)]) << "\n";
+    o.verbosity.out() << names[std::size_t(j)] << ": " << sizes(meshes[std::size_t(j)]) << "\n";
   }
   if (!o.sheet.empty()) {
     write_image(sheet, o.sheet);
-    std::cout << o.sheet << ": contact sheet, level 0 (input) to " << o.levels << " left to right\n";
+    o.verbosity.out() << o.sheet << ": contact sheet, level 0 (input) to " << o.levels << " left to right\n";
   }
 }
 
 void run_info(const MeshOptions& o) {
   const std::vector<std::uint8_t> bytes = read_stream(o.input);
   try {
-    std::cout << mesh::describe_mesh_stream(bytes);
+    o.verbosity.out() << mesh::describe_mesh_stream(bytes);
   } catch (const std::exception& e) {
     throw std::runtime_error(o.input + ": " + e.what());
   }
 }
 
+// Runs a mesh command on a copy of its options: "-" as input spooled from stdin, status lines
+// on stderr when the output is "-".
+void run_mesh(const MeshOptions& given, void (*run)(const MeshOptions&)) {
+  const InputPath input(given.input);
+  MeshOptions o = given;
+  o.input = input.path;
+  o.verbosity.to_stderr = is_stdio(o.output);
+  run(o);
+}
+
 CLI::App* sub(CLI::App* mesh, const char* name, const char* help, std::shared_ptr<MeshOptions> o) {
   CLI::App* c = mesh->add_subcommand(name, help);
-  c->add_option("INPUT", o->input, "input file")->required();
+  c->add_option("INPUT", o->input, "input file, or - for stdin")->required();
+  add_verbosity_flags(*c, o->verbosity);
   return c;
 }
 
@@ -180,25 +196,25 @@ void add_mesh_command(CLI::App& app) {
   CLI::App* s = sub(mesh, "subdivide", "Kobbelt sqrt(3) subdivision; the output keeps old vertices first", o);
   s->add_option("OUTPUT", o->output, "output mesh")->required();
   s->add_option("--levels", o->levels, "sqrt(3) steps")->capture_default_str();
-  s->callback([o] { run_subdivide(*o); });
+  s->callback([o] { run_mesh(*o, run_subdivide); });
   CLI::App* d = sub(mesh, "decompose", "Multiresolution of a sqrt(3)-structured mesh into a .pwm file", o);
   d->add_option("OUTPUT", o->output, "output .pwm file")->required();
   d->add_option("--levels", o->levels, "reversals")->capture_default_str();
   d->add_option("--max-error", o->max_error, "quantise so that every vertex moves at most E (Euclidean)")
       ->check(positive_number());
-  d->callback([o] { run_decompose(*o); });
+  d->callback([o] { run_mesh(*o, run_decompose); });
   CLI::App* r = sub(mesh, "reconstruct", "Mesh of any level of a .pwm file", o);
   r->add_option("OUTPUT", o->output, "output mesh")->required();
   r->add_option("--level", o->level, "reversals coarser than the coded mesh (0 = the mesh itself)")
       ->capture_default_str();
-  r->callback([o] { run_reconstruct(*o); });
+  r->callback([o] { run_mesh(*o, run_reconstruct); });
   CLI::App* l = sub(mesh, "lod", "Write every level as OUT_PREFIX_level_J.obj (0 = the input)", o);
   l->add_option("OUT_PREFIX", o->output, "output prefix")->required();
   l->add_option("--levels", o->levels, "reversals")->capture_default_str();
   l->add_option("--sheet", o->sheet, "also write a PNG contact sheet of the levels");
-  l->callback([o] { run_lod(*o); });
+  l->callback([o] { run_mesh(*o, run_lod); });
   CLI::App* i = sub(mesh, "info", "Describe a .pwm file", o);
-  i->callback([o] { run_info(*o); });
+  i->callback([o] { run_mesh(*o, run_info); });
 }
 
 }  // namespace pupwave::cli

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tools/atomic_file.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "transforms/kobbelt/subdivision.h"
 
@@ -28,6 +29,7 @@ struct SubdivideOptions {
   std::string parameterization = "uniform";
   std::string input;
   std::string output;
+  Verbosity verbosity;  // accepted as on every command; the points are data, never silenced
 };
 
 // Parses one number of a point line; the whole token must be a finite number.
@@ -75,27 +77,27 @@ kobbelt::Parameterization parse_parameterization(const std::string& name) {
 }
 
 void run_subdivide(const SubdivideOptions& opt) {
-  if (!opt.output.empty()) check_output_path(opt.output);
+  if (!opt.output.empty() && !is_stdio(opt.output)) check_output_path(opt.output);
   kobbelt::SubdivisionOptions so;
   so.scheme = kobbelt::parse_scheme(opt.scheme);
   so.levels = opt.levels;
   so.closed = opt.closed;
   so.parameterization = parse_parameterization(opt.parameterization);
-  const std::vector<Point2> points = read_points(opt.input);
+  const std::vector<Point2> points = read_points(InputPath(opt.input).path);
   if (points.size() < 2) {
     throw std::invalid_argument(opt.input + ": subdivision needs at least 2 points, found " +
                                 std::to_string(points.size()));
   }
   const std::vector<Point2> refined = kobbelt::subdivide(points, so);
-  if (opt.output.empty()) {
+  if (opt.output.empty() || is_stdio(opt.output)) {
     write_points(std::cout, refined);
     return;
   }
-  write_atomically(opt.output, [&](const std::filesystem::path& temp) {
+  write_output(opt.output, [&](const std::filesystem::path& temp) {
     std::ofstream out(temp);
     write_points(out, refined);
     out.close();
-    if (!out) throw std::runtime_error("cannot write " + temp.string());
+    if (!out) throw_write_error(temp);
   });
 }
 
@@ -110,8 +112,9 @@ void add_subdivide_command(CLI::App& app) {
   cmd->add_flag("--closed", opt->closed, "treat the points as a closed polygon");
   cmd->add_option("--param", opt->parameterization, "uniform, or centripetal (k2 and k3 only)")
       ->capture_default_str();
-  cmd->add_option("POINTS", opt->input, "input file, 'x y' per line")->required();
-  cmd->add_option("-o,--output", opt->output, "output file (default: stdout)");
+  cmd->add_option("POINTS", opt->input, "input file, 'x y' per line, or - for stdin")->required();
+  cmd->add_option("-o,--output", opt->output, "output file, or - for stdout (the default)");
+  add_verbosity_flags(*cmd, opt->verbosity);
   cmd->callback([opt] { run_subdivide(*opt); });
 }
 

@@ -67,29 +67,52 @@ Image convert_sample_type(const Image& image, SampleType target) {
   return out;
 }
 
-void write_image(const Image& image, const fs::path& path, SampleType* stored_as) {
+fs::path format_name_path(const fs::path& path, const std::string& format) {
+  if (format.empty()) return path;
+  return fs::path("output." + format);
+}
+
+fs::path stdout_image_format(SampleType type) { return is_integer(type) ? "-.png" : "-.exr"; }
+
+void check_image_format(const fs::path& path, const fs::path& format_as) {
+  if (has_pnm_extension(format_as)) return;
+  try {
+    (void)oiio_module().format_name(format_as);
+  } catch (const std::exception&) {
+    const std::string extension = format_as.extension().string();
+    throw std::runtime_error("cannot write " + path.string() + ": " +
+                             (extension.empty()
+                                  ? std::string("its name has no extension to tell the image format")
+                                  : "unsupported image format '" + extension + "'") +
+                             " (name it .png, .tif, .exr, .pgm/.ppm, .jpg, or give --format)");
+  }
+}
+
+void write_image(const Image& image, const fs::path& path, SampleType* stored_as, const fs::path& format_as) {
   if (image.channels < 1 || image.channels > kMaxImageChannels || image.width == 0 || image.height == 0 ||
       image.samples.size() != image.plane_size() * image.channels)
     throw std::invalid_argument("write_image: malformed image");
+  const fs::path& format = format_as.empty() ? path : format_as;
   check_output_path(path);
-  if (binary_pnm_writable(path, image)) {
-    write_atomically(path, [&](const fs::path& tmp) { write_binary_pnm(image, tmp); });
+  check_image_format(path, format);
+  if (binary_pnm_writable(format, image)) {  // never loads OpenImageIO
+    write_output(path, [&](const fs::path& tmp) { write_binary_pnm(image, tmp); });
     if (stored_as) *stored_as = image.type;
     return;
   }
-  SampleType target = storable_type(path, image.type);
+  SampleType target = storable_type(format, image.type);
   // OpenImageIO writes PNM with 8 bits only; the binary writer takes the 1- and 3-channel cases.
-  if (oiio_module().format_name(path) == "pnm" && image.channels != 1 && image.channels != 3)
+  if (oiio_module().format_name(format) == "pnm" && image.channels != 1 && image.channels != 3)
     target = SampleType::u8;
   std::optional<Image> converted;  // only when the type changes: a copy is 4 bytes per sample
   if (target != image.type) converted = convert_sample_type(image, target);
   const Image& stored = converted ? *converted : image;
-  if (binary_pnm_writable(path, stored)) {  // a float image converted to 16 bits for a .ppm
-    write_atomically(path, [&](const fs::path& tmp) { write_binary_pnm(stored, tmp); });
-    if (stored_as) *stored_as = stored.type;
-    return;
-  }
-  write_atomically(path, [&](const fs::path& tmp) { oiio_module().write(stored, path, tmp); });
+  write_output(path, [&](const fs::path& tmp) {
+    if (binary_pnm_writable(format, stored))
+      write_binary_pnm(stored, tmp);
+    else
+      oiio_module().write(stored, format, tmp);
+  });
   if (stored_as) *stored_as = stored.type;
 }
 

@@ -26,11 +26,26 @@ Image read_image(const std::filesystem::path& path);
 // Describes an image file without decoding its pixels (format, size, channels, type).
 std::string describe_image_file(const std::filesystem::path& path);
 
-// Writes an image, format chosen from the extension. When the format cannot store the image's
-// sample type (float to PNG, 16-bit to JPEG...) samples are converted to the closest type it
-// can store, mapping the nominal range (integer max <-> 1.0) with rounding and clamping;
-// `stored_as`, if given, receives the type written. The file is written atomically.
-void write_image(const Image& image, const std::filesystem::path& path, SampleType* stored_as = nullptr);
+// The name whose extension picks an output's format: `path` itself, or with a format name
+// (--format png) a name ending in that extension, for outputs whose own name says nothing
+// (stdout, /dev/stdout, a FIFO).
+std::filesystem::path format_name_path(const std::filesystem::path& path, const std::string& format);
+
+// The format an image goes to stdout in without --format: PNG for integer samples, EXR (which
+// keeps their values) for float ones. A name for write_image's format_as.
+std::filesystem::path stdout_image_format(SampleType type);
+
+// Throws std::runtime_error naming `path` unless an image format can be written under
+// `format_as`'s extension; called before decoding, so an unwritable name costs nothing.
+void check_image_format(const std::filesystem::path& path, const std::filesystem::path& format_as);
+
+// Writes an image to `path` (see write_output: a file atomically, a stream in place), in the
+// format `format_as`'s extension names (default: path's). When the format cannot store the
+// image's sample type (float to PNG, 16-bit to JPEG...) samples are converted to the closest
+// type it can store, mapping the nominal range (integer max <-> 1.0) with rounding and
+// clamping; `stored_as`, if given, receives the type written.
+void write_image(const Image& image, const std::filesystem::path& path, SampleType* stored_as = nullptr,
+                 const std::filesystem::path& format_as = {});
 
 // The sample type `write_image` would store `type` as in a file with this path's extension.
 SampleType storable_type(const std::filesystem::path& path, SampleType type);

@@ -32,7 +32,7 @@ class MappedFile {
 // A new output file of a known size mapped writable, so a decoder writes its voxels straight
 // into the page cache (no heap buffer to zero, no copy by write()). Its blocks are reserved
 // first (posix_fallocate): a full disk is an error here, never a SIGBUS while writing through
-// the map. Used under write_atomically, on its temporary name.
+// the map. Used under write_output, on its temporary name.
 class MappedOutput {
  public:
   // Throws std::runtime_error("cannot write TARGET: reason") (target: the name the user gave).

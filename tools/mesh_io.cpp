@@ -166,7 +166,7 @@ void write_ply_binary(const TriMesh& m, std::ostream& out);  // mesh_io_ply.cpp
 
 void write_mesh(const TriMesh& m, const std::filesystem::path& path) {
   const MeshFormat format = mesh_format(path);
-  write_atomically(path, [&](const std::filesystem::path& temp) {
+  write_output(path, [&](const std::filesystem::path& temp) {
     std::ofstream out(temp, std::ios::binary);
     if (format == MeshFormat::ply) {
       write_ply_binary(m, out);
@@ -174,7 +174,7 @@ void write_mesh(const TriMesh& m, const std::filesystem::path& path) {
       write_text(m, format, out);
     }
     out.close();
-    if (!out) throw std::runtime_error("cannot write " + temp.string());
+    if (!out) throw_write_error(temp);
   });
 }
 

@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "tools/atomic_file.h"
 #include "tools/image_io.h"
 
 namespace pupwave::cli {
@@ -119,14 +120,14 @@ bool pnm_holds(const Image& image) {
   return (image.channels == 1 || image.channels == 3) && is_integer(image.type);
 }
 
+}  // namespace
+
 bool has_pnm_extension(const fs::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char ch) { return char(std::tolower(ch)); });
   return ext == ".pgm" || ext == ".ppm" || ext == ".pnm";
 }
-
-}  // namespace
 
 namespace {
 
@@ -213,11 +214,10 @@ namespace {
 // Opens `file` and writes the P5/P6 header of an image of this shape.
 File open_pnm(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels, bool wide) {
   File f(std::fopen(file.c_str(), "wb"));
-  if (!f) throw std::runtime_error("cannot write " + file.string());
+  if (!f) throw_write_error(file);
   const std::string header = std::string(channels == 1 ? "P5" : "P6") + "\n" + std::to_string(width) + " " +
                              std::to_string(height) + "\n" + (wide ? "65535" : "255") + "\n";
-  if (std::fwrite(header.data(), 1, header.size(), f.get()) != header.size())
-    throw std::runtime_error("cannot write " + file.string());
+  if (std::fwrite(header.data(), 1, header.size(), f.get()) != header.size()) throw_write_error(file);
   return f;
 }
 
@@ -241,8 +241,7 @@ void write_binary_pnm(const Image& image, const fs::path& file) {
   if (!pnm_holds(image))
     throw std::invalid_argument("write_binary_pnm: needs 1 or 3 channels of 8- or 16-bit samples");
   File f = open_pnm(file, image.width, image.height, image.channels, image.type == SampleType::u16);
-  if (!write_raster(image, f.get()) || std::fclose(f.release()) != 0)
-    throw std::runtime_error("cannot write " + file.string());
+  if (!write_raster(image, f.get()) || std::fclose(f.release()) != 0) throw_write_error(file);
 }
 
 namespace {
@@ -316,11 +315,11 @@ void write_binary_pnm_rows(const fs::path& file, std::size_t width, std::size_t 
           rows + strip.height > height)
         throw std::runtime_error("write_binary_pnm_rows: a strip does not fit the image");
       rows += strip.height;
-      if (!writer.put(std::move(strip))) throw std::runtime_error("cannot write " + file.string());
+      if (!writer.put(std::move(strip))) throw_write_error(file);
     }
-    if (!writer.finish()) throw std::runtime_error("cannot write " + file.string());
+    if (!writer.finish()) throw_write_error(file);
   }
-  if (std::fclose(f.release()) != 0) throw std::runtime_error("cannot write " + file.string());
+  if (std::fclose(f.release()) != 0) throw_write_error(file);
 }
 
 }  // namespace pupwave::cli

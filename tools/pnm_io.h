@@ -21,6 +21,9 @@ namespace pupwave::cli {
 // allocated for the raster before its length is checked against the file size.
 std::optional<Image> read_binary_pnm(const std::filesystem::path& path);
 
+// Whether the name ends in .pgm, .ppm or .pnm (any case).
+bool has_pnm_extension(const std::filesystem::path& path);
+
 // Whether write_binary_pnm handles this image at this path: a .pgm/.ppm/.pnm name, 1 or 3
 // channels (grey: P5, RGB: P6), 8- or 16-bit samples.
 bool binary_pnm_writable(const std::filesystem::path& path, const Image& image);

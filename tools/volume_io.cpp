@@ -133,7 +133,7 @@ void write_raw_volume(const Volume& volume, const fs::path& path) {
     case VoxelType::f32: encode_samples<float, std::uint32_t>(volume.samples, bytes.data()); break;
     case VoxelType::f64: encode_samples<double, std::uint64_t>(volume.samples, bytes.data()); break;
   }
-  write_bytes_atomically(path, bytes);
+  write_output_bytes(path, bytes);
 }
 
 // ---------------------------------------------------------------------------------------------

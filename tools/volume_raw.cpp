@@ -55,7 +55,7 @@ MappedRawVolume::MappedRawVolume(const fs::path& path, const Extent& dims, Voxel
 
 void write_raw_bytes(std::vector<std::uint8_t> bytes, VoxelType type, const fs::path& path) {
   if constexpr (std::endian::native == std::endian::big) swap_elements(bytes, bytes_per_voxel(type));
-  write_bytes_atomically(path, bytes);
+  write_output_bytes(path, bytes);
 }
 
 void swap_to_little_endian(std::span<std::uint8_t> bytes, VoxelType type) {

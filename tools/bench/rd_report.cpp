@@ -239,7 +239,7 @@ std::string describe_machine() {
 
 void write_text_file(const fs::path& path, const std::string& text) {
   const auto* p = reinterpret_cast<const std::uint8_t*>(text.data());
-  cli::write_bytes_atomically(path, {p, text.size()});
+  cli::write_output_bytes(path, {p, text.size()});
 }
 
 std::string fixed(double value, int decimals) {

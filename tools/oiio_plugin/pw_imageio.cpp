@@ -18,12 +18,14 @@
 #include <vector>
 
 #include "pupwave/pupwave.hpp"
+#include "tools/atomic_file.h"
 
 OIIO_PLUGIN_NAMESPACE_BEGIN
 
 namespace {
 
 namespace api = pupwave::api;
+namespace cli = pupwave::cli;
 
 TypeDesc oiio_type(api::SampleType type) {
   switch (type) {
@@ -187,7 +189,9 @@ class PwOutput final : public ImageOutput {
     open_ = false;
     try {
       const auto bytes = api::compress_image(view(), options());
-      return write_atomically(bytes);
+      // A file appears whole or not at all; a device or FIFO is written in place (write_output).
+      cli::write_output_bytes(filename_, bytes);
+      return true;
     } catch (const std::exception& e) {
       return fail(e.what());
     }

@@ -439,7 +439,7 @@ VdbFile read_vdb_file(const fs::path& path) {
 void write_vdb_file(const openvdb::GridPtrVec& grids, const openvdb::MetaMap& metadata,
                     const fs::path& path) {
   ensure_openvdb();
-  write_atomically(path, [&](const fs::path& tmp) {
+  write_output(path, [&](const fs::path& tmp) {
     try {
       openvdb::io::File file(tmp.string());
       file.write(grids, metadata);
@@ -616,7 +616,7 @@ void write_vdb_grids(const std::vector<VolumeGrid>& grids, const fs::path& path)
     }
     out.push_back(grid);
   }
-  write_atomically(path, [&](const fs::path& tmp) {
+  write_output(path, [&](const fs::path& tmp) {
     try {
       openvdb::io::File file(tmp.string());
       file.write(out, file_meta);
