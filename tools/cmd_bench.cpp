@@ -18,6 +18,7 @@
 #include "tools/bench/progress.h"
 #include "tools/bench/rd_report.h"
 #include "tools/bench/rd_run.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "transforms/spec.h"
 
@@ -242,12 +243,14 @@ void add_bench_command(CLI::App& app) {
       "Compress/decompress every image x transform x rate (and the anchors); writes results.csv, "
       "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG) and plots/ (gnuplot SVG) into --out");
   add_common(rd, *opt, true, false);
+  add_report_verbosity_flags(*rd);
   rd->callback([opt] { fail_if(run_rd_into(*opt, opt->out, command_line("rd", *opt, true, false))); });
   auto* coarse = bench->add_subcommand(
       "coarse",
       "Reconstruct from the coarse band alone after L levels (details zeroed), luma PSNR per transform "
       "(Fig. 16 of the PUPs multiresolution paper); writes coarse.csv and summary.md into --out");
   add_common(coarse, *opt, false, true);
+  add_report_verbosity_flags(*coarse);
   coarse->callback(
       [opt] { fail_if(run_coarse_into(*opt, opt->out, command_line("coarse", *opt, false, true))); });
   auto* all =
@@ -255,6 +258,7 @@ void add_bench_command(CLI::App& app) {
                             "Both: rd into --out/rd and coarse into --out/coarse "
                             "(regenerates bench/results/ with --images testimages --out bench/results)");
   add_common(all, *opt, true, true);
+  add_report_verbosity_flags(*all);
   all->callback([opt] {
     const std::string command = command_line("all", *opt, true, true);
     const std::size_t failed = run_coarse_into(*opt, fs::path(opt->out) / "coarse", command);

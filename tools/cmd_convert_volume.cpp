@@ -9,6 +9,7 @@
 
 #include "tools/atomic_file.h"
 #include "tools/cli_numbers.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/volume_io.h"
 
@@ -18,6 +19,7 @@ namespace {
 struct ConvertVolumeOptions {
   std::string input, output, dims, dtype, grid, name;
   double voxel_size = 1.0;
+  Verbosity verbosity;
 };
 
 // The grids the input holds: every float/double grid of a .vdb (or the --grid one), or one dense
@@ -36,7 +38,7 @@ std::vector<VolumeGrid> read_input(const ConvertVolumeOptions& o) {
   return {std::move(g)};
 }
 
-void write_output(std::vector<VolumeGrid> grids, const ConvertVolumeOptions& o) {
+void write_volume_output(std::vector<VolumeGrid> grids, const ConvertVolumeOptions& o) {
   if (is_vdb_path(o.output)) {
     write_vdb(grids, o.output);
     return;
@@ -61,8 +63,8 @@ void add_convert_volume_command(CLI::App& app) {
       "Convert a volume between raw (little endian, x fastest) and OpenVDB (.vdb, by extension).\n"
       "Raw input needs --dims and --dtype and becomes one dense grid with every voxel active.\n"
       "Raw output holds the dense active bounding box of one grid (its origin is printed).");
-  cmd->add_option("IN", opt->input, "input .raw or .vdb")->required();
-  cmd->add_option("OUT", opt->output, "output .raw or .vdb (written atomically)")->required();
+  cmd->add_option("IN", opt->input, "input .raw or .vdb, or - for stdin")->required();
+  cmd->add_option("OUT", opt->output, "output .raw or .vdb, or - for raw on stdout")->required();
   cmd->add_option("--dims", opt->dims, "raw input extent X,Y,Z");
   cmd->add_option("--dtype", opt->dtype,
                   "raw input sample type (u8, u16, f32, f64); for .vdb -> raw, the output type");
@@ -70,16 +72,22 @@ void add_convert_volume_command(CLI::App& app) {
   cmd->add_option("--name", opt->name, "grid name for raw input (default: the file's stem)");
   cmd->add_option("--voxel-size", opt->voxel_size, "voxel size for raw input (world units)")
       ->check(positive_number());
+  add_verbosity_flags(*cmd, opt->verbosity);
   cmd->callback([opt] {
     check_output_path(opt->output);
-    std::vector<VolumeGrid> grids = read_input(*opt);
+    opt->verbosity.to_stderr = is_stdio(opt->output);
+    const InputPath input(opt->input);
+    ConvertVolumeOptions o = *opt;
+    o.input = input.path;
+    if (o.name.empty() && is_stdio(opt->input)) o.name = "volume";  // not the spooled file's name
+    std::vector<VolumeGrid> grids = read_input(o);
     for (const VolumeGrid& g : grids) {
       const Extent& d = g.volume.dims;
-      std::cout << g.name << ": " << d[0] << 'x' << d[1] << 'x' << d[2] << " at (" << g.origin[0] << ','
-                << g.origin[1] << ',' << g.origin[2] << "), " << g.active_voxels() << " active, "
-                << to_string(g.volume.type) << ", " << to_string(g.grid_class) << '\n';
+      o.verbosity.out() << g.name << ": " << d[0] << 'x' << d[1] << 'x' << d[2] << " at (" << g.origin[0]
+                        << ',' << g.origin[1] << ',' << g.origin[2] << "), " << g.active_voxels()
+                        << " active, " << to_string(g.volume.type) << ", " << to_string(g.grid_class) << '\n';
     }
-    write_output(std::move(grids), *opt);
+    write_volume_output(std::move(grids), o);
   });
 }
 

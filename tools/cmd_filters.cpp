@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tools/cli_numbers.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/filter_bank_json.h"
 #include "tools/filters_report.h"
@@ -112,6 +113,7 @@ void add_design(CLI::App& filters) {
       ->check(positive_number())
       ->excludes(ext);
   cmd->add_flag("--json", o->json, "print JSON instead of a table");
+  add_report_verbosity_flags(*cmd);
   cmd->callback([o] { run_design(*o); });
 }
 
@@ -140,6 +142,7 @@ std::vector<merit::Merit> preset_merits() {
 void add_list(CLI::App& filters) {
   auto* cmd =
       filters.add_subcommand("list", "List transform specs and PUPs presets with their figures of merit");
+  add_report_verbosity_flags(*cmd);
   cmd->callback([] {
     std::cout << "Transform specs:\n";
     std::vector<std::string> specs = transform_specs();
@@ -171,6 +174,7 @@ void add_show(CLI::App& filters) {
       filters.add_subcommand("show", "Show a preset or a pups spec body in full, with its figures of merit");
   cmd->add_option("NAME", *name, "preset name or <weight>(...) spec body")->required();
   cmd->add_flag("--json", *json, "print JSON instead of a table");
+  add_report_verbosity_flags(*cmd);
   cmd->callback([name, json] {
     std::string body = *name;
     if (body.rfind("pups:", 0) == 0) body = body.substr(5);
@@ -202,6 +206,7 @@ void add_condition(CLI::App& filters) {
       ->capture_default_str()
       ->check(CLI::Range(1, 2048));
   cmd->add_option("--sizes", *sizes, "further sizes")->delimiter(',')->check(CLI::Range(1, 4096));
+  add_report_verbosity_flags(*cmd);
   cmd->callback([spec, max_n, sizes] {
     std::string body = *spec;
     if (body.rfind("pups:", 0) == 0) body = body.substr(5);

@@ -12,6 +12,7 @@
 
 #include "codec/image/image_codec.h"
 #include "tools/bench/bd_metrics.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/filters_report.h"
 #include "tools/image_io.h"
@@ -186,6 +187,7 @@ void add_search(CLI::App& filters) {
   cmd->add_option("--top", o->top, "how many designs to print")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  add_report_verbosity_flags(*cmd);
   cmd->callback([o] { run_search(*o); });
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "tools/atomic_file.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/volume_io.h"
 
@@ -171,6 +172,7 @@ void add_generate_volume_command(CLI::App& app) {
     int steps = 3000;
     unsigned seed = 1;
     GrayScottParams gs;
+    Verbosity verbosity;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("generate-volume",
@@ -185,16 +187,18 @@ void add_generate_volume_command(CLI::App& app) {
   cmd->add_option("--seed", opt->seed, "random seed");
   cmd->add_option("--feed", opt->gs.feed, "gray-scott feed rate F")->check(CLI::Range(0.0, 0.2));
   cmd->add_option("--kill", opt->gs.kill, "gray-scott kill rate k")->check(CLI::Range(0.0, 0.2));
-  cmd->add_option("OUT", opt->output, "output file, .raw or .vdb (written atomically)")->required();
+  cmd->add_option("OUT", opt->output, "output file, .raw or .vdb, or - for raw on stdout")->required();
+  add_verbosity_flags(*cmd, opt->verbosity);
   cmd->callback([opt] {
     check_output_path(opt->output);
+    opt->verbosity.to_stderr = is_stdio(opt->output);
     Volume v = opt->kind == "turbulence" ? turbulence(opt->size, opt->seed)
                                          : gray_scott(opt->size, opt->steps, opt->seed, opt->gs);
     if (is_vdb_path(opt->output))
       write_vdb({as_grid(std::move(v), opt->kind == "turbulence" ? "velocity_x" : "v")}, opt->output);
     else
       write_raw_volume(v, opt->output);
-    std::cout << opt->output << ": " << opt->kind << ' ' << opt->size << '^' << 3 << " float32\n";
+    opt->verbosity.out() << opt->output << ": " << opt->kind << ' ' << opt->size << '^' << 3 << " float32\n";
   });
 }
 

@@ -7,6 +7,7 @@
 #include "codec/format/container.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/volume_io.h"
@@ -21,7 +22,9 @@ std::string signature(const std::string& path) {
   return in.read(sig, 4) ? std::string(sig, 4) : std::string();
 }
 
-void run_info(const std::string& path) {
+void run_info(const std::string& input) {
+  const InputPath in(input);
+  const std::string& path = in.path;
   const std::string sig = signature(path);
   if (sig == "PUPW") {
     std::cout << path << ": " << describe_stream(read_file_bytes(path)) << '\n';
@@ -44,7 +47,10 @@ void add_info_command(CLI::App& app) {
       "checksum verified; for volumes every grid with its active voxels, tiles, bounding box,\n"
       "voxel size and share of the file), an OpenVDB file (every grid: class, value type,\n"
       "active voxels, bounding box, voxel size) or an image file (format, size, channels, type)");
-  cmd->add_option("FILE", *path, "file to describe")->required()->check(CLI::ExistingFile);
+  cmd->add_option("FILE", *path, "file to describe, or - for stdin")
+      ->required()
+      ->check(existing_file_or_stdin());
+  add_report_verbosity_flags(*cmd);  // -q: the checksums are still verified
   cmd->callback([path] { run_info(*path); });
 }
 

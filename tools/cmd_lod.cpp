@@ -31,6 +31,7 @@
 
 #include "tools/atomic_file.h"
 #include "tools/cli_numbers.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/vdb_module.h"
 #include "transforms/spec.h"
@@ -90,6 +91,7 @@ void add_lod_command(CLI::App& app) {
   struct Options {
     std::string input, output, transform = "cdf97", range, names, edge = "auto";
     int levels = -1;
+    Verbosity verbosity;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -99,8 +101,8 @@ void add_lod_command(CLI::App& app) {
       "(per component for vectors), named NAME_level_K as OpenVDB's vdb_lod names them (level 0 is the "
       "input).\n"
       "Integer grids are rounded; bool and mask grids are copied to OUT unchanged.");
-  cmd->add_option("IN", opt->input, "input .vdb")->required();
-  cmd->add_option("OUT", opt->output, "output .vdb (written atomically)")->required();
+  cmd->add_option("IN", opt->input, "input .vdb, or - for stdin")->required();
+  cmd->add_option("OUT", opt->output, "output .vdb, or - for stdout")->required();
   cmd->add_option("--levels", opt->levels, "write levels 0..N (same as --range 0-N)")
       ->check(non_negative_number());
   cmd->add_option("--range", opt->range, "levels FROM[-TO[:STEP]] as vdb_lod's -range (integers)");
@@ -111,6 +113,7 @@ void add_lod_command(CLI::App& app) {
                   "background")
       ->transform(CLI::IsMember({"auto", "symmetric", "background"}, CLI::ignore_case));
   cmd->add_option("--name", opt->names, "grid name(s) to process, comma separated (default: every grid)");
+  add_verbosity_flags(*cmd, opt->verbosity);
   cmd->callback([opt] {
     if ((opt->levels >= 0) == !opt->range.empty())
       throw std::invalid_argument("give exactly one of --levels N and --range FROM[-TO[:STEP]]");
@@ -119,16 +122,18 @@ void add_lod_command(CLI::App& app) {
     const Transform1DPtr t = make_transform(opt->transform);
     const LowPass low_pass = low_pass_of(*t);
     check_output_path(opt->output);
+    opt->verbosity.to_stderr = is_stdio(opt->output);
+    const InputPath input(opt->input);
     const auto start = std::chrono::steady_clock::now();
     const LodEdge edge = opt->edge == "symmetric"    ? LodEdge::symmetric
                          : opt->edge == "background" ? LodEdge::background
                                                      : LodEdge::automatic;
     const LodReport report =
-        vdb_module().lod({opt->input, opt->output, low_pass, levels, split_names(opt->names), edge});
+        vdb_module().lod({input.path, opt->output, low_pass, levels, split_names(opt->names), edge});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for (const std::string& line : report.lines) std::cout << line << '\n';
-    std::cout << opt->output << ": " << report.grids << " grid(s), " << t->spec() << ", " << seconds
-              << " s\n";
+    std::ostream& status = opt->verbosity.out();
+    for (const std::string& line : report.lines) status << line << '\n';
+    status << opt->output << ": " << report.grids << " grid(s), " << t->spec() << ", " << seconds << " s\n";
   });
 }
 

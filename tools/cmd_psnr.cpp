@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"
+#include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 
@@ -39,8 +41,10 @@ void print_decades(const HdrError& e) {
 }
 
 void run_psnr(const PsnrOptions& opt) {
-  const Image a = read_image(opt.reference);
-  Image b = read_image(opt.test);
+  if (is_stdio(opt.reference) && is_stdio(opt.test))
+    throw std::runtime_error("A and B cannot both be - (stdin)");
+  const Image a = read_image(InputPath(opt.reference).path);
+  Image b = read_image(InputPath(opt.test).path);
   if (b.type != a.type) b = convert_sample_type(b, a.type);  // compare in the reference's scale
   const ImageError err = compare_images(a, b);
   static const char* rgba[] = {"R", "G", "B", "A"};
@@ -74,8 +78,11 @@ void add_psnr_command(CLI::App& app) {
       "range of A's finite samples for float samples. A NaN or infinite sample of A counts as exact\n"
       "where B holds the same value, else as an infinite error (-inf dB). B is converted to A's\n"
       "sample type if they differ.");
-  cmd->add_option("A", opt->reference, "reference image")->required()->check(CLI::ExistingFile);
-  cmd->add_option("B", opt->test, "test image")->required()->check(CLI::ExistingFile);
+  cmd->add_option("A", opt->reference, "reference image, or - for stdin")
+      ->required()
+      ->check(existing_file_or_stdin());
+  cmd->add_option("B", opt->test, "test image, or - for stdin")->required()->check(existing_file_or_stdin());
+  add_report_verbosity_flags(*cmd);
   cmd->callback([opt] { run_psnr(*opt); });
 }
 
