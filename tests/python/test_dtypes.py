@@ -1,6 +1,6 @@
-"""numpy's other dtypes (pupwave/dtypes.py): float64, wide integers and bool round trip to their own
-dtype on real photographs, targets hold in the input's units, values that do not fit are refused,
-and the recorded dtype leaves the stream readable by the CLI."""
+"""numpy's other dtypes (pupwave/dtypes.py): float64, wide and signed integers and bool round trip to
+their own dtype on real photographs and wmag91, targets hold in the input's units, values that do
+not fit are refused, and the recorded dtype leaves the stream readable by the CLI."""
 
 import subprocess
 
@@ -69,23 +69,48 @@ def test_big_endian_round_trip(real_image):
     assert back.dtype == np.dtype(">u2") and np.array_equal(back, a)
 
 
+def test_signed_photograph_is_coded_less_its_minimum(real_image):
+    a = real_image("chelsea", "ppm")
+    signed = a.astype(np.int16) - 128  # -128..127: stored as uint8 less -128
+    data = pupwave.compress(signed, lossless=True)
+    back = pupwave.decompress(data)
+    assert back.dtype == np.int16 and np.array_equal(back, signed)
+    assert pupwave.info(data)["stored_dtype"] == "uint8"
+    assert pupwave.info(data)["attributes"] == {"pupwave:dtype": "<i2", "pupwave:offset": "-128"}
+    # Lossy: the very samples of the uint8 photograph, shifted back.
+    lossy = pupwave.decompress(pupwave.compress(signed, psnr=36))
+    assert np.array_equal(lossy, pupwave.decompress(pupwave.compress(a, psnr=36)).astype(np.int16) - 128)
+    far = a.astype(np.int64) + 2**40  # beyond 0..65535 and every 32-bit type
+    assert np.array_equal(pupwave.decompress(pupwave.compress(far, lossless=True)), far)
+
+
+def test_signed_volume_bound_in_its_units(wmag):
+    ct = np.round(wmag * 50 - 1024).astype(np.int16)  # signed, like CT data: -1022..12241
+    assert ct.min() < 0 and ct.max() > 255
+    back = pupwave.decompress_volume(pupwave.compress_volume(ct))  # integers default to lossless
+    assert back.dtype == np.int16 and np.array_equal(back, ct)
+    for bound in (1, 4):
+        back = pupwave.decompress_volume(pupwave.compress_volume(ct, max_error=bound))
+        worst = np.abs(back.astype(np.int64) - ct).max()
+        assert back.dtype == np.int16 and 0 < worst <= bound, bound
+
+
 def test_values_that_do_not_fit_are_refused(real_image):
     a = real_image("camera", "pgm")
     big = a.astype(np.float64)
     big[10, 20] = 1e39  # finite in float64, infinite in float32
     with pytest.raises(ValueError, match=r"float64 image values must lie within \+-3.40.*e\+38.*1e\+39"):
         pupwave.compress(big)
-    negative = a.astype(np.int32) - 5
-    with pytest.raises(ValueError, match=r"int32 image values must lie in 0\.\.65535.*holds -\d+\.\.\d+"):
-        pupwave.compress(negative, lossless=True)
-    with pytest.raises(ValueError, match=r"int64 image values must lie in 0\.\.65535.*holds \d+\.\.70000"):
-        pupwave.compress(np.where(a > 200, 70000, a).astype(np.int64), lossless=True)
-    with pytest.raises(ValueError, match=r"int8 image values must lie in 0\.\.65535"):
-        pupwave.compress((a.astype(np.int16) - 128).astype(np.int8))
+    with pytest.raises(ValueError, match=r"int32 image values must span at most 65535 .*holds -5\.\.70000"):
+        pupwave.compress(np.where(a > 200, 70000, a.astype(np.int32) - 5), lossless=True)
+    with pytest.raises(ValueError, match=r"int64 image values must span at most 65535 .*holds 0\.\.70000"):
+        pupwave.compress(np.where(a > 200, 70000, 0).astype(np.int64), psnr=30)
     with pytest.raises(TypeError, match="complex128"):
         pupwave.compress(a.astype(np.complex128))
-    with pytest.raises(ValueError, match="int16 volume values must lie in 0..65535"):
-        pupwave.compress_volume(np.full((4, 4, 4), -1, np.int16))
+    wide = np.full((4, 4, 4), -32768, np.int32)
+    wide[1, 2, 3] = 32768
+    with pytest.raises(ValueError, match=r"int32 volume values must span at most 65535 .*holds -32768\.\.32768"):
+        pupwave.compress_volume(wide)
     with pytest.raises(ValueError):  # NaN is still refused by the codec, as for float32
         pupwave.compress(np.full((8, 8), np.nan))
 

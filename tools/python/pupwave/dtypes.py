@@ -6,9 +6,10 @@ original dtype is recorded in the stream as the text attribute ``pupwave:dtype``
 ``numpy.dtype.str``, e.g. ``<f8``), so that decoding gives it back:
 
 - integers (int8 ... int64, uint32, uint64): values 0..255 are stored as uint8, values up to 65535
-  as uint16, exactly; an array holding a negative value or one above 65535 is refused
-  (ValueError naming the dtype, the range and the values found), never wrapped. A rate target's
-  peak is that of the stored type (255 or 65535).
+  as uint16, exactly. An array with a value outside 0..65535 is stored less its minimum, recorded
+  as the text attribute ``pupwave:offset``, when its values span at most 65535 (signed data such
+  as -1024..3071); a wider span is refused (ValueError naming the dtype, the span and the values
+  found), never wrapped. A rate target's peak is that of the stored type (255 or 65535).
 - bool: stored as uint8 0 and 255 (so a rate target's peak is the two values' distance); decodes
   as stored value >= 128.
 - floats: an image's float64 (or wider) samples are rounded to float32; a volume's float16
@@ -24,6 +25,7 @@ A stream without the attribute decodes to its stored dtype.
 import numpy as np
 
 DTYPE_ATTRIBUTE = "pupwave:dtype"
+OFFSET_ATTRIBUTE = "pupwave:offset"
 
 
 class Storage:
@@ -48,11 +50,16 @@ def _value_range(array):
 
 
 def _integers(array, dtype, storage):
-    lo, hi = _value_range(array)
-    if lo < 0 or hi > 65535:
-        raise ValueError(f"pupwave: {dtype} {storage.noun} values must lie in 0..65535 to be coded exactly "
-                         f"(0..255 as uint8, else uint16); this one holds {lo}..{hi}")
-    return array.astype(np.uint8 if hi <= 255 else np.uint16)
+    """(uint8 or uint16 array, attributes): the values less an offset, the minimum when they do
+    not lie in 0..65535 (0 otherwise, so that 0..255 data codes as the same uint8 samples)."""
+    lo, hi = (int(v) for v in _value_range(array))
+    offset = 0 if lo >= 0 and hi <= 65535 else lo
+    if hi - offset > 65535:
+        raise ValueError(f"pupwave: {dtype} {storage.noun} values must span at most 65535 (max - min) to be coded "
+                         f"exactly as uint16 (less their minimum); this one holds {lo}..{hi}")
+    wide = array if dtype == np.uint64 else array.astype(np.int64)  # no wrap while shifting
+    stored = (wide - wide.dtype.type(offset)).astype(np.uint8 if hi - offset <= 255 else np.uint16)
+    return stored, ({OFFSET_ATTRIBUTE: str(offset)} if offset else {})
 
 
 def _floats(array, dtype, storage):
@@ -76,13 +83,14 @@ def to_stored(array, storage):
         raise TypeError(f"pupwave: unsupported {storage.noun} dtype {dtype}; expected bool, an integer or a float "
                         f"dtype")
     native = array.astype(dtype.newbyteorder("=")) if not dtype.isnative else array
+    extra = {}
     if dtype.kind == "b":
         stored = native.astype(np.uint8) * np.uint8(255)
     elif dtype.kind == "f":
         stored = _floats(native, native.dtype, storage)
     else:
-        stored = _integers(native, native.dtype, storage)
-    return stored, {DTYPE_ATTRIBUTE: dtype.str}
+        stored, extra = _integers(native, native.dtype, storage)
+    return stored, {DTYPE_ATTRIBUTE: dtype.str, **extra}
 
 
 def halves_bound(array):
@@ -119,14 +127,33 @@ def recorded_dtype(attributes, stored, storage):
     return dtype
 
 
+def _recorded_offset(attributes, dtype):
+    """The offset `attributes` record for `dtype` values (0 when none). Raises ValueError for one
+    this module does not write."""
+    text = attributes.get(OFFSET_ATTRIBUTE)
+    if text is None:
+        return 0
+    try:
+        offset = int(text)
+    except ValueError:
+        offset = None
+    limits = np.iinfo(dtype) if dtype.kind in "iu" else None
+    if offset is None or limits is None or not limits.min <= offset <= limits.max:
+        raise ValueError(f"pupwave: the stream records {OFFSET_ATTRIBUTE}={text!r} for {dtype} values, which this "
+                         f"module does not write; pupwave._pupwave decodes the stored samples")
+    return offset
+
+
 def from_stored(array, attributes, storage):
     """The decoded `array` in the dtype `attributes` record (unchanged when they record none)."""
     dtype = recorded_dtype(attributes, array.dtype, storage)
     if dtype is None:
         return array
+    offset = _recorded_offset(attributes, dtype)
     if dtype.kind == "b":
         return array >= 128
     if dtype.kind in "iu":  # lossy values may pass the original type's top (int8: 127): clamp, never wrap
-        top = min(np.iinfo(dtype).max, np.iinfo(array.dtype).max)
-        array = np.minimum(array, array.dtype.type(top))
+        top = min(int(np.iinfo(dtype).max) - offset, int(np.iinfo(array.dtype).max))
+        wide = np.minimum(array, array.dtype.type(top)).astype(np.uint64 if dtype == np.uint64 else np.int64)
+        return (wide + wide.dtype.type(offset)).astype(dtype)
     return array.astype(dtype)
