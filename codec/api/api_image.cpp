@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "codec/api/api_attributes.h"
 #include "codec/api/api_errors.h"
 #include "codec/format/container.h"
 #include "codec/image/image_codec.h"
@@ -133,6 +134,9 @@ ImageView planar_view(const void* data, std::size_t width, std::size_t height, s
 std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOptions& options) {
   return detail::translate_errors([&] {
     EncodeOptions enc = encode_options(options);
+    detail::check_attributes(options.attributes);
+    const ImageMetadata metadata = detail::image_metadata(options.attributes);
+    if (!metadata.empty()) enc.metadata = &metadata;  // no META chunk without attributes
     const std::unique_ptr<Executor> executor = make_pool_executor(options.threads);
     enc.executor = executor.get();
     pupwave::ImageView view;
@@ -164,6 +168,7 @@ Image decompress_image(std::span<const std::uint8_t> stream, int level, unsigned
     out.height = decoded.height;
     out.channels = decoded.channels;
     out.type = public_type(decoded.type);
+    out.attributes = detail::text_attributes(decoded.metadata);
     out.data.resize(decoded.samples.size() * bytes_per_sample(out.type));
     switch (out.type) {
       case SampleType::u8: store_interleaved<std::uint8_t>(decoded, out.data.data()); break;

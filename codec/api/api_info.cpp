@@ -1,5 +1,6 @@
 // pupwave::api::info: the header fields of an image or volume stream, after the same full
 // validation `pupwave info` does (every checksum verified).
+#include "codec/api/api_attributes.h"
 #include "codec/api/api_errors.h"
 #include "codec/format/container.h"
 #include "codec/volume/volume_codec.h"
@@ -26,6 +27,7 @@ StreamInfo info(std::span<const std::uint8_t> stream) {
       out.max_error = h.max_error;
       out.sparse = v.is_sparse();
       out.description = describe_volume_stream(stream);
+      out.attributes = detail::text_attributes(h.grids[0].metadata);
       return out;
     }
     const ParsedStream s = parse_container(stream, 0);
@@ -38,6 +40,7 @@ StreamInfo info(std::span<const std::uint8_t> stream) {
     out.transform = h.spec;
     out.lossless = h.reversible;
     out.description = describe_stream(stream);
+    out.attributes = detail::text_attributes(h.metadata);
     return out;
   });
 }

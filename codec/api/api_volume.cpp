@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "codec/api/api_attributes.h"
 #include "codec/api/api_errors.h"
 #include "codec/volume/volume_codec.h"
 #include "pupwave/pupwave.hpp"
@@ -91,10 +92,12 @@ std::vector<std::uint8_t> encode_grid(const pupwave::VolumeView& view,
                                       const std::array<std::int64_t, 3>& origin,
                                       const VolumeOptions& options) {
   VolumeEncodeOptions enc = encode_options(options, view);
+  detail::check_attributes(options.attributes);
   const std::unique_ptr<Executor> executor = make_pool_executor(options.threads);
   enc.executor = executor.get();
   VolumeGrid grid = describe_view(view, "volume");
   grid.origin = origin;
+  grid.metadata = detail::grid_metadata(options.attributes);
   const pupwave::VolumeView views[] = {view};
   return encode_volumes({grid}, views, enc).bytes;
 }
@@ -254,6 +257,7 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
       typed.origin = grid->origin;
       typed.dims = {grid->volume.dims[0], grid->volume.dims[1], grid->volume.dims[2]};
       typed.background = grid->volume.background;
+      typed.attributes = detail::text_attributes(grid->metadata);
       return std::vector<Volume>{std::move(typed)};
     }
     std::vector<VolumeGrid> grids = decode_volumes(stream, level, *executor);
@@ -274,6 +278,7 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
       v.dims = {g.volume.dims[0], g.volume.dims[1], g.volume.dims[2]};
       v.type = VoxelType(g.volume.type);  // same numbering (volume.h)
       v.background = g.volume.background;
+      v.attributes = detail::text_attributes(g.metadata);
       v.active = std::move(g.volume.active);
       v.data.resize(g.volume.count() * bytes_per_voxel(v.type));
       switch (v.type) {

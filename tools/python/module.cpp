@@ -1,6 +1,9 @@
-// pupwave._pupwave: numpy bindings over the public C++ API (pupwave/pupwave.hpp). Arrays are
-// handed to the codec as strided views (no copy); the GIL is released while coding; the
-// library's errors become ValueError, unsupported dtypes and non-arrays TypeError.
+// pupwave._pupwave: numpy bindings over the public C++ API (pupwave/pupwave.hpp). Arrays of the
+// stored dtypes are handed to the codec as strided views (no copy); the GIL is released while
+// coding; the library's errors become ValueError, other dtypes and non-arrays TypeError. The
+// package (pupwave/__init__.py) converts other dtypes (pupwave/dtypes.py) and passes the text
+// attributes that record them: compress* take `attributes` (dict), decompress* return
+// (array, attributes).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -98,6 +101,18 @@ py::bytes to_bytes(const std::vector<std::uint8_t>& v) {
   return py::bytes(reinterpret_cast<const char*>(v.data()), v.size());
 }
 
+std::vector<api::Attribute> to_attributes(const std::map<std::string, std::string>& attributes) {
+  std::vector<api::Attribute> out;
+  for (const auto& [name, value] : attributes) out.push_back({name, value});
+  return out;
+}
+
+py::dict to_dict(const std::vector<api::Attribute>& attributes) {
+  py::dict d;
+  for (const api::Attribute& a : attributes) d[py::str(a.name)] = py::str(a.value);
+  return d;
+}
+
 int count_set(std::initializer_list<bool> flags) {
   int n = 0;
   for (bool f : flags) n += f ? 1 : 0;
@@ -106,7 +121,8 @@ int count_set(std::initializer_list<bool> flags) {
 
 py::bytes compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
                    std::optional<double> step, bool lossless, const std::string& transform,
-                   std::optional<int> levels, int effort, const std::string& entropy) {
+                   std::optional<int> levels, int effort, const std::string& entropy,
+                   const std::map<std::string, std::string>& attributes) {
   const py::array a = as_array(obj);
   const api::SampleType type = image_type(a);
   if (a.ndim() != 2 && a.ndim() != 3)
@@ -132,6 +148,7 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   options.transform = lossless && transform == "cdf97" ? "cdf53" : transform;
   options.levels = levels.value_or(-1);
   options.effort = effort;
+  options.attributes = to_attributes(attributes);
   if (entropy == "pc")
     options.pc = true;
   else if (entropy == "ebcot")
@@ -150,7 +167,7 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   return to_bytes(out);
 }
 
-py::array decompress(const py::object& data, int level) {
+py::tuple decompress(const py::object& data, int level) {
   api::Image image;
   {
     const ByteView bytes(data);
@@ -159,11 +176,13 @@ py::array decompress(const py::object& data, int level) {
   }
   std::vector<py::ssize_t> shape{py::ssize_t(image.height), py::ssize_t(image.width)};
   if (image.channels > 1) shape.push_back(py::ssize_t(image.channels));
-  return owning_array(std::move(image.data), dtype_name(image.type), shape);
+  return py::make_tuple(owning_array(std::move(image.data), dtype_name(image.type), shape),
+                        to_dict(image.attributes));
 }
 
 py::bytes compress_volume(const py::object& obj, std::optional<double> max_error,
-                          std::optional<double> max_error_rel, std::optional<double> bpv, bool lossless) {
+                          std::optional<double> max_error_rel, std::optional<double> bpv, bool lossless,
+                          const std::map<std::string, std::string>& attributes) {
   py::array a = as_array(obj);
   const api::VoxelType type = voxel_type(a);
   if (a.ndim() != 3)
@@ -186,6 +205,7 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
     options.rate = api::VolumeRate::bpv, options.target = *bpv;
   else
     options.rate = api::VolumeRate::max_error_rel, options.target = max_error_rel.value_or(1e-3);
+  options.attributes = to_attributes(attributes);
   api::VolumeView view{
       a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
   for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = a.strides(d) / a.itemsize();  // (z, y, x)
@@ -197,7 +217,7 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
   return to_bytes(out);
 }
 
-py::array decompress_volume(const py::object& data, int level) {
+py::tuple decompress_volume(const py::object& data, int level) {
   std::vector<api::Volume> grids;
   {
     const ByteView bytes(data);
@@ -208,8 +228,10 @@ py::array decompress_volume(const py::object& data, int level) {
     throw py::value_error("the stream holds " + std::to_string(grids.size()) +
                           " grids; decompress_volume returns single-grid streams (use `pupwave decompress`)");
   api::Volume& v = grids[0];
-  return owning_array(std::move(v.data), dtype_name(v.type),
-                      {py::ssize_t(v.dims[2]), py::ssize_t(v.dims[1]), py::ssize_t(v.dims[0])});
+  return py::make_tuple(
+      owning_array(std::move(v.data), dtype_name(v.type),
+                   {py::ssize_t(v.dims[2]), py::ssize_t(v.dims[1]), py::ssize_t(v.dims[0])}),
+      to_dict(v.attributes));
 }
 
 py::dict info(const py::object& data) {
@@ -243,6 +265,7 @@ py::dict info(const py::object& data) {
   d["lossless"] = s.lossless;
   d["bytes"] = size;
   d["description"] = s.description;
+  d["attributes"] = to_dict(s.attributes);
   return d;
 }
 
@@ -261,18 +284,17 @@ PYBIND11_MODULE(_pupwave, m) {
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = "cdf97",
         py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "default",
-        "Compress a 2-D (grey) or HxWxC (C 1..4) array of uint8/uint16/float16/float32 to .pw bytes. At most "
-        "one of bpp, psnr, step, lossless (default psnr=40). entropy: default (pc for rate targets on "
-        "integer images up to 4 Mpixel, else ebcot; lc for lossless), pc, ebcot, ht or zstd. effort=2 "
-        "(with entropy='ebcot'): bpp targets search three base steps per band (about 1% smaller, up to "
-        "1.9x slower).");
+        py::arg("attributes") = std::map<std::string, std::string>{},
+        "pupwave.compress on a uint8/uint16/float16/float32 array; attributes (str -> str) are stored "
+        "in the stream.");
   m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0,
-        "Decode .pw image bytes to an array of the original dtype and shape (halved per level).");
+        "(array of the stored dtype, the stream's text attributes as a dict).");
   m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),
         py::arg("max_error_rel") = py::none(), py::arg("bpv") = py::none(), py::arg("lossless") = false,
-        "Compress a (z, y, x) array of float32/float64 (or uint8/uint16) to .pw volume bytes. Default: "
-        "lossless for integers, max_error_rel=1e-3 for floats.");
+        py::arg("attributes") = std::map<std::string, std::string>{},
+        "pupwave.compress_volume on a uint8/uint16/float32/float64 array; attributes (str -> str) are "
+        "stored as the grid's metadata.");
   m.def("decompress_volume", &decompress_volume, py::arg("data"), py::arg("level") = 0,
-        "Decode .pw volume bytes to a (z, y, x) array (halved per level).");
+        "(array of the stored dtype, the grid's text attributes as a dict).");
   m.def("info", &info, py::arg("data"), "Describe .pw bytes (every checksum verified) as a dict.");
 }

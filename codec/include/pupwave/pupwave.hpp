@@ -39,6 +39,16 @@ class Error : public std::runtime_error {
   Status status_;
 };
 
+// A named text attribute carried in a stream (an image's META chunk, a volume grid's metadata):
+// stored on encode and handed back on decode, read by nothing else in the library. Bindings
+// name theirs "pupwave:..." (the Python module records a converted array's dtype as
+// "pupwave:dtype"). Names are non-empty, unique and at most 4096 bytes; values at most 65535.
+struct Attribute {
+  std::string name;
+  std::string value;
+  bool operator==(const Attribute&) const = default;
+};
+
 // ---- images ----------------------------------------------------------------------------------
 
 // Sample types: 8/16-bit unsigned integers, IEEE binary16 (as uint16 bits) and binary32.
@@ -84,6 +94,8 @@ struct ImageOptions {
   // Encoder effort for bpp targets with ebcot: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
   // and more memory (same format; other rates ignore it).
   int effort = 1;
+  // Stored in the stream (its META chunk).
+  std::vector<Attribute> attributes;
 };
 
 // Compresses an image to a complete .pw stream.
@@ -94,6 +106,8 @@ struct Image {
   std::size_t width = 0, height = 0, channels = 0;
   SampleType type = SampleType::u8;
   std::vector<std::byte> data;  // width * height * channels * bytes_per_sample(type)
+  // The stream's text attributes (integer and real ones are not listed).
+  std::vector<Attribute> attributes;
 };
 
 // Decodes at full size (level 0) or 1/2^level size (ceil per halving), reading only that data.
@@ -141,6 +155,8 @@ struct VolumeOptions {
   int levels = -1;         // per brick, -1: default
   std::size_t brick = 64;  // brick edge (power of two, 8..256)
   unsigned threads = 0;    // as ImageOptions::threads
+  // Stored as the grid's metadata.
+  std::vector<Attribute> attributes;
 };
 
 std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const VolumeOptions& options = {});
@@ -158,6 +174,8 @@ struct Volume {
   std::vector<std::byte> data;       // dims product * bytes_per_voxel(type)
   std::vector<std::uint8_t> active;  // one byte per voxel (1 active) for sparse grids; empty if dense
   double background = 0.0;           // value of inactive voxels outside the box
+  // The grid's text metadata (other kinds are not listed).
+  std::vector<Attribute> attributes;
 };
 
 // Decodes every grid of a volume stream (a stream from the CLI may hold several).
@@ -177,6 +195,8 @@ struct StreamInfo {
   double max_error = 0.0;   // volumes coded with a point-wise bound (0: none)
   bool sparse = false;      // volumes: first grid is sparse
   std::string description;  // `pupwave info` text; every checksum verified
+  // Text attributes of the image, or of a volume's first grid.
+  std::vector<Attribute> attributes;
 };
 StreamInfo info(std::span<const std::uint8_t> stream);
 
