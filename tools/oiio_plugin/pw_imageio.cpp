@@ -225,19 +225,6 @@ class PwOutput final : public ImageOutput {
     return o;
   }
 
-  // Writes under a temporary name and renames, so a failure never leaves a partial file.
-  bool write_atomically(const std::vector<std::uint8_t>& bytes) {
-    const std::string temp = filename_ + ".partial";
-    FILE* f = std::fopen(temp.c_str(), "wb");
-    if (!f) return fail("cannot write " + temp);
-    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    if (std::fclose(f) != 0 || !ok || std::rename(temp.c_str(), filename_.c_str()) != 0) {
-      std::remove(temp.c_str());
-      return fail("cannot write " + filename_);
-    }
-    return true;
-  }
-
   bool fail(const std::string& message) const {
     errorfmt("{}", message);
     return false;
