@@ -280,8 +280,8 @@ EdgeFidelity edge_fidelity(const openvdb::FloatGrid& fine, const openvdb::FloatG
 
 }  // namespace
 
-// Issue 12: where a dense grid's data ends at its box, padding with background darkened the
-// border of every level; the default (--edge auto) extends such grids symmetrically, while
+// Where a dense grid's data ends at its box, padding with background darkens the border of
+// every level; the default (--edge auto) extends such grids symmetrically, while
 // sparse grids (whose outside is background) keep background padding (the tests above).
 TEST_F(VolumeTest, LodDenseGridEdgesExtendSymmetrically) {
   const fs::path raw = testimage("gray_scott64.raw"), vdb = dir_ / "gs.vdb";
