@@ -12,10 +12,11 @@
 // to level k-1 (vdb_lod uses the (1/4, 1/2, 1/4) full-weighting filter), normalised by its
 // response to a constant so constant fields stay constant, and clamped to the input's value
 // range (per component for vectors). Beyond a sparse grid's data lies its background (inactive
-// values and tiles as stored); a dense grid (every voxel of its box active) is extended
-// symmetrically at its box instead (--edge). Level sets keep a meaningful narrow band: inactive
-// voxels take +-background by the sign of the low band. The work is sparse (tools/lod_pyramid.h):
-// coarse leaf by coarse leaf, only where fine leaves or non-background tiles reach.
+// values and tiles as stored); a dense grid (more than 90% of the voxels on the six faces of its
+// active box active and not the background) is extended symmetrically at its box instead (--edge).
+// Level sets keep a meaningful narrow band: inactive voxels take +-background by the sign of the
+// low band. The work is sparse (tools/lod_pyramid.h): coarse leaf by coarse leaf, only where fine
+// leaves or non-background tiles reach.
 // Integer grids are rounded to the nearest integer (vdb_lod makes levels of them too); bool,
 // mask and unknown grids are copied unchanged (vdb_lod skips them); file metadata is kept.
 #include <algorithm>
@@ -109,8 +110,9 @@ void add_lod_command(CLI::App& app) {
   cmd->add_option("--transform", opt->transform, "wavelet whose low band makes each level (default cdf97)");
   cmd->add_option("--edge", opt->edge,
                   "what lies beyond a grid's box: auto (default: symmetric for a dense grid, whose data "
-                  "ends at its box; background for a sparse one, whose outside is background), symmetric, "
-                  "background")
+                  "ends at its box: more than 90% of the voxels on the six faces of its active box are "
+                  "active and not the background; background otherwise, the outside of a sparse grid), "
+                  "symmetric, background")
       ->transform(CLI::IsMember({"auto", "symmetric", "background"}, CLI::ignore_case));
   cmd->add_option("--name", opt->names, "grid name(s) to process, comma separated (default: every grid)");
   add_verbosity_flags(*cmd, opt->verbosity);

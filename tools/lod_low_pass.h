@@ -9,7 +9,8 @@
 namespace pupwave::cli {
 
 // What lies beyond a grid's data (--edge): background for sparse grids (their outside is
-// background), whole-sample symmetric reflection at the active box for dense grids (issue 12).
+// background), whole-sample symmetric reflection at the active box for dense grids; automatic
+// judges by the faces of the active box (kDenseFaceFill in tools/vdb/lod_pyramid.cpp).
 enum class LodEdge { automatic, symmetric, background };
 
 // The analysis low pass of a linear, shift-invariant 1-D transform: in the interior of a line x,

@@ -280,8 +280,8 @@ EdgeFidelity edge_fidelity(const openvdb::FloatGrid& fine, const openvdb::FloatG
 
 }  // namespace
 
-// Issue 12: where a dense grid's data ends at its box, padding with background darkened the
-// border of every level; the default (--edge auto) extends such grids symmetrically, while
+// Where a dense grid's data ends at its box, padding with background darkens the border of
+// every level; the default (--edge auto) extends such grids symmetrically, while
 // sparse grids (whose outside is background) keep background padding (the tests above).
 TEST_F(VolumeTest, LodDenseGridEdgesExtendSymmetrically) {
   const fs::path raw = testimage("gray_scott64.raw"), vdb = dir_ / "gs.vdb";
@@ -311,6 +311,119 @@ TEST_F(VolumeTest, LodDenseGridEdgesExtendSymmetrically) {
     EXPECT_LT(s.rms, 0.25 * b.rms) << "scale " << 2 * k << ": symmetric " << s.rms << ", background "
                                    << b.rms;
     EXPECT_LT(s.rms, 0.03) << "scale " << 2 * k;
+  }
+}
+
+namespace {
+
+// Levels 1..top of every grid of `lod IN --levels top --edge EDGE`, by name (NAME_level_K).
+std::map<std::string, openvdb::FloatGrid::Ptr> lod_levels(const fs::path& in, const fs::path& out,
+                                                          const std::string& edge, int top) {
+  const CliResult r =
+      run_cli({"lod", in.string(), out.string(), "--levels", std::to_string(top), "--edge", edge});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::map<std::string, openvdb::FloatGrid::Ptr> levels;
+  for (const auto& base : read_grids(out))
+    if (base->metaValue<float>("MultiResGrid_Level") > 0.0f)
+      levels[base->getName()] = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+  EXPECT_EQ(levels.size() % std::size_t(top), 0u);
+  return levels;
+}
+
+// Mean of the active voxels on the six faces of the grid's active bounding box.
+double face_mean(const openvdb::FloatGrid& g) {
+  openvdb::CoordBBox inner = g.evalActiveVoxelBoundingBox();
+  inner.expand(-1);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (auto it = g.cbeginValueOn(); it; ++it)
+    if (!inner.isInside(it.getCoord())) sum += *it, ++n;
+  return sum / double(std::max<std::size_t>(n, 1));
+}
+
+// Share of the voxels on the faces of the active bounding box that are active and not the
+// background (voxel grids without tiles, as the inputs here are).
+double face_fill(const openvdb::FloatGrid& g) {
+  const openvdb::CoordBBox box = g.evalActiveVoxelBoundingBox();
+  openvdb::CoordBBox inner = box;
+  inner.expand(-1);
+  std::size_t filled = 0;
+  for (auto it = g.cbeginValueOn(); it; ++it)
+    if (!inner.isInside(it.getCoord()) && *it != g.background()) ++filled;
+  return double(filled) / double(box.volume() - inner.volume());
+}
+
+}  // namespace
+
+// --edge auto judges a grid by the faces of its active box. The Gray-Scott field (every voxel
+// active) with one interior voxel made a background voxel (inactive, holding the background) and
+// one face voxel set to the background is still dense: auto gives the levels of --edge
+// symmetric, voxel for voxel, and their borders keep the field's level instead of being darkened
+// toward the background. The level set and the fog volume (data touching their boxes in patches)
+// keep background padding.
+TEST_F(VolumeTest, LodAutoEdgeJudgesDensityByBoxFaces) {
+  const fs::path raw = testimage("gray_scott64.raw"), vdb = dir_ / "gs.vdb", holed = dir_ / "holed.vdb";
+  ASSERT_EQ(run_cli({"convert-volume", raw.string(), vdb.string(), "--dims", "64,64,64", "--dtype", "f32"})
+                .exit_code,
+            0);
+  const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(read_grids(vdb).front());
+  ASSERT_TRUE(grid);
+  grid->tree().setValueOff(openvdb::Coord(31, 17, 40), grid->background());
+  grid->tree().setValueOn(openvdb::Coord(0, 20, 30), grid->background());
+  const openvdb::CoordBBox box(openvdb::Coord(0), openvdb::Coord(63));
+  ASSERT_EQ(grid->evalActiveVoxelBoundingBox(), box);
+  ASSERT_EQ(grid->activeVoxelCount(), box.volume() - 1);
+  write_grids({grid}, holed);
+  const int top = 2;
+  const auto autos = lod_levels(holed, dir_ / "auto.vdb", "auto", top);
+  const auto syms = lod_levels(holed, dir_ / "sym.vdb", "symmetric", top);
+  const auto bgs = lod_levels(holed, dir_ / "bg.vdb", "background", top);
+  ASSERT_EQ(autos.size(), std::size_t(top));
+  const double fine = face_mean(*grid);
+  std::printf("holed Gray-Scott: face fill %.4f\n", face_fill(*grid));
+  for (const auto& [name, level] : autos) {
+    ASSERT_TRUE(level && syms.count(name) && bgs.count(name)) << name;
+    const openvdb::FloatGrid &s = *syms.at(name), &b = *bgs.at(name);
+    const double a_mean = face_mean(*level), b_mean = face_mean(b);
+    std::printf("holed Gray-Scott %s face mean: auto %.4f, symmetric %.4f, background %.4f (level 0: %.4f)\n",
+                name.c_str(), a_mean, face_mean(s), b_mean, fine);
+    EXPECT_TRUE(same_voxels(s, *level)) << name << ": auto is not symmetric";
+    // Background padding pulls the border toward the background (0); auto must not.
+    EXPECT_LT(std::abs(a_mean - fine), 0.25 * std::abs(b_mean - fine)) << name;
+  }
+  for (const char* file : {"sphere_ls.vdb", "dodeca_fog.vdb"}) {
+    const fs::path in = testimage(file);
+    const auto fine_grid = openvdb::gridPtrCast<openvdb::FloatGrid>(read_grids(in).front());
+    ASSERT_TRUE(fine_grid) << file;
+    std::printf("%s: face fill %.4f\n", file, face_fill(*fine_grid));
+    const auto a = lod_levels(in, dir_ / "auto.vdb", "auto", top);
+    const auto s = lod_levels(in, dir_ / "sym.vdb", "symmetric", top);
+    const auto b = lod_levels(in, dir_ / "bg.vdb", "background", top);
+    ASSERT_FALSE(a.empty()) << file;
+    for (const auto& [name, level] : a) {
+      ASSERT_TRUE(level && b.count(name) && s.count(name)) << file << ' ' << name;
+      EXPECT_TRUE(same_voxels(*b.at(name), *level)) << file << ' ' << name;
+      // The two rules differ here, so the comparison above can tell them apart.
+      EXPECT_FALSE(same_voxels(*s.at(name), *level)) << file << ' ' << name;
+    }
+  }
+}
+
+// Active tiles count as the voxels they cover: a box filled by tiles alone (no leaf) is dense,
+// so auto keeps its constant value up to the border where background padding would darken it.
+TEST_F(VolumeTest, LodAutoEdgeCountsActiveTiles) {
+  const auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("ones");
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(63)), 1.0f, true);
+  ASSERT_EQ(grid->tree().leafCount(), 0u);
+  write_grids({grid}, dir_ / "tiles.vdb");
+  const auto autos = lod_levels(dir_ / "tiles.vdb", dir_ / "auto.vdb", "auto", 2);
+  const auto bgs = lod_levels(dir_ / "tiles.vdb", dir_ / "bg.vdb", "background", 2);
+  ASSERT_EQ(autos.size(), 2u);
+  for (const auto& [name, level] : autos) {
+    ASSERT_TRUE(level && bgs.count(name)) << name;
+    EXPECT_NEAR(face_mean(*level), 1.0, 1e-6) << name;
+    EXPECT_LT(face_mean(*bgs.at(name)), 0.9) << name;
   }
 }
 
