@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
@@ -98,6 +99,21 @@ py::bytes to_bytes(const std::vector<std::uint8_t>& v) {
   return py::bytes(reinterpret_cast<const char*>(v.data()), v.size());
 }
 
+// A missed rate target (`target` as given, e.g. "bpp=1"; `reached` what the stream reached)
+// becomes a RuntimeWarning; raised as an exception where the warnings filter makes it an error.
+void warn_missed(const api::TargetOutcome& outcome, const std::string& target, const std::string& reached) {
+  if (outcome.met) return;
+  const std::string text = target + " not met: " + reached;
+  if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+// A number for messages (%.6g).
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
 int count_set(std::initializer_list<bool> flags) {
   int n = 0;
   for (bool f : flags) n += f ? 1 : 0;
@@ -143,10 +159,18 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   else if (entropy != "default")
     throw py::value_error("entropy must be default, pc, ebcot, ht or zstd, got " + entropy);
   std::vector<std::uint8_t> out;
+  api::TargetOutcome outcome;
   {
     py::gil_scoped_release release;
-    out = api::compress_image(view, options);
+    out = api::compress_image(view, options, outcome);
   }
+  if (bpp)
+    warn_missed(
+        outcome, "bpp=" + number(*bpp),
+        "the stream is " + std::to_string(out.size()) + " bytes (" + number(outcome.achieved) + " bpp)");
+  else if (options.rate == api::ImageRate::psnr)
+    warn_missed(outcome, "psnr=" + number(options.target),
+                "the stream reaches " + number(outcome.achieved) + " dB");
   return to_bytes(out);
 }
 
@@ -190,10 +214,18 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
       a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
   for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = a.strides(d) / a.itemsize();  // (z, y, x)
   std::vector<std::uint8_t> out;
+  api::TargetOutcome outcome;
   {
     py::gil_scoped_release release;
-    out = api::compress_volume(view, options);
+    out = api::compress_volume(view, options, outcome);
   }
+  if (bpv)
+    warn_missed(
+        outcome, "bpv=" + number(*bpv),
+        "the stream is " + std::to_string(out.size()) + " bytes (" + number(outcome.achieved) + " bpv)");
+  else if (options.rate != api::VolumeRate::lossless)  // the error bounds, guaranteed: said if ever missed
+    warn_missed(outcome, (max_error ? "max_error=" : "max_error_rel=") + number(options.target),
+                "its largest error is " + number(outcome.achieved));
   return to_bytes(out);
 }
 
@@ -265,13 +297,16 @@ PYBIND11_MODULE(_pupwave, m) {
         "one of bpp, psnr, step, lossless (default psnr=40). entropy: default (pc for rate targets on "
         "integer images up to 4 Mpixel, else ebcot; lc for lossless), pc, ebcot, ht or zstd. effort=2 "
         "(with entropy='ebcot'): bpp targets search three base steps per band (about 1% smaller, up to "
-        "1.9x slower).");
+        "1.9x slower). A bpp or psnr target the stream misses (a tiny image's header alone can exceed a "
+        "bpp budget) still gives the stream, with a RuntimeWarning saying what it reached (a warnings "
+        "filter of 'error' makes it an exception).");
   m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0,
         "Decode .pw image bytes to an array of the original dtype and shape (halved per level).");
   m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),
         py::arg("max_error_rel") = py::none(), py::arg("bpv") = py::none(), py::arg("lossless") = false,
         "Compress a (z, y, x) array of float32/float64 (or uint8/uint16) to .pw volume bytes. Default: "
-        "lossless for integers, max_error_rel=1e-3 for floats.");
+        "lossless for integers, max_error_rel=1e-3 for floats. A bpv budget the stream misses gives a "
+        "RuntimeWarning, as compress does.");
   m.def("decompress_volume", &decompress_volume, py::arg("data"), py::arg("level") = 0,
         "Decode .pw volume bytes to a (z, y, x) array (halved per level).");
   m.def("info", &info, py::arg("data"), "Describe .pw bytes (every checksum verified) as a dict.");
