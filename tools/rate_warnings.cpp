@@ -24,12 +24,15 @@ std::string image_target_miss(const EncodeOptions& enc, const EncodeResult& r, s
   if (enc.mode == RateMode::psnr)
     return "--psnr " + number(enc.target) + " not met: " + subject + " reaches " + r.metric + " " +
            number(r.psnr) + " dB";
-  // What the stream holds before any coded data: why a tiny image cannot meet a small budget.
+  std::string text = "--bpp " + number(enc.target) + " not met: " + subject + " is " +
+                     std::to_string(r.bytes.size()) + " bytes (" + number(r.bpp) + " bpp) for this " +
+                     std::to_string(width) + "x" + std::to_string(height) + " image";
+  // What the stream holds before any coded data, said where it alone exceeds the budget: why a
+  // tiny image cannot meet it.
   const std::size_t framing = container_size(parse_container(r.bytes).header, 0, 0);
-  return "--bpp " + number(enc.target) + " not met: " + subject + " is " + std::to_string(r.bytes.size()) +
-         " bytes (" + number(r.bpp) + " bpp) for this " + std::to_string(width) + "x" +
-         std::to_string(height) + " image; its header and chunk framing alone take " +
-         std::to_string(framing) + " bytes";
+  if (8.0 * double(framing) > enc.target * double(width * height))
+    text += "; its header and chunk framing alone take " + std::to_string(framing) + " bytes";
+  return text;
 }
 
 std::string volume_target_miss(const VolumeEncodeOptions& enc, const VolumeEncodeResult& r,

@@ -11,8 +11,9 @@
 
 namespace pupwave::cli {
 
-// How an image stream misses its target, "--bpp 1 not met: SUBJECT is 93 bytes (186 bpp) for
-// this 2x2 image; ...", with `subject` naming the stream; "" when the target is met.
+// How an image stream misses its target, "--bpp 1 not met: SUBJECT is 110 bytes (220 bpp) for
+// this 2x2 image; its header and chunk framing alone take 93 bytes" (that last part where the
+// framing alone exceeds the budget), with `subject` naming the stream; "" when the target is met.
 std::string image_target_miss(const EncodeOptions& enc, const EncodeResult& r, std::size_t width,
                               std::size_t height, const std::string& subject);
 
