@@ -61,7 +61,7 @@ CLI::Validator existing_file_or_stdin() {
 }
 
 void add_verbosity_flags(CLI::App& cmd, Verbosity& v) {
-  auto* quiet = cmd.add_flag("--quiet,-q", v.quiet, "print nothing but errors");
+  auto* quiet = cmd.add_flag("--quiet,-q", v.quiet, "print nothing but errors and warnings");
   cmd.add_flag("--verbose,-v", v.verbose, "print more detail (transform, entropy coder, base step)")
       ->excludes(quiet);
 }

@@ -26,7 +26,7 @@ inline bool is_stdio(const std::string& path) { return path == "-"; }
 
 // Where status lines go and how many.
 struct Verbosity {
-  bool quiet = false;      // errors only
+  bool quiet = false;      // errors and warnings only
   bool verbose = false;    // a second line of detail
   bool to_stderr = false;  // stdout carries the data
   // The stream for status lines (null with --quiet).

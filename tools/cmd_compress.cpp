@@ -25,6 +25,7 @@
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/pnm_io.h"
+#include "tools/rate_warnings.h"
 #include "tools/volume_io.h"
 #include "tools/volume_raw.h"
 #include "transforms/separable.h"
@@ -49,6 +50,7 @@ struct CompressOptions {
   std::string dims, dtype, grid;
   double bpv = 0.0, max_error = 0.0, max_error_rel = 0.0;
   std::size_t brick = 64;
+  bool strict = false;  // a missed rate target is an error and nothing is written
   Verbosity verbosity;
 };
 
@@ -167,9 +169,12 @@ void run_compress_volume(const CompressOptions& opt) {
       r = encode_volumes(grids, in.views, enc,
                          [&](std::span<const std::uint8_t> piece) { file.write(piece); });
       file.close();
+      // Before the rename or the copy into a stream: a refused stream leaves OUT as it was.
+      refuse_if_strict(opt.strict, volume_target_miss(enc, r, "the stream"), opt.output);
     });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  warn_if_missed(volume_target_miss(enc, r, stream_subject(opt.output)));
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   if (r.switched_to_lossless)
@@ -184,10 +189,12 @@ void run_compress_volume(const CompressOptions& opt) {
 }
 
 // Why a rate target gave the lossless stream (EncodeResult::switched_to_lossless).
-std::string lossless_reason(const CompressOptions& opt, const EncodeOptions& enc) {
+std::string lossless_reason(const CompressOptions& opt, const EncodeOptions& enc, const EncodeResult& r) {
   char text[160];
-  if (enc.mode == RateMode::bpp)
+  if (enc.mode == RateMode::bpp && r.target_met)
     std::snprintf(text, sizeof text, "the lossless file fits --bpp %.6g", opt.bpp);
+  else if (enc.mode == RateMode::bpp)  // the budget is missed either way (the warning says by how much)
+    std::snprintf(text, sizeof text, "no file made for --bpp %.6g is smaller than the lossless one", opt.bpp);
   else if (enc.mode == RateMode::psnr)
     std::snprintf(text, sizeof text, "no lossy file reaching --psnr %.6g is smaller than the lossless one",
                   enc.target);
@@ -241,11 +248,11 @@ void run_compress(const CompressOptions& opt) {
   const auto mapped = is_stdio(opt.input) ? nullptr : MappedPnm::open(opt.input);
   const Image image = mapped ? Image() : read_image(opt.input);
   const ImageView view = mapped ? mapped->view() : view_of(image);
-  if (!image.metadata.not_kept.empty() && !opt.verbosity.quiet) {
+  if (!image.metadata.not_kept.empty()) {
     std::string names;
     for (const std::string& n : image.metadata.not_kept) names += (names.empty() ? "" : ", ") + n;
     std::fprintf(stderr,
-                 "pupwave: warning: %zu attribute(s) of %s are not kept (only string, integer and "
+                 "warning: %zu attribute(s) of %s are not kept (only string, integer and "
                  "float attributes are stored): %s\n",
                  image.metadata.not_kept.size(), opt.input.c_str(), names.c_str());
   }
@@ -275,11 +282,13 @@ void run_compress(const CompressOptions& opt) {
     return opt.entropy.empty() ? encode_image_default_coder(view, enc) : encode_image(view, enc);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  refuse_if_strict(opt.strict, image_target_miss(enc, r, view.width, view.height, "the stream"), opt.output);
   write_output_bytes(opt.output, r.bytes);
+  warn_if_missed(image_target_miss(enc, r, view.width, view.height, stream_subject(opt.output)));
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   if (r.switched_to_lossless)
-    std::fprintf(status, "pupwave: %s; coded lossless instead\n", lossless_reason(opt, enc).c_str());
+    std::fprintf(status, "pupwave: %s; coded lossless instead\n", lossless_reason(opt, enc, r).c_str());
   // Only when measured; float images name their metric (log-PSNR) beside ordinary PSNR.
   const std::string psnr = std::isinf(r.psnr) ? std::string(", lossless (PSNR inf)") : quality_text(image, r);
   std::fprintf(status, "%s: %zu bytes, %.4f bpp%s, %.3f s (%zux%zu, %zu channel(s), %s)\n",
@@ -372,6 +381,10 @@ void add_compress_command(CLI::App& app) {
   cmd->add_flag("--report-psnr", opt->report_psnr,
                 "images: decode the stream in memory and report its PSNR against the input (costs about "
                 "a decode; --psnr targets always report it)");
+  cmd->add_flag("--strict", opt->strict,
+                "a missed rate target (--bpp, --psnr, --bpv) is an error: nothing is written and an "
+                "existing OUT stays as it was. Without it the file is written and a line starting "
+                "'warning:' on stderr (--quiet too) says what it reached");
   add_verbosity_flags(*cmd, opt->verbosity);
   cmd->callback([opt] {
     CompressOptions o = *opt;

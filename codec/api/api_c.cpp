@@ -2,6 +2,7 @@
 // catches everything and turns it into a status plus a thread-local message.
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <new>
 #include <string>
@@ -27,6 +28,7 @@ struct pupwave_options {
 
 struct pupwave_stream {
   std::vector<std::uint8_t> bytes;
+  pupwave::api::TargetOutcome outcome;  // of the rate target it was compressed for
 };
 
 struct pupwave_decoded {
@@ -242,6 +244,10 @@ const uint8_t* pupwave_stream_data(const pupwave_stream* stream) {
   return stream ? stream->bytes.data() : nullptr;
 }
 size_t pupwave_stream_size(const pupwave_stream* stream) { return stream ? stream->bytes.size() : 0; }
+int pupwave_stream_target_met(const pupwave_stream* stream) { return stream && stream->outcome.met ? 1 : 0; }
+double pupwave_stream_achieved(const pupwave_stream* stream) {
+  return stream ? stream->outcome.achieved : std::numeric_limits<double>::quiet_NaN();
+}
 void pupwave_stream_destroy(pupwave_stream* stream) { delete stream; }
 
 pupwave_status pupwave_compress_image(const pupwave_options* options, const void* data, pupwave_type type,
@@ -253,7 +259,7 @@ pupwave_status pupwave_compress_image(const pupwave_options* options, const void
     const pupwave::api::ImageView view{data,           width,        height,    channels, image_type(type),
                                        channel_stride, pixel_stride, row_stride};
     auto stream = std::make_unique<pupwave_stream>();
-    stream->bytes = pupwave::api::compress_image(view, image_options(options));
+    stream->bytes = pupwave::api::compress_image(view, image_options(options), stream->outcome);
     *out = stream.release();
   });
 }
@@ -299,7 +305,7 @@ pupwave_status pupwave_compress_volume(const pupwave_options* options, const voi
     *out = nullptr;
     const pupwave::api::VolumeView view{data, {nx, ny, nz}, voxel_type(type)};
     auto stream = std::make_unique<pupwave_stream>();
-    stream->bytes = pupwave::api::compress_volume(view, volume_options(options));
+    stream->bytes = pupwave::api::compress_volume(view, volume_options(options), stream->outcome);
     *out = stream.release();
   });
 }
@@ -319,7 +325,8 @@ pupwave_status pupwave_compress_sparse_volume(const pupwave_options* options, co
           {b.origin[0], b.origin[1], b.origin[2]}, {b.data, {b.dims[0], b.dims[1], b.dims[2]}, vt}, b.active};
     }
     auto stream = std::make_unique<pupwave_stream>();
-    stream->bytes = pupwave::api::compress_sparse_volume(views, background, volume_options(options));
+    stream->bytes =
+        pupwave::api::compress_sparse_volume(views, background, volume_options(options), stream->outcome);
     *out = stream.release();
   });
 }

@@ -132,6 +132,12 @@ ImageView planar_view(const void* data, std::size_t width, std::size_t height, s
 }
 
 std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOptions& options) {
+  TargetOutcome ignored;
+  return compress_image(image, options, ignored);
+}
+
+std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOptions& options,
+                                         TargetOutcome& outcome) {
   return detail::translate_errors([&] {
     EncodeOptions enc = encode_options(options);
     detail::check_attributes(options.attributes);
@@ -151,10 +157,13 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOpti
     view.row_stride = image.row_stride;
     // No coder chosen: the default choice, as the CLI makes it (lc for lossless).
     const bool chosen = options.zstd || options.ht || options.pc || options.ebcot;
-    std::vector<std::uint8_t> bytes =
-        (chosen ? encode_image(view, enc) : encode_image_default_coder(view, enc)).bytes;
-    check_decodable(bytes);
-    return bytes;
+    EncodeResult r = chosen ? encode_image(view, enc) : encode_image_default_coder(view, enc);
+    check_decodable(r.bytes);
+    outcome.met = r.target_met;
+    outcome.achieved = enc.mode == RateMode::bpp    ? r.bpp
+                       : enc.mode == RateMode::psnr ? r.psnr
+                                                    : std::numeric_limits<double>::quiet_NaN();
+    return std::move(r.bytes);
   });
 }
 

@@ -87,10 +87,22 @@ VolumeEncodeOptions encode_options(const VolumeOptions& options, const pupwave::
   return enc;
 }
 
+// What a result reached, in the unit of the caller's target (TargetOutcome::achieved); `enc`
+// holds the bound in sample units, so for max_error_rel the error is scaled back by it.
+double achieved(const VolumeEncodeResult& r, const VolumeOptions& options, const VolumeEncodeOptions& enc) {
+  switch (options.rate) {
+    case VolumeRate::bpv: return r.bpv;
+    case VolumeRate::psnr: return r.psnr;
+    case VolumeRate::max_error: return r.max_error;
+    case VolumeRate::max_error_rel: return r.max_error * options.target / enc.target;
+    default: return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
 // Encodes one box grid read in place through `view` (nothing is copied or widened to double).
 std::vector<std::uint8_t> encode_grid(const pupwave::VolumeView& view,
-                                      const std::array<std::int64_t, 3>& origin,
-                                      const VolumeOptions& options) {
+                                      const std::array<std::int64_t, 3>& origin, const VolumeOptions& options,
+                                      TargetOutcome& outcome) {
   VolumeEncodeOptions enc = encode_options(options, view);
   detail::check_attributes(options.attributes);
   const std::unique_ptr<Executor> executor = make_pool_executor(options.threads);
@@ -99,7 +111,10 @@ std::vector<std::uint8_t> encode_grid(const pupwave::VolumeView& view,
   grid.origin = origin;
   grid.metadata = detail::grid_metadata(options.attributes);
   const pupwave::VolumeView views[] = {view};
-  return encode_volumes({grid}, views, enc).bytes;
+  VolumeEncodeResult r = encode_volumes({grid}, views, enc);
+  outcome.met = r.target_met;
+  outcome.achieved = achieved(r, options, enc);
+  return std::move(r.bytes);
 }
 
 // The codec's view of a caller's dense array (strides 0: contiguous, x fastest).
@@ -164,15 +179,27 @@ void check_data(const void* data) {
 std::size_t bytes_per_voxel(VoxelType type) { return pupwave::bytes_per_voxel(internal_type(type)); }
 
 std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const VolumeOptions& options) {
+  TargetOutcome ignored;
+  return compress_volume(volume, options, ignored);
+}
+
+std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const VolumeOptions& options,
+                                          TargetOutcome& outcome) {
   return detail::translate_errors([&] {
     checked_count(volume.dims);
     check_data(volume.data);
-    return encode_grid(internal_view(volume), {0, 0, 0}, options);
+    return encode_grid(internal_view(volume), {0, 0, 0}, options, outcome);
   });
 }
 
 std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bricks, double background,
                                                  const VolumeOptions& options) {
+  TargetOutcome ignored;
+  return compress_sparse_volume(bricks, background, options, ignored);
+}
+
+std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bricks, double background,
+                                                 const VolumeOptions& options, TargetOutcome& outcome) {
   return detail::translate_errors([&] {
     if (bricks.empty()) detail::fail("a sparse volume needs at least one brick");
     if (!std::isfinite(background)) detail::fail("background must be finite");
@@ -234,7 +261,7 @@ std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bric
           }
         }
     }
-    return encode_grid(out.view, lo, options);
+    return encode_grid(out.view, lo, options, outcome);
   });
 }
 

@@ -66,6 +66,11 @@ struct EncodeResult {
   // An integer image's rate target gave the lossless stream instead: it fit the --bpp budget,
   // only exact decoding reaches the --psnr target, or a lossy stream would not be smaller.
   bool switched_to_lossless = false;
+  // Whether the file meets the rate target: RateMode::bpp within `target` bits per pixel,
+  // RateMode::psnr at least `target` dB (in `metric`); `bpp` and `psnr` say what it reached.
+  // A missed target still gives the file (a tiny image's header alone can exceed a bpp
+  // budget). step and lossless set no target to miss: true.
+  bool target_met = true;
 };
 
 // Compresses an image. For integer images no rate target gives a file larger than the
@@ -75,6 +80,7 @@ struct EncodeResult {
 // below 2^-24 of its value range or PSNR target above 120 dB, effort other than 1 or 2) and
 // EncodeError for images the format cannot hold (empty, over 2^16 per axis or 2^31 samples,
 // more than 64 channels, non-finite samples unless keep_nonfinite).
+// A rate target the file misses is no error: the file comes back with target_met false.
 // The image is read through a typed strided view (image_view.h), never copied whole; a view
 // that cannot be read throws std::invalid_argument.
 EncodeResult encode_image(const ImageView& image, const EncodeOptions& options);

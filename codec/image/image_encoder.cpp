@@ -941,9 +941,8 @@ EncodeResult encode_capped(const ImageView& image, const EncodeOptions& options)
   return std::move(*lossy);
 }
 
-}  // namespace
-
-EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) {
+// encode_image before it judges the target.
+EncodeResult encode_any(const ImageView& image, const EncodeOptions& options) {
   if (options.mode != RateMode::lossless && !(options.target > 0.0 && std::isfinite(options.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   if (options.effort < 1 || options.effort > 2) throw std::invalid_argument("effort must be 1 or 2");
@@ -968,6 +967,14 @@ EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) 
   EncodeResult r = encode_in_domain(view, options, domain);
   r.metric = metric_name(options.transfer);
   r.nonfinite = kept;
+  return r;
+}
+
+}  // namespace
+
+EncodeResult encode_image(const ImageView& image, const EncodeOptions& options) {
+  EncodeResult r = encode_any(image, options);
+  r.target_met = meets_target(r, options, image.plane_size());
   return r;
 }
 

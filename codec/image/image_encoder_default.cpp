@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "codec/image/image_codec.h"
+#include "codec/image/image_plan.h"
 
 namespace pupwave {
 
@@ -36,7 +37,9 @@ EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions op
   EncodeResult lc = encode_image(image, exact);
   lc.psnr = std::numeric_limits<double>::infinity();
   lc.switched_to_lossless = true;
-  return lc.bytes.size() < first.bytes.size() ? lc : first;
+  if (!(lc.bytes.size() < first.bytes.size())) return first;
+  lc.target_met = meets_target(lc, options, image.plane_size());  // judged by the caller's target
+  return lc;
 }
 
 }  // namespace pupwave

@@ -255,6 +255,16 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
   return write_container(plan.header, entries, data);
 }
 
+bool meets_target(const EncodeResult& r, const EncodeOptions& options, std::size_t pixels) {
+  switch (options.mode) {
+    case RateMode::bpp: return double(r.bytes.size()) <= std::floor(options.target * double(pixels) / 8.0);
+    case RateMode::psnr: return r.psnr >= options.target;  // NaN (not measured) counts as missed
+    case RateMode::step:
+    case RateMode::lossless: break;
+  }
+  return true;
+}
+
 EncodeResult make_encode_result(const ImageView& image, const ImagePlan& plan,
                                 std::vector<std::uint8_t> bytes, double base_step,
                                 std::optional<double> known_psnr) {

@@ -100,6 +100,10 @@ EncodeResult make_encode_result(const ImageView& image, const ImagePlan& plan,
                                 std::vector<std::uint8_t> bytes, double base_step,
                                 std::optional<double> known_psnr = std::nullopt);
 
+// Whether `r` meets the rate target of `options` for an image of `pixels` pixels
+// (EncodeResult::target_met): a bpp budget as the encoders round it, a PSNR target measured.
+bool meets_target(const EncodeResult& r, const EncodeOptions& options, std::size_t pixels);
+
 // Encodes with the zstd back end (rate control by the base step only).
 EncodeResult encode_zstd(const ImageView& image, ImagePlan& plan, const EncodeOptions& options);
 

@@ -60,6 +60,12 @@ struct VolumeEncodeResult {
   // max_error mode on integer grids with a bound below 1: coded lossless (the given transform
   // when reversible, else cdf53), the only way to meet it and smaller than corrections.
   bool switched_to_lossless = false;
+  // Whether the stream meets the rate target: bpv within `target` bits per voxel, psnr at
+  // least `target` dB, max_error within the bound (always: it is guaranteed); `bpv`, `psnr`
+  // and `max_error` say what it reached. A missed target still gives the stream, the nearest
+  // the encoder reaches (a tiny volume's head alone can exceed a bpv budget). step and lossless
+  // set no target to miss: true.
+  bool target_met = true;
 };
 
 // Compresses grids (each a Volume with its name, class, transform and metadata). Throws

@@ -426,6 +426,19 @@ VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, std::spa
 
 namespace {
 
+// VolumeEncodeResult::target_met for the caller's options: a bpv budget as for_size rounds it.
+bool meets_target(const VolumeEncodeResult& r, const VolumeEncodeOptions& options, std::size_t voxels) {
+  switch (options.mode) {
+    case VolumeRateMode::bpv:
+      return double(r.size) <= std::floor(options.target * double(std::max<std::size_t>(voxels, 1)) / 8.0);
+    case VolumeRateMode::psnr: return r.psnr >= options.target;
+    case VolumeRateMode::max_error: return r.max_error <= options.target;
+    case VolumeRateMode::step:
+    case VolumeRateMode::lossless: break;
+  }
+  return true;
+}
+
 VolumeEncodeResult encode_volumes_unchecked(const std::vector<VolumeGrid>& grids,
                                             std::span<const VolumeView> views,
                                             const VolumeEncodeOptions& given, const StreamWriter& write) {
@@ -468,6 +481,7 @@ VolumeEncodeResult encode_volumes_unchecked(const std::vector<VolumeGrid>& grids
   const double mse = plan.voxels > 0 ? sse / double(plan.voxels) : 0.0;
   r.psnr =
       mse > 0.0 ? 10.0 * std::log10(plan.range * plan.range / mse) : std::numeric_limits<double>::infinity();
+  r.target_met = meets_target(r, given, plan.voxels);
   return r;
 }
 

@@ -156,6 +156,62 @@ static void test_volume_max_error(void) {
   free(back);
 }
 
+/* Whether the target was met, and what was reached: crops of testimages/wmag91.float (a real
+ * field) too small for their budget miss it; the whole field meets the same budgets. */
+static void test_target_outcome(void) {
+  const size_t n = 91, count = 91 * 91 * 91;
+  const float* slice; /* plane z = 45 as a 91x91 float image */
+  float* v = malloc(count * sizeof(float));
+  float cube[8];
+  FILE* f = fopen(PUPWAVE_TESTIMAGES_DIR "/wmag91.float", "rb");
+  pupwave_options* o = pupwave_options_create();
+  pupwave_stream* s = NULL;
+  size_t i;
+  CHECK(f != NULL);
+  if (!f) return;
+  CHECK(fread(v, sizeof(float), count, f) == count);
+  fclose(f);
+  slice = v + 45 * n * n;
+  CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_BPP, 2.0) == PUPWAVE_OK);
+  CHECK(pupwave_compress_image(o, slice, PUPWAVE_F32, n, n, 1, 1, 1, (ptrdiff_t)n, &s) == PUPWAVE_OK);
+  CHECK(pupwave_stream_target_met(s) == 1);
+  CHECK(fabs(pupwave_stream_achieved(s) - 8.0 * (double)pupwave_stream_size(s) / (double)(n * n)) < 1e-9);
+  CHECK(pupwave_stream_achieved(s) <= 2.0);
+  pupwave_stream_destroy(s);
+  /* A 2x2 crop: the stream's header alone exceeds 1 bit per pixel; the stream still comes back. */
+  CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_BPP, 1.0) == PUPWAVE_OK);
+  CHECK(pupwave_compress_image(o, slice + 40 * n + 40, PUPWAVE_F32, 2, 2, 1, 1, 1, (ptrdiff_t)n, &s) ==
+        PUPWAVE_OK);
+  CHECK(s && pupwave_stream_size(s) > 0 && pupwave_stream_target_met(s) == 0);
+  CHECK(fabs(pupwave_stream_achieved(s) - 8.0 * (double)pupwave_stream_size(s) / 4.0) < 1e-9);
+  pupwave_stream_destroy(s);
+  /* A step sets no target to miss. */
+  CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_STEP, 0.5) == PUPWAVE_OK);
+  CHECK(pupwave_compress_image(o, slice, PUPWAVE_F32, n, n, 1, 1, 1, (ptrdiff_t)n, &s) == PUPWAVE_OK);
+  CHECK(pupwave_stream_target_met(s) == 1 && isnan(pupwave_stream_achieved(s)));
+  pupwave_stream_destroy(s);
+  /* Volumes: the field at 2 bits per voxel, a 2^3 crop of it that cannot meet 1. */
+  CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_BPV, 2.0) == PUPWAVE_OK);
+  CHECK(pupwave_compress_volume(o, v, PUPWAVE_F32, n, n, n, &s) == PUPWAVE_OK);
+  CHECK(pupwave_stream_target_met(s) == 1 && pupwave_stream_achieved(s) <= 2.0);
+  pupwave_stream_destroy(s);
+  for (i = 0; i < 8; ++i) cube[i] = v[40 + (i & 1) + n * (40 + ((i >> 1) & 1) + n * (40 + (i >> 2)))];
+  CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_BPV, 1.0) == PUPWAVE_OK);
+  CHECK(pupwave_compress_volume(o, cube, PUPWAVE_F32, 2, 2, 2, &s) == PUPWAVE_OK);
+  CHECK(s && pupwave_stream_target_met(s) == 0);
+  CHECK(fabs(pupwave_stream_achieved(s) - 8.0 * (double)pupwave_stream_size(s) / 8.0) < 1e-9);
+  pupwave_stream_destroy(s);
+  /* An error bound is guaranteed: met, and the error reached is within it. */
+  CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_MAX_ERROR_REL, 1e-2) == PUPWAVE_OK);
+  CHECK(pupwave_compress_volume(o, v, PUPWAVE_F32, n, n, n, &s) == PUPWAVE_OK);
+  CHECK(pupwave_stream_target_met(s) == 1);
+  CHECK(pupwave_stream_achieved(s) > 0.0 && pupwave_stream_achieved(s) <= 1e-2);
+  pupwave_stream_destroy(s);
+  CHECK(pupwave_stream_target_met(NULL) == 0 && isnan(pupwave_stream_achieved(NULL)));
+  pupwave_options_destroy(o);
+  free(v);
+}
+
 static void test_volume_double_levels(void) {
   const size_t nx = 20, ny = 17, nz = 9, count = 20 * 17 * 9;
   double* v = malloc(count * sizeof(double));
@@ -250,6 +306,7 @@ int main(void) {
   test_image_lossless();
   test_image_rates();
   test_volume_max_error();
+  test_target_outcome();
   test_volume_double_levels();
   test_sparse_bricks();
   test_bad_input();

@@ -70,7 +70,7 @@ TEST_F(ImageStructure, AttributesNotKeptAreNamed) {
       0);
   const auto c = test::run_cli({"compress", in, tmp("vec.pw"), "--psnr=40"});
   ASSERT_EQ(c.exit_code, 0) << c.output;
-  EXPECT_NE(c.output.find("pupwave: warning: 1 attribute(s)"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("warning: 1 attribute(s)"), std::string::npos) << c.output;
   EXPECT_NE(c.output.find("myshow:up"), std::string::npos) << c.output;
   EXPECT_EQ(c.output.find("myshow:shot ("), std::string::npos) << c.output;  // kept, so not named
   const auto q = test::run_cli({"compress", in, tmp("vec_q.pw"), "--psnr=40", "--quiet"});

@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
@@ -113,6 +114,21 @@ py::dict to_dict(const std::vector<api::Attribute>& attributes) {
   return d;
 }
 
+// A missed rate target (`target` as given, e.g. "bpp=1"; `reached` what the stream reached)
+// becomes a RuntimeWarning; raised as an exception where the warnings filter makes it an error.
+void warn_missed(const api::TargetOutcome& outcome, const std::string& target, const std::string& reached) {
+  if (outcome.met) return;
+  const std::string text = target + " not met: " + reached;
+  if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+// A number for messages (%.6g).
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
 int count_set(std::initializer_list<bool> flags) {
   int n = 0;
   for (bool f : flags) n += f ? 1 : 0;
@@ -160,10 +176,18 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   else if (entropy != "default")
     throw py::value_error("entropy must be default, pc, ebcot, ht or zstd, got " + entropy);
   std::vector<std::uint8_t> out;
+  api::TargetOutcome outcome;
   {
     py::gil_scoped_release release;
-    out = api::compress_image(view, options);
+    out = api::compress_image(view, options, outcome);
   }
+  if (bpp)
+    warn_missed(
+        outcome, "bpp=" + number(*bpp),
+        "the stream is " + std::to_string(out.size()) + " bytes (" + number(outcome.achieved) + " bpp)");
+  else if (options.rate == api::ImageRate::psnr)
+    warn_missed(outcome, "psnr=" + number(options.target),
+                "the stream reaches " + number(outcome.achieved) + " dB");
   return to_bytes(out);
 }
 
@@ -210,10 +234,18 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
       a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
   for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = a.strides(d) / a.itemsize();  // (z, y, x)
   std::vector<std::uint8_t> out;
+  api::TargetOutcome outcome;
   {
     py::gil_scoped_release release;
-    out = api::compress_volume(view, options);
+    out = api::compress_volume(view, options, outcome);
   }
+  if (bpv)
+    warn_missed(
+        outcome, "bpv=" + number(*bpv),
+        "the stream is " + std::to_string(out.size()) + " bytes (" + number(outcome.achieved) + " bpv)");
+  else if (options.rate != api::VolumeRate::lossless)  // the error bounds, guaranteed: said if ever missed
+    warn_missed(outcome, (max_error ? "max_error=" : "max_error_rel=") + number(options.target),
+                "its largest error is " + number(outcome.achieved));
   return to_bytes(out);
 }
 
@@ -286,14 +318,14 @@ PYBIND11_MODULE(_pupwave, m) {
         py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "default",
         py::arg("attributes") = std::map<std::string, std::string>{},
         "pupwave.compress on a uint8/uint16/float16/float32 array; attributes (str -> str) are stored "
-        "in the stream.");
+        "in the stream; a missed bpp or psnr target gives a RuntimeWarning saying what the stream reached.");
   m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0,
         "(array of the stored dtype, the stream's text attributes as a dict).");
   m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),
         py::arg("max_error_rel") = py::none(), py::arg("bpv") = py::none(), py::arg("lossless") = false,
         py::arg("attributes") = std::map<std::string, std::string>{},
         "pupwave.compress_volume on a uint8/uint16/float32/float64 array; attributes (str -> str) are "
-        "stored as the grid's metadata.");
+        "stored as the grid's metadata; a missed bpv target gives a RuntimeWarning.");
   m.def("decompress_volume", &decompress_volume, py::arg("data"), py::arg("level") = 0,
         "(array of the stored dtype, the grid's text attributes as a dict).");
   m.def("info", &info, py::arg("data"), "Describe .pw bytes (every checksum verified) as a dict.");

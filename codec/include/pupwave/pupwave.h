@@ -95,6 +95,15 @@ pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort);
 typedef struct pupwave_stream pupwave_stream;
 const uint8_t* pupwave_stream_data(const pupwave_stream* stream);
 size_t pupwave_stream_size(const pupwave_stream* stream);
+/* 1 when the stream meets the rate target it was compressed for, 0 when it misses it (over a
+ * BPP or BPV budget: a tiny input's header alone can exceed one; under a PSNR target; over an
+ * error bound) or stream is NULL. The stream is complete either way. STEP and LOSSLESS set no
+ * target to miss: 1. */
+int pupwave_stream_target_met(const pupwave_stream* stream);
+/* The stream's value in the target's unit: bits per pixel or voxel, PSNR in dB (log-PSNR for
+ * F16/F32 images), the largest error (for MAX_ERROR_REL as a fraction of the value range); NaN
+ * for STEP, LOSSLESS and a NULL stream. */
+double pupwave_stream_achieved(const pupwave_stream* stream);
 void pupwave_stream_destroy(pupwave_stream* stream);
 
 /* Compresses an image: sample (c, x, y) is the element at

@@ -98,8 +98,23 @@ struct ImageOptions {
   std::vector<Attribute> attributes;
 };
 
+// What a rate target gave, for the compress_* overloads that take one.
+struct TargetOutcome {
+  // False when the stream misses the target: over a bpp/bpv budget (a tiny input's header alone
+  // can exceed it), under a PSNR target, or over an error bound. The stream is complete either
+  // way. Step and lossless set no target to miss: true.
+  bool met = true;
+  // The stream's value in the target's unit: bits per pixel or voxel, PSNR in dB (log-PSNR for
+  // half/float images), the largest error (for max_error_rel as a fraction of the value range);
+  // NaN for step and lossless.
+  double achieved = 0.0;
+};
+
 // Compresses an image to a complete .pw stream.
 std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOptions& options = {});
+// The same, saying in `outcome` whether the target was met and what was reached.
+std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOptions& options,
+                                         TargetOutcome& outcome);
 
 // A decoded image: interleaved samples (pixel after pixel, channels adjacent) of `type`.
 struct Image {
@@ -164,6 +179,11 @@ std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const Volume
 // coded; the box outside the bricks is inactive with value `background`, restored exactly.
 std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bricks, double background,
                                                  const VolumeOptions& options = {});
+// The same two, saying in `outcome` whether the target was met and what was reached.
+std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const VolumeOptions& options,
+                                          TargetOutcome& outcome);
+std::vector<std::uint8_t> compress_sparse_volume(std::span<const BrickView> bricks, double background,
+                                                 const VolumeOptions& options, TargetOutcome& outcome);
 
 // A decoded grid: dims voxels (x fastest) of `type` starting at `origin` (halved per level).
 struct Volume {
