@@ -113,8 +113,7 @@ TEST_F(RateTruth, TinyImagesMissingTheBudgetAreWrittenWithOneWarning) {
     const std::size_t bytes = fs::file_size(pw);
     const double bpp = 8.0 * double(bytes) / double(w * h);
     EXPECT_GT(bpp, 1.0);
-    EXPECT_EQ(r.err.rfind(
-                  "warning: --bpp 1 not met: " + pw + " is " + std::to_string(bytes) + " bytes", 0),
+    EXPECT_EQ(r.err.rfind("warning: --bpp 1 not met: " + pw + " is " + std::to_string(bytes) + " bytes", 0),
               0u)
         << r.err;
     EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;  // one line, the warning
@@ -159,9 +158,8 @@ TEST_F(RateTruth, WarningIsThereExactlyWhenTheFileIsOverTheBudget) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::size_t bytes = fs::file_size(pw);
     const bool over = 8.0 * double(bytes) > 0.5 * 512.0 * 256.0;
-    EXPECT_EQ(
-        has(r.err, "warning: --bpp 0.5 not met: " + pw + " is " + std::to_string(bytes) + " bytes"),
-        over)
+    EXPECT_EQ(has(r.err, "warning: --bpp 0.5 not met: " + pw + " is " + std::to_string(bytes) + " bytes"),
+              over)
         << entropy << ": " << bytes << " bytes; " << r.err;
     EXPECT_EQ(count(r.err, "warning:"), over ? 1u : 0u) << r.err;
     EXPECT_FALSE(has(r.err, "header and chunk framing")) << r.err;  // the framing is not why here
@@ -220,9 +218,8 @@ TEST_F(RateTruth, VolumeBpvMissIsWarnedOrRefused) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(fs::exists(pw));
   const double bpv = 8.0 * double(fs::file_size(pw)) / 8.0;
-  EXPECT_EQ(r.err.rfind("warning: --bpv 1 not met: " + pw + " is " +
-                            std::to_string(fs::file_size(pw)) + " bytes",
-                        0),
+  EXPECT_EQ(r.err.rfind(
+                "warning: --bpv 1 not met: " + pw + " is " + std::to_string(fs::file_size(pw)) + " bytes", 0),
             0u)
       << r.err;
   EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;
