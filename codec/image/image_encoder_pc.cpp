@@ -68,9 +68,10 @@ constexpr double kPsnrWithin = 0.15;
 // A PSNR search whose base steps straddle a jump over the window (at low rates a band's RDOQ
 // turning a block on or off moves the PSNR by tenths of a dB: 0.5 dB on a 256 x 256 crop of
 // camera.png near 20 dB) moves the step of one band of a bracket's end by up to kBandReach
-// (log), in at most kBandPasses codings in all, the kBandCandidates bands with the most bytes.
+// (log): the kBandCandidates bands with the most bytes, in at most kBandPasses codings in all,
+// shared by the ends (one end may sit at a jump of every band it tries).
 constexpr double kBandReach = 0.25;
-constexpr int kBandPasses = 12;
+constexpr int kBandPasses = 16;
 constexpr int kBandCandidates = 3;
 // The coarsest base step a search tries, times the peak: coarse enough that the lowest PSNR
 // targets (20 dB on the test photographs, where 4 x the peak still codes the coarse band at
@@ -589,7 +590,8 @@ std::vector<std::size_t> busiest_bands(const ImagePlan& plan, const Pass& p) {
 // The PSNR window [goal, goal + kPsnrWithin] reached where plain passes jump over it: one band of
 // a bracket's end (`fine` above the window, `coarse` below the goal) at a step of its own, its
 // log factor k bisected between 0 and kBandReach towards the window (coarser from `fine`,
-// finer from `coarse`); the nearer end first. nullopt when no band lands in kBandPasses codings.
+// finer from `coarse`); the nearer end first, each end its share of kBandPasses codings. nullopt
+// when no band lands.
 template <class Score>
 std::optional<Pass> land_psnr(Coder& coder, const std::optional<Pass>& fine,
                               const std::optional<Pass>& coarse, double goal, const Score& score) {
@@ -603,8 +605,8 @@ std::optional<Pass> land_psnr(Coder& coder, const std::optional<Pass>& fine,
   };
   std::sort(ends.begin(), ends.end(),
             [&](const Pass* a, const Pass* b) { return distance(a) < distance(b); });
-  int passes = kBandPasses;
   for (const Pass* e : ends) {
+    int passes = kBandPasses / int(ends.size());
     const double dir = e->score > goal ? 1.0 : -1.0;  // coarser lowers the PSNR
     for (std::size_t band : busiest_bands(coder.plan, *e)) {
       double near = 0.0, far = kBandReach;  // |k|: near stays on e's side of the window
