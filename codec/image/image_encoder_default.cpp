@@ -28,10 +28,12 @@ EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions op
   // step is about 1 and lossy coding spends about the bits of an exact stream) pay it.
   const double raw_bytes =
       double(image.plane_size() * image.channels) * (std::log2(nominal_max(image.type) + 1.0) / 8.0);
-  const double peak = psnr_peak(image);
-  const bool within_a_unit = std::isfinite(first.psnr) && peak * peak <= std::pow(10.0, first.psnr / 10.0);
+  const auto within_a_unit = [&] {
+    const double peak = psnr_peak(image);  // after is_integer: a float image's would scan it
+    return std::isfinite(first.psnr) && peak * peak <= std::pow(10.0, first.psnr / 10.0);
+  };
   const bool near_lossless =
-      is_integer(image.type) && (double(first.bytes.size()) > raw_bytes / 4.0 || within_a_unit);
+      is_integer(image.type) && (double(first.bytes.size()) > raw_bytes / 4.0 || within_a_unit());
   if (!first.switched_to_lossless && !near_lossless) return first;
   EncodeOptions exact = options;
   exact.mode = RateMode::lossless;
