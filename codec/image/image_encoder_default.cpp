@@ -4,6 +4,7 @@
 
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"
+#include "codec/rate/metrics.h"
 
 namespace pupwave {
 
@@ -21,13 +22,19 @@ EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions op
   options.entropy = pc_is_default_for(image) ? EntropyCoder::pc : EntropyCoder::ebcot;
   EncodeResult first = encode_image(image, options);
   // encode_image keeps a rate target's file within the bit-plane coder's lossless stream; the
-  // lossless default (lc) is smaller still (by 7-8% on photographs), so a target that gave the
-  // former, or a lossy file of more than a quarter of the raw size (where lc's stream may be
-  // smaller: the highest PSNR targets; the check costs about a lossless encode, so smaller files
-  // skip it), gives lc's stream when it is the smaller.
+  // lossless default (lc) is smaller still (by 7-8% on photographs, by a third or more on smooth
+  // images), so a target that gave the former gives lc's stream when it is the smaller, as does
+  // a lossy file that may be near lc's. The check costs about a lossless encode, so only files
+  // of more than a quarter of the raw size or decoded within one sample unit RMS (MSE <= 1: the
+  // step is about 1 and lossy coding spends about the bits of an exact stream) pay it.
   const double raw_bytes =
       double(image.plane_size() * image.channels) * (std::log2(nominal_max(image.type) + 1.0) / 8.0);
-  const bool near_lossless = is_integer(image.type) && double(first.bytes.size()) > raw_bytes / 4.0;
+  const auto within_a_unit = [&] {
+    const double peak = psnr_peak(image);  // after is_integer: a float image's would scan it
+    return std::isfinite(first.psnr) && peak * peak <= std::pow(10.0, first.psnr / 10.0);
+  };
+  const bool near_lossless =
+      is_integer(image.type) && (double(first.bytes.size()) > raw_bytes / 4.0 || within_a_unit());
   if (!first.switched_to_lossless && !near_lossless) return first;
   EncodeOptions exact = options;
   exact.mode = RateMode::lossless;
