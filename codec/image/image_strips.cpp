@@ -250,8 +250,9 @@ bool blocks_decode_alone(const StreamHeader& h) {
   return h.entropy != EntropyCoder::lc && h.entropy != EntropyCoder::pc;
 }
 
-// Rows the PSNR check decodes and compares at a time.
-constexpr std::size_t kPsnrStripRows = 64;
+// Rows the PSNR check compares at a time (the levels still produce theirs in kLevelChunk rows):
+// fewer than a chunk keeps its own copy of the rows small.
+constexpr std::size_t kPsnrStripRows = 16;
 
 // The squared error of every component's full-resolution pipeline against the reference,
 // added up strip by strip.
