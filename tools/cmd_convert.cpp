@@ -1,5 +1,6 @@
 // `pupwave convert IN OUT`: re-encode an image in another file format through the library's
-// planar buffers (the same path compress and decompress use), e.g. PNG to PPM for anchors.
+// planar buffers (the same path compress and decompress use), a strip of rows at a time, e.g.
+// PNG to PPM for anchors.
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -43,13 +44,14 @@ void add_convert_command(CLI::App& app) {
     check_output_path(o.output);
     if (!by_type) check_image_format(o.output, format_as);  // before reading: a bad name costs nothing
     const InputPath in(o.input);
-    const Image image = read_image(in.path);
-    SampleType stored = image.type;
-    write_image(image, o.output, &stored, by_type ? stdout_image_format(image.type) : format_as);
+    const auto rows = open_image_rows(in.path);  // by strips: neither image is ever whole in memory
+    const SampleType stored =
+        write_image_rows(*rows, o.output, by_type ? stdout_image_format(rows->type()) : format_as);
     if (std::FILE* status = o.verbosity.stream())
-      std::fprintf(status, "%s: %zu x %zu, %zu channel(s), %s%s\n", o.output.c_str(), image.width,
-                   image.height, image.channels, to_string(stored).c_str(),
-                   stored == image.type ? "" : (" (converted from " + to_string(image.type) + ")").c_str());
+      std::fprintf(
+          status, "%s: %zu x %zu, %zu channel(s), %s%s\n", o.output.c_str(), rows->width(), rows->height(),
+          rows->channels(), to_string(stored).c_str(),
+          stored == rows->type() ? "" : (" (converted from " + to_string(rows->type()) + ")").c_str());
   });
 }
 

@@ -37,7 +37,54 @@ SampleType closest_type(SampleType type, const std::vector<SampleType>& allowed)
   return allowed.back();
 }
 
+// Rows of an image viewed in place: a mapped 8-bit PGM/PPM (whose pages are let go once read),
+// or an image read whole.
+class ViewRows final : public ImageRowReader {
+ public:
+  explicit ViewRows(std::unique_ptr<MappedPnm> mapped) : mapped_(std::move(mapped)), view_(mapped_->view()) {}
+  explicit ViewRows(Image image) : image_(std::move(image)), view_(view_of(image_)) {}
+
+  std::size_t width() const override { return view_.width; }
+  std::size_t height() const override { return view_.height; }
+  std::size_t channels() const override { return view_.channels; }
+  SampleType type() const override { return view_.type; }
+  const ImageMetadata& metadata() const override { return image_.metadata; }
+
+  Image next(std::size_t rows) override {
+    const std::size_t y0 = next_row_, y1 = std::min(view_.height, y0 + std::max<std::size_t>(rows, 1));
+    next_row_ = y1;
+    Image strip(view_.width, y1 - y0, view_.channels, view_.type);
+    for (std::size_t c = 0; c < view_.channels; ++c)
+      for (std::size_t y = y0; y < y1; ++y) view_.read_row(c, y, strip.plane(c) + (y - y0) * view_.width);
+    if (view_.drop_rows && y1 > y0) view_.drop_rows(view_.drop_context, view_, y0, y1);
+    return strip;
+  }
+
+ private:
+  std::unique_ptr<MappedPnm> mapped_;
+  Image image_;  // empty for a mapped file (whose metadata is none)
+  ImageView view_;
+  std::size_t next_row_ = 0;
+};
+
+// Rows written or converted at a time: a strip of a few hundred KiB at most.
+constexpr std::size_t kStripRows = 64;
+
+// The type write_image stores `type` as in the format `format` names.
+SampleType stored_type(const fs::path& format, std::size_t channels, SampleType type) {
+  if (binary_pnm_writable(format, channels, type)) return type;  // never loads OpenImageIO
+  // OpenImageIO writes PNM with 8 bits only; the binary writer takes the 1- and 3-channel cases.
+  if (oiio_module().format_name(format) == "pnm" && channels != 1 && channels != 3) return SampleType::u8;
+  return storable_type(format, type);
+}
+
 }  // namespace
+
+std::unique_ptr<ImageRowReader> open_image_rows(const fs::path& path) {
+  if (auto mapped = MappedPnm::open(path)) return std::make_unique<ViewRows>(std::move(mapped));
+  if (auto pnm = read_binary_pnm(path)) return std::make_unique<ViewRows>(std::move(*pnm));
+  return oiio_module().open_rows(path);
+}
 
 Image read_image(const fs::path& path) {
   if (auto pnm = read_binary_pnm(path)) return std::move(*pnm);
@@ -50,12 +97,11 @@ SampleType storable_type(const fs::path& path, SampleType type) {
   return closest_type(type, format_types(oiio_module().format_name(path)));
 }
 
-Image convert_sample_type(const Image& image, SampleType target) {
+Image convert_sample_type(Image image, SampleType target) {
   if (image.type == target) return image;
-  Image out = image;
-  out.type = target;
   const double scale = nominal_max(target) / nominal_max(image.type);
-  for (float& v : out.samples) {
+  image.type = target;
+  for (float& v : image.samples) {
     double x = double(v) * scale;
     if (is_integer(target)) {
       x = std::clamp(std::round(x), 0.0, nominal_max(target));
@@ -64,7 +110,7 @@ Image convert_sample_type(const Image& image, SampleType target) {
     }
     v = float(x);
   }
-  return out;
+  return image;
 }
 
 fs::path format_name_path(const fs::path& path, const std::string& format) {
@@ -95,15 +141,7 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
   const fs::path& format = format_as.empty() ? path : format_as;
   check_output_path(path);
   check_image_format(path, format);
-  if (binary_pnm_writable(format, image)) {  // never loads OpenImageIO
-    write_output(path, [&](const fs::path& tmp) { write_binary_pnm(image, tmp); });
-    if (stored_as) *stored_as = image.type;
-    return;
-  }
-  SampleType target = storable_type(format, image.type);
-  // OpenImageIO writes PNM with 8 bits only; the binary writer takes the 1- and 3-channel cases.
-  if (oiio_module().format_name(format) == "pnm" && image.channels != 1 && image.channels != 3)
-    target = SampleType::u8;
+  const SampleType target = stored_type(format, image.channels, image.type);
   std::optional<Image> converted;  // only when the type changes: a copy is 4 bytes per sample
   if (target != image.type) converted = convert_sample_type(image, target);
   const Image& stored = converted ? *converted : image;
@@ -114,6 +152,22 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
       oiio_module().write(stored, format, tmp);
   });
   if (stored_as) *stored_as = stored.type;
+}
+
+SampleType write_image_rows(ImageRowReader& rows, const fs::path& path, const fs::path& format_as) {
+  const fs::path& format = format_as.empty() ? path : format_as;
+  check_output_path(path);
+  check_image_format(path, format);
+  const SampleType target = stored_type(format, rows.channels(), rows.type());
+  const auto next = [&] { return convert_sample_type(rows.next(kStripRows), target); };
+  write_output(path, [&](const fs::path& tmp) {
+    if (binary_pnm_writable(format, rows.channels(), target))
+      write_binary_pnm_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
+    else
+      oiio_module().write_rows(ImageShape{rows.width(), rows.height(), rows.channels(), target},
+                               rows.metadata(), format, tmp, next);
+  });
+  return target;
 }
 
 }  // namespace pupwave::cli

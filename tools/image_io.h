@@ -3,6 +3,7 @@
 // about image file formats.
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -22,6 +23,26 @@ inline constexpr int kMaxImageChannels = 64;
 // Alpha is kept unassociated (as stored). CMYK files are refused (never converted to RGB). Throws
 // std::runtime_error with the reason.
 Image read_image(const std::filesystem::path& path);
+
+// An image file's rows, top to bottom, a strip at a time: read_image's samples and metadata
+// without the whole image in memory where the file allows it.
+class ImageRowReader {
+ public:
+  virtual ~ImageRowReader() = default;
+  virtual std::size_t width() const = 0;
+  virtual std::size_t height() const = 0;
+  virtual std::size_t channels() const = 0;
+  virtual SampleType type() const = 0;
+  virtual const ImageMetadata& metadata() const = 0;
+  // The next rows (at most `rows`, at least 1 until the end) as an image of width() columns;
+  // height 0 at the end. Throws std::runtime_error naming the file for a bad one.
+  virtual Image next(std::size_t rows) = 0;
+};
+
+// The rows of an image file (as read_image reads it): a binary 8-bit PGM/PPM mapped and read in
+// place, a scanline file through OpenImageIO a strip at a time; a 16-bit PGM/PPM or a tiled file
+// is read whole first.
+std::unique_ptr<ImageRowReader> open_image_rows(const std::filesystem::path& path);
 
 // Describes an image file without decoding its pixels (format, size, channels, type).
 std::string describe_image_file(const std::filesystem::path& path);
@@ -47,11 +68,16 @@ void check_image_format(const std::filesystem::path& path, const std::filesystem
 void write_image(const Image& image, const std::filesystem::path& path, SampleType* stored_as = nullptr,
                  const std::filesystem::path& format_as = {});
 
+// write_image of the rows of `rows` (as they come, a strip at a time, so neither the input nor
+// the output is whole in memory): returns the sample type stored.
+SampleType write_image_rows(ImageRowReader& rows, const std::filesystem::path& path,
+                            const std::filesystem::path& format_as = {});
+
 // The sample type `write_image` would store `type` as in a file with this path's extension.
 SampleType storable_type(const std::filesystem::path& path, SampleType type);
 
 // Converts samples between types through the nominal range (255 <-> 65535 <-> 1.0), with
-// rounding and clamping for integer targets. Identity when the types match.
-Image convert_sample_type(const Image& image, SampleType target);
+// rounding and clamping for integer targets, in place. Identity when the types match.
+Image convert_sample_type(Image image, SampleType target);
 
 }  // namespace pupwave::cli

@@ -6,11 +6,20 @@
 // PGM/PPM, .pw, volumes) never load it.
 
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 
 #include "codec/image/image.h"
+#include "tools/image_io.h"
 
 namespace pupwave::cli {
+
+// Size, channels and sample type of an image written by rows.
+struct ImageShape {
+  std::size_t width = 0, height = 0, channels = 0;
+  SampleType type = SampleType::u8;
+};
 
 // The operations the module provides. Each throws std::runtime_error with the reason.
 struct OiioModule {
@@ -23,6 +32,13 @@ struct OiioModule {
   // Writes `image` (already of a type the format stores) to `file`, choosing the format from
   // `target`'s extension (file is the temporary name the atomic write renames onto target).
   void (*write)(const Image& image, const std::filesystem::path& target, const std::filesystem::path& file);
+  // The rows of an image file, a strip at a time (see open_image_rows).
+  std::unique_ptr<ImageRowReader> (*open_rows)(const std::filesystem::path& path);
+  // `write` of an image of `shape` and `metadata` whose rows come from successive calls of
+  // next_strip (images of shape's width, channels and type, top to bottom).
+  void (*write_rows)(const ImageShape& shape, const ImageMetadata& metadata,
+                     const std::filesystem::path& target, const std::filesystem::path& file,
+                     const std::function<Image()>& next_strip);
 };
 
 // The module, loaded on first call (next to the running executable, else where the build put

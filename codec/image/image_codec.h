@@ -37,8 +37,9 @@ struct EncodeOptions {
   // at three base steps and each band takes the best (plus RDOQ): about 1 % less rate at equal
   // PSNR for 1.2-1.9x the encode time and the transformed components held in memory.
   int effort = 1;
-  // Decode the result to report its PSNR. Costs about a full decode and a decoded image's
-  // memory; PSNR targets measure it anyway.
+  // Decode the result to report its PSNR. Costs about a full decode, strip by strip (the strip
+  // decoder's memory, not a decoded image's) except for lc and pc streams, whose decode holds
+  // the component planes; PSNR targets measure it anyway.
   bool measure_psnr = true;
   // Float images: the domain they are coded in (transfer.h). Rate targets (--psnr) and the
   // reported PSNR are stated in it (log-PSNR for log2). Ignored for integer images.

@@ -57,18 +57,19 @@ void write_planes(std::vector<std::vector<T>>& planes, Image& out) {
   }
 }
 
-// Squared error of every sample against the reference, summed in compare_images' order
-// (channel by channel, sample by sample) so the PSNR is the same to the last bit.
+// Squared error of rows [y0, y0 + rows) of every component (planes of `rows` rows) against the
+// reference, summed in compare_images' order (channel by channel, sample by sample) so the PSNR
+// of the whole image is the same to the last bit.
 template <class T>
-double components_psnr_after_colour(const ImageView& reference, const std::vector<std::vector<T>>& planes,
-                                    bool clamp_at_zero = false) {
+double squared_error_after_colour(const ImageView& reference, std::size_t y0, std::size_t rows,
+                                  const std::vector<std::vector<T>>& planes, bool clamp_at_zero = false) {
   const double shift = level_shift(reference.type);
   const std::size_t w = reference.width;
   std::vector<float> row(w);
   double sum_sq = 0.0;
   for (std::size_t c = 0; c < planes.size(); ++c)
-    for (std::size_t y = 0; y < reference.height; ++y) {
-      reference.read_row(c, y, row.data());
+    for (std::size_t y = 0; y < rows; ++y) {
+      reference.read_row(c, y0 + y, row.data());
       const T* b = planes[c].data() + y * w;
       for (std::size_t x = 0; x < w; ++x) {
         float v = finish_sample(double(b[x]) + shift, reference.type);
@@ -77,9 +78,7 @@ double components_psnr_after_colour(const ImageView& reference, const std::vecto
         sum_sq += d * d;
       }
     }
-  const std::size_t n = reference.plane_size();
-  const std::size_t count = n * planes.size();
-  return psnr_from_mse(count ? sum_sq / double(count) : 0.0, psnr_peak(reference));
+  return sum_sq;
 }
 
 }  // namespace
@@ -286,18 +285,36 @@ void finish_image_in_place(Image& image, ColourTransform colour, const Executor&
   });
 }
 
+double components_squared_error(const ImageView& reference, std::size_t y0, std::size_t rows,
+                                std::vector<std::vector<float>>& planes, ColourTransform colour,
+                                bool clamp_at_zero) {
+  if (colour == ColourTransform::ict)
+    inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), rows * reference.width);
+  return squared_error_after_colour(reference, y0, rows, planes, clamp_at_zero);
+}
+
+double components_squared_error(const ImageView& reference, std::size_t y0, std::size_t rows,
+                                std::vector<std::vector<std::int32_t>>& planes, ColourTransform colour) {
+  if (colour == ColourTransform::rct)
+    inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), rows * reference.width);
+  return squared_error_after_colour(reference, y0, rows, planes);
+}
+
+double psnr_of_squared_error(const ImageView& reference, double sum_sq) {
+  const std::size_t count = reference.plane_size() * reference.channels;
+  return psnr_from_mse(count ? sum_sq / double(count) : 0.0, psnr_peak(reference));
+}
+
 double components_psnr(const ImageView& reference, std::vector<std::vector<float>>& planes,
                        ColourTransform colour, bool clamp_at_zero) {
-  if (colour == ColourTransform::ict)
-    inverse_ict(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
-  return components_psnr_after_colour(reference, planes, clamp_at_zero);
+  return psnr_of_squared_error(
+      reference, components_squared_error(reference, 0, reference.height, planes, colour, clamp_at_zero));
 }
 
 double components_psnr(const ImageView& reference, std::vector<std::vector<std::int32_t>>& planes,
                        ColourTransform colour) {
-  if (colour == ColourTransform::rct)
-    inverse_rct(planes[0].data(), planes[1].data(), planes[2].data(), reference.plane_size());
-  return components_psnr_after_colour(reference, planes);
+  return psnr_of_squared_error(reference,
+                               components_squared_error(reference, 0, reference.height, planes, colour));
 }
 
 }  // namespace pupwave

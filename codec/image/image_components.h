@@ -67,4 +67,14 @@ double components_psnr(const ImageView& reference, std::vector<std::vector<float
 double components_psnr(const ImageView& reference, std::vector<std::vector<std::int32_t>>& planes,
                        ColourTransform colour);
 
+// The same comparison for rows [y0, y0 + rows) only (planes of `rows` rows of the reference's
+// width), as a sum of squared errors, so a caller decoding by strips can add strips up.
+double components_squared_error(const ImageView& reference, std::size_t y0, std::size_t rows,
+                                std::vector<std::vector<float>>& planes, ColourTransform colour,
+                                bool clamp_at_zero = false);
+double components_squared_error(const ImageView& reference, std::size_t y0, std::size_t rows,
+                                std::vector<std::vector<std::int32_t>>& planes, ColourTransform colour);
+// PSNR (as components_psnr) of a sum of squared errors over every sample of the reference.
+double psnr_of_squared_error(const ImageView& reference, double sum_sq);
+
 }  // namespace pupwave

@@ -249,16 +249,8 @@ Image decode_image(std::span<const std::uint8_t> bytes, int level, const Executo
   return finish_decoded(decode_in_domain(s, level, ex), s.header, level);
 }
 
-// The encoder's check of a stream: decodes it at full resolution and compares it with the
-// input without building the decoded image.
-double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes, const Executor& ex) {
-  // The encoder's own stream: bounded by the image it was made from, not the decode limit.
-  const ParsedStream s = parse_container(bytes, 0, DecodeLimits{SIZE_MAX});
+double full_planes_psnr(const ImageView& image, const ParsedStream& s, const Executor& ex) {
   const StreamHeader& h = s.header;
-  require_stream(h.dims[2] == 1, "a volume stream, not an image");
-  if (h.dims[0] != image.width || h.dims[1] != image.height || h.channels != image.channels ||
-      h.type != image.type)
-    throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
   const auto t = make_transform(h.spec);
   if (h.reversible) {
     auto planes = decode_planes<std::int32_t>(s, h.dims, ex);
@@ -268,6 +260,20 @@ double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes,
   auto planes = decode_planes<float>(s, h.dims, ex);
   for (auto& p : planes) inverse(*t, p.data(), h.dims, h.levels, 0, ex);
   return components_psnr(image, planes, h.colour, h.nonnegative);
+}
+
+// The encoder's check of a stream: decodes it at full resolution and compares it with the
+// input without building the decoded image, by strips where the stream allows.
+double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes, const Executor& ex) {
+  // The encoder's own stream: bounded by the image it was made from, not the decode limit.
+  const ParsedStream s = parse_container(bytes, 0, DecodeLimits{SIZE_MAX});
+  const StreamHeader& h = s.header;
+  require_stream(h.dims[2] == 1, "a volume stream, not an image");
+  if (h.dims[0] != image.width || h.dims[1] != image.height || h.channels != image.channels ||
+      h.type != image.type)
+    throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
+  if (const auto psnr = strip_psnr(image, s, ex)) return *psnr;
+  return full_planes_psnr(image, s, ex);  // lc/pc blocks need whole parent bands: no strips
 }
 
 }  // namespace pupwave

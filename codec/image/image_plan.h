@@ -91,8 +91,13 @@ void quantize_values(const ImagePlan& plan, std::size_t i, std::span<const T> va
 std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<BlockEntry>& entries,
                                    const std::vector<std::vector<std::uint8_t>>& codewords);
 
-// Decodes `bytes` and returns its PSNR (all channels) against `image`.
+// Decodes `bytes` and returns its PSNR (all channels) against `image`: by strips (strip_psnr,
+// image_strips.h) where the stream allows, else from whole decoded planes.
 double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes, const Executor& executor);
+
+// The whole-plane route of measure_psnr (every component plane decoded at full resolution):
+// the reference strip_psnr is tested against.
+double full_planes_psnr(const ImageView& image, const ParsedStream& s, const Executor& executor);
 
 // The result of an encode: the bytes with their bpp and PSNR and the base step used. The PSNR
 // is `known_psnr` if given, else measured when the plan asks for it, else NaN.

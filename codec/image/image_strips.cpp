@@ -237,7 +237,65 @@ std::unique_ptr<LevelRows<T>> build_levels(const ParsedStream& s,
   return rows;
 }
 
+// Block indices of every (component, band), in stream order.
+std::vector<std::vector<std::size_t>> blocks_by_band(const ParsedStream& s) {
+  std::vector<std::vector<std::size_t>> by_band(std::size_t(s.header.channels) * s.bands.size());
+  for (std::size_t i = 0; i < s.blocks.size(); ++i)
+    by_band[s.blocks[i].component * s.bands.size() + s.blocks[i].band].push_back(i);
+  return by_band;
+}
+
+// Whether each block decodes on its own: lc and pc blocks need their parent bands decoded first.
+bool blocks_decode_alone(const StreamHeader& h) {
+  return h.entropy != EntropyCoder::lc && h.entropy != EntropyCoder::pc;
+}
+
+// Rows the PSNR check compares at a time (the levels still produce theirs in kLevelChunk rows):
+// fewer than a chunk keeps its own copy of the rows small.
+constexpr std::size_t kPsnrStripRows = 16;
+
+// The squared error of every component's full-resolution pipeline against the reference,
+// added up strip by strip.
+template <class T>
+double strip_squared_error(const ImageView& reference, const ParsedStream& s, const Transform1D& t,
+                           std::size_t reach, const Executor& ex) {
+  const StreamHeader& h = s.header;
+  const auto by_band = blocks_by_band(s);
+  std::vector<std::unique_ptr<LevelRows<T>>> levels;
+  for (std::size_t c = 0; c < h.channels; ++c)
+    levels.push_back(build_levels<T>(s, by_band, c, 0, t, reach, ex));
+  const std::size_t w = reference.width;
+  std::vector<std::vector<T>> strip(h.channels);
+  double sum_sq = 0.0;
+  for (std::size_t y0 = 0; y0 < reference.height; y0 += kPsnrStripRows) {
+    const std::size_t y1 = std::min(reference.height, y0 + kPsnrStripRows);
+    for (std::size_t c = 0; c < h.channels; ++c) {
+      levels[c]->ensure(y0, y1);
+      strip[c].resize((y1 - y0) * w);
+      for (std::size_t y = y0; y < y1; ++y) std::copy_n(levels[c]->row(y), w, strip[c].data() + (y - y0) * w);
+    }
+    if constexpr (std::is_same_v<T, float>)
+      sum_sq += components_squared_error(reference, y0, y1 - y0, strip, h.colour, h.nonnegative);
+    else
+      sum_sq += components_squared_error(reference, y0, y1 - y0, strip, h.colour);
+    if (reference.drop_rows)  // a mapped input: its compared rows need not stay resident
+      reference.drop_rows(reference.drop_context, reference, y0, y1);
+  }
+  return sum_sq;
+}
+
 }  // namespace
+
+std::optional<double> strip_psnr(const ImageView& reference, const ParsedStream& s, const Executor& ex) {
+  const StreamHeader& h = s.header;
+  if (!blocks_decode_alone(h)) return std::nullopt;
+  const auto t = make_stream_transform(h);
+  const std::size_t reach = synthesis_reach(*t);
+  if (reach == 0) return std::nullopt;
+  const double sum_sq = h.reversible ? strip_squared_error<std::int32_t>(reference, s, *t, reach, ex)
+                                     : strip_squared_error<float>(reference, s, *t, reach, ex);
+  return psnr_of_squared_error(reference, sum_sq);
+}
 
 struct ImageStripDecoder::State {
   ParsedStream stream;
@@ -262,17 +320,14 @@ std::unique_ptr<ImageStripDecoder> ImageStripDecoder::open(std::span<const std::
   const StreamHeader& h = s.header;
   require_stream(h.dims[2] == 1, "a volume stream, not an image");
   if (!is_integer(h.type)) return nullptr;  // float images go through the coded-domain transfer
-  // lc and pc blocks need their parent bands decoded first.
-  if (h.entropy == EntropyCoder::lc || h.entropy == EntropyCoder::pc) return nullptr;
+  if (!blocks_decode_alone(h)) return nullptr;
   st->transform = make_stream_transform(h);
   const std::size_t reach = synthesis_reach(*st->transform);
   if (reach == 0) return nullptr;
   st->ex = &ex;
   st->size = level_extent(h.dims, level);
   if (!h.reversible) st->gain = coarse_gain(*st->transform, h.dims, level);
-  st->by_band.resize(std::size_t(h.channels) * s.bands.size());
-  for (std::size_t i = 0; i < s.blocks.size(); ++i)
-    st->by_band[s.blocks[i].component * s.bands.size() + s.blocks[i].band].push_back(i);
+  st->by_band = blocks_by_band(s);
   for (std::size_t c = 0; c < h.channels; ++c) {
     if (h.reversible)
       st->int_rows.push_back(build_levels<std::int32_t>(s, st->by_band, c, level, *st->transform, reach, ex));

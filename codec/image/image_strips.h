@@ -9,10 +9,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 
 #include "codec/format/container.h"
 #include "codec/image/image.h"
+#include "codec/image/image_view.h"
 #include "transforms/executor.h"
 #include "transforms/transform1d.h"
 
@@ -22,6 +24,13 @@ namespace pupwave {
 // `first` (zeros for a block with no passes). T is float (irreversible) or int32_t.
 template <class T>
 void decode_block_at(const ParsedStream& s, std::size_t i, T* first, std::size_t stride);
+
+// measure_psnr's figure (the PSNR of the stream's full-resolution decode against `reference`,
+// compared in the coded domain), decoded and compared strip by strip so that no component plane
+// is ever whole; nullopt where the stream cannot be decoded by strips (lc and pc blocks need
+// their parent bands, a transform whose synthesis is not local). Equal to the whole-plane
+// figure up to the order of the additions.
+std::optional<double> strip_psnr(const ImageView& reference, const ParsedStream& s, const Executor& ex);
 
 class ImageStripDecoder {
  public:

@@ -4,6 +4,8 @@
 
 #include <Imath/half.h>
 #include <algorithm>
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -78,22 +80,14 @@ void check_image_spec(const OIIO::ImageSpec& spec, const fs::path& path) {
   if (samples > kMaxImageSamples) throw std::runtime_error("cannot read " + name + ": image too large");
 }
 
-// Copies interleaved samples of type T into the image's planes.
+// Copies interleaved samples of type T into the strip's planes.
 template <class T>
-void deinterleave(const std::vector<T>& src, Image& image) {
-  const std::size_t n = image.plane_size(), c = image.channels;
+void deinterleave(const T* src, Image& strip) {
+  const std::size_t n = strip.plane_size(), c = strip.channels;
   for (std::size_t ch = 0; ch < c; ++ch) {
-    float* dst = image.plane(ch);
+    float* dst = strip.plane(ch);
     for (std::size_t i = 0; i < n; ++i) dst[i] = static_cast<float>(src[i * c + ch]);
   }
-}
-
-template <class T>
-void read_pixels(OIIO::ImageInput& in, Image& image, const fs::path& path) {
-  std::vector<T> buffer(image.samples.size());
-  if (!in.read_image(0, 0, 0, int(image.channels), oiio_type(image.type), buffer.data()))
-    throw std::runtime_error("cannot read " + path.string() + ": " + in.geterror());
-  deinterleave(buffer, image);
 }
 
 // Channel names a file of this many channels gets when none are given (and which need not be stored).
@@ -181,17 +175,6 @@ void apply_metadata(const ImageMetadata& m, OIIO::ImageSpec& spec) {
   }
 }
 
-template <class T>
-std::vector<T> interleave(const Image& image) {
-  const std::size_t n = image.plane_size(), c = image.channels;
-  std::vector<T> out(n * c);
-  for (std::size_t ch = 0; ch < c; ++ch) {
-    const float* src = image.plane(ch);
-    for (std::size_t i = 0; i < n; ++i) out[i * c + ch] = static_cast<T>(src[i]);
-  }
-  return out;
-}
-
 std::string format_name_for(const fs::path& path) {
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) {
@@ -202,46 +185,125 @@ std::string format_name_for(const fs::path& path) {
   return out->format_name();
 }
 
-OIIO::ImageSpec output_spec(const Image& image, const std::string& format) {
-  OIIO::ImageSpec spec(int(image.width), int(image.height), int(image.channels), oiio_type(image.type));
-  const auto& given = image.metadata.channel_names;
-  const auto names = given.size() == image.channels ? given : default_channel_names(image.channels);
+OIIO::ImageSpec output_spec(const ImageShape& shape, const ImageMetadata& metadata,
+                            const std::string& format) {
+  OIIO::ImageSpec spec(int(shape.width), int(shape.height), int(shape.channels), oiio_type(shape.type));
+  const auto& given = metadata.channel_names;
+  const auto names = given.size() == shape.channels ? given : default_channel_names(shape.channels);
   spec.channelnames.assign(names.begin(), names.end());
   spec.alpha_channel = -1;
   for (std::size_t c = 0; c < names.size(); ++c)
     if (names[c] == "A") spec.alpha_channel = int(c);
-  apply_metadata(image.metadata, spec);
+  apply_metadata(metadata, spec);
   spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: the writer must not divide
   if (format == "jpeg") spec.attribute("Compression", "jpeg:95");  // TIFF would read it too
   return spec;
 }
 
-void write_pixels(OIIO::ImageOutput& out, const Image& image, const fs::path& tmp) {
-  bool ok = false;
-  switch (image.type) {
-    case SampleType::u8: ok = out.write_image(TypeDesc::UINT8, interleave<std::uint8_t>(image).data()); break;
-    case SampleType::u16:
-      ok = out.write_image(TypeDesc::UINT16, interleave<std::uint16_t>(image).data());
-      break;
-    case SampleType::f16: ok = out.write_image(TypeDesc::HALF, interleave<Imath::half>(image).data()); break;
-    case SampleType::f32: ok = out.write_image(TypeDesc::FLOAT, interleave<float>(image).data()); break;
+// Rows read or written through OpenImageIO at a time: the interleaved buffer stays small.
+constexpr std::size_t kRows = 64;
+
+// Writes `strip` as rows [y0, y0 + strip.height) of the image open in `out` (spec `spec`),
+// interleaving kRows rows at a time.
+template <class T>
+void write_strip_as(OIIO::ImageOutput& out, const OIIO::ImageSpec& spec, const Image& strip, std::size_t y0,
+                    const fs::path& tmp) {
+  const std::size_t w = strip.width, c = strip.channels;
+  std::vector<T> buffer(std::min(kRows, strip.height) * w * c);
+  for (std::size_t r0 = 0; r0 < strip.height; r0 += kRows) {
+    const std::size_t r1 = std::min(strip.height, r0 + kRows);
+    for (std::size_t ch = 0; ch < c; ++ch) {
+      const float* src = strip.plane(ch) + r0 * w;
+      for (std::size_t i = 0; i < (r1 - r0) * w; ++i) buffer[i * c + ch] = static_cast<T>(src[i]);
+    }
+    const int y = spec.y + int(y0 + r0);
+    if (!out.write_scanlines(y, y + int(r1 - r0), 0, oiio_type(strip.type), buffer.data()))
+      throw std::runtime_error("cannot write " + tmp.string() + ": " + out.geterror());
   }
-  if (!ok) throw std::runtime_error("cannot write " + tmp.string() + ": " + out.geterror());
 }
 
-Image read(const fs::path& path) {
-  auto in = open_input(path);
-  const OIIO::ImageSpec spec = in->spec();
-  check_image_spec(spec, path);
-  Image image(std::size_t(spec.width), std::size_t(spec.height), std::size_t(spec.nchannels),
-              sample_type_of(spec, path));
-  switch (image.type) {
-    case SampleType::u8: read_pixels<std::uint8_t>(*in, image, path); break;
-    case SampleType::u16: read_pixels<std::uint16_t>(*in, image, path); break;
-    case SampleType::f16: read_pixels<Imath::half>(*in, image, path); break;
-    case SampleType::f32: read_pixels<float>(*in, image, path); break;
+void write_strip(OIIO::ImageOutput& out, const OIIO::ImageSpec& spec, const Image& strip, std::size_t y0,
+                 const fs::path& tmp) {
+  switch (strip.type) {
+    case SampleType::u8: return write_strip_as<std::uint8_t>(out, spec, strip, y0, tmp);
+    case SampleType::u16: return write_strip_as<std::uint16_t>(out, spec, strip, y0, tmp);
+    case SampleType::f16: return write_strip_as<Imath::half>(out, spec, strip, y0, tmp);
+    case SampleType::f32: return write_strip_as<float>(out, spec, strip, y0, tmp);
   }
-  image.metadata = metadata_of(spec, in->format_name());
+}
+
+// Rows of a file through OpenImageIO: a scanline file is read a strip at a time; a tiled one is
+// read whole on the first call (its tiles cross strips), in its own sample type.
+class OiioRows final : public ImageRowReader {
+ public:
+  explicit OiioRows(const fs::path& path) : path_(path), in_(open_input(path)), spec_(in_->spec()) {
+    check_image_spec(spec_, path);
+    type_ = sample_type_of(spec_, path);
+    metadata_ = metadata_of(spec_, in_->format_name());
+  }
+
+  std::size_t width() const override { return std::size_t(spec_.width); }
+  std::size_t height() const override { return std::size_t(spec_.height); }
+  std::size_t channels() const override { return std::size_t(spec_.nchannels); }
+  SampleType type() const override { return type_; }
+  const ImageMetadata& metadata() const override { return metadata_; }
+
+  Image next(std::size_t rows) override {
+    const std::size_t y0 = next_row_, y1 = std::min(height(), y0 + std::max<std::size_t>(rows, 1));
+    next_row_ = y1;
+    Image strip(width(), y1 - y0, channels(), type_);
+    if (y1 == y0) return strip;
+    const std::size_t row_bytes = width() * channels() * oiio_type(type_).size();
+    const std::byte* src = nullptr;
+    if (spec_.tile_width > 0) {
+      if (whole_.empty()) {
+        whole_.resize(height() * row_bytes);
+        if (!in_->read_image(0, 0, 0, int(channels()), oiio_type(type_), whole_.data())) fail();
+      }
+      src = whole_.data() + y0 * row_bytes;
+    } else {
+      buffer_.resize((y1 - y0) * row_bytes);
+      if (!in_->read_scanlines(0, 0, spec_.y + int(y0), spec_.y + int(y1), 0, 0, int(channels()),
+                               oiio_type(type_), buffer_.data()))
+        fail();
+      src = buffer_.data();
+    }
+    switch (type_) {
+      case SampleType::u8: deinterleave(reinterpret_cast<const std::uint8_t*>(src), strip); break;
+      case SampleType::u16: deinterleave(reinterpret_cast<const std::uint16_t*>(src), strip); break;
+      case SampleType::f16: deinterleave(reinterpret_cast<const Imath::half*>(src), strip); break;
+      case SampleType::f32: deinterleave(reinterpret_cast<const float*>(src), strip); break;
+    }
+    return strip;
+  }
+
+ private:
+  [[noreturn]] void fail() {
+    throw std::runtime_error("cannot read " + path_.string() + ": " + in_->geterror());
+  }
+
+  fs::path path_;
+  std::unique_ptr<OIIO::ImageInput> in_;
+  OIIO::ImageSpec spec_;
+  SampleType type_ = SampleType::u8;
+  ImageMetadata metadata_;
+  std::size_t next_row_ = 0;
+  std::vector<std::byte> buffer_;  // the strip's interleaved samples
+  std::vector<std::byte> whole_;   // a tiled file's interleaved samples
+};
+
+std::unique_ptr<ImageRowReader> open_rows(const fs::path& path) { return std::make_unique<OiioRows>(path); }
+
+Image read(const fs::path& path) {
+  OiioRows rows(path);
+  Image image(rows.width(), rows.height(), rows.channels(), rows.type());
+  for (std::size_t y0 = 0; y0 < image.height;) {
+    const Image strip = rows.next(kRows);
+    for (std::size_t c = 0; c < image.channels; ++c)
+      std::copy_n(strip.plane(c), strip.plane_size(), image.plane(c) + y0 * image.width);
+    y0 += strip.height;
+  }
+  image.metadata = rows.metadata();
   return image;
 }
 
@@ -265,16 +327,45 @@ std::string describe(const fs::path& path) {
   return s.str();
 }
 
-void write(const Image& stored, const fs::path& path, const fs::path& tmp) {
+std::unique_ptr<OIIO::ImageOutput> open_output(const ImageShape& shape, const ImageMetadata& metadata,
+                                               const fs::path& path, const fs::path& tmp,
+                                               OIIO::ImageSpec& spec) {
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) throw std::runtime_error("cannot write " + path.string() + ": " + OIIO::geterror());
-  if (!out->open(tmp.string(), output_spec(stored, out->format_name())))
+  spec = output_spec(shape, metadata, out->format_name());
+  if (!out->open(tmp.string(), spec))
     throw std::runtime_error("cannot write " + path.string() + ": " + out->geterror());
-  write_pixels(*out, stored, tmp);
-  if (!out->close()) throw std::runtime_error("cannot write " + path.string() + ": " + out->geterror());
+  return out;
 }
 
-const OiioModule kModule{read, describe, format_name_for, write};
+void close_output(OIIO::ImageOutput& out, const fs::path& path) {
+  if (!out.close()) throw std::runtime_error("cannot write " + path.string() + ": " + out.geterror());
+}
+
+void write(const Image& stored, const fs::path& path, const fs::path& tmp) {
+  OIIO::ImageSpec spec;
+  auto out = open_output(ImageShape{stored.width, stored.height, stored.channels, stored.type},
+                         stored.metadata, path, tmp, spec);
+  write_strip(*out, spec, stored, 0, tmp);
+  close_output(*out, path);
+}
+
+void write_rows(const ImageShape& shape, const ImageMetadata& metadata, const fs::path& path,
+                const fs::path& tmp, const std::function<Image()>& next_strip) {
+  OIIO::ImageSpec spec;
+  auto out = open_output(shape, metadata, path, tmp, spec);
+  for (std::size_t y0 = 0; y0 < shape.height;) {
+    const Image strip = next_strip();
+    if (strip.height == 0 || strip.width != shape.width || strip.channels != shape.channels ||
+        strip.type != shape.type || y0 + strip.height > shape.height)
+      throw std::runtime_error("write_rows: a strip does not fit the image");
+    write_strip(*out, spec, strip, y0, tmp);
+    y0 += strip.height;
+  }
+  close_output(*out, path);
+}
+
+const OiioModule kModule{read, describe, format_name_for, write, open_rows, write_rows};
 
 }  // namespace
 }  // namespace pupwave::cli

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Peak resident memory (max RSS, /usr/bin/time -f %M) of two CLI front doors on a large RGB
+# photograph, against their limits:
+#   `pupwave compress --report-psnr` at most 1.5x the same encode without it (bit-plane coder
+#   and the default coder, --bpp 1, from PPM);
+#   `pupwave convert` PNG -> PPM and PPM -> PNG at most 2x the image's raw bytes plus the
+#   output's size. The fixed cost of loading the OpenImageIO plugin is measured apart (a 16 x 16
+#   PNG converted to PPM) and shown beside it.
+# Usage: bench/front_door_memory.sh [build-dir] [image] [work-dir]. Without an image, a
+# 2560 x 1600 mosaic of the testimages/ photographs is made with oiiotool (astronaut, coffee and
+# chelsea scaled to 512 rows and cropped to 512 x 512, camera as grey RGB; 5 x 4 tiles, cropped).
+# Prints a markdown table.
+set -euo pipefail
+build=${1:-build}
+image=${2:-}
+work=${3:-/tmp/pupwave_front_door_memory}
+here=$(cd "$(dirname "$0")" && pwd)
+pw=$build/tools/pupwave
+mkdir -p "$work"
+
+if [[ -z $image ]]; then
+  t=$here/../testimages
+  tiles=()
+  for i in $(seq 0 19); do
+    case $((i % 4)) in
+      0) tiles+=("$t/astronaut.png") ;;
+      1) tiles+=("$t/coffee.png" --resize 768x512 --crop 512x512+128+0) ;;
+      2) tiles+=("$t/chelsea.png" --resize 770x512 --crop 512x512+129+0) ;;
+      3) tiles+=("$t/camera.png" --ch 0,0,0) ;;
+    esac
+  done
+  image=$work/mosaic.png
+  oiiotool --nosoftwareattrib "${tiles[@]}" --mosaic 5x4 --crop 2560x1600+0+0 --fullpixels -d uint8 -o "$image"
+fi
+"$pw" convert -q "$image" "$work/in.ppm"
+"$pw" convert -q "$work/in.ppm" "$work/in.png"
+oiiotool --nosoftwareattrib --pattern checker:width=4:height=4 16x16 3 -d uint8 -o "$work/tiny.png"
+raw=$(($(stat -c %s "$work/in.ppm") - $(head -c 64 "$work/in.ppm" | head -n 3 | wc -c)))
+
+# Max RSS of a command in KiB (its output discarded); exits on failure.
+rss() {
+  /usr/bin/time -f "%M" -o "$work/time.txt" "$@" >/dev/null 2>&1 || {
+    echo "failed: $*" >&2
+    exit 1
+  }
+  tail -n 1 "$work/time.txt"
+}
+mib() { awk -v k="$1" 'BEGIN { printf "%.1f", k / 1024 }'; }
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+
+echo "Image: $(basename "$image") ($("$pw" info "$work/in.ppm" 2>/dev/null | head -n 1 || true)), raw $(mib $((raw / 1024))) MiB"
+echo
+echo "| command | max RSS (MiB) | limit (MiB) | RSS / limit |"
+echo "|---|---|---|---|"
+for coder in ebcot default; do
+  flags=(--bpp 1)
+  [[ $coder == ebcot ]] && flags+=(--entropy ebcot)
+  plain=$(rss "$pw" compress -q "$work/in.ppm" "$work/$coder.pw" "${flags[@]}")
+  psnr=$(rss "$pw" compress -q "$work/in.ppm" "$work/$coder.pw" "${flags[@]}" --report-psnr)
+  echo "| compress --bpp 1 ($coder coder) | $(mib "$plain") | | |"
+  echo "| compress --bpp 1 ($coder coder) --report-psnr | $(mib "$psnr") ($(ratio "$psnr" "$plain")x plain) | $(mib $((plain * 3 / 2))) (1.5x plain) | $(ratio "$psnr" $((plain * 3 / 2))) |"
+done
+base=$(rss "$pw" convert -q "$work/tiny.png" "$work/tiny.ppm")
+for pair in "png ppm" "ppm png"; do
+  read -r from to <<<"$pair"
+  used=$(rss "$pw" convert -q "$work/in.$from" "$work/out.$to")
+  limit=$(((2 * raw + $(stat -c %s "$work/out.$to")) / 1024))
+  echo "| convert ${from^^} -> ${to^^} | $(mib "$used") ($(mib $((used - base))) above the plugin's fixed cost) | $(mib "$limit") (2x raw + output) | $(ratio "$used" "$limit") ($(ratio $((used - base)) "$limit") above it) |"
+done
+echo "| convert 16 x 16 PNG -> PPM (the OpenImageIO plugin's fixed cost) | $(mib "$base") | | |"
