@@ -57,9 +57,9 @@ TEST(GoldenStream, LossyStreamsAreUnchanged) {
 }
 
 // A --step stream pins the pc coder alone (no search): the same values before and after the
-// pcfast helper's model-guided search and in-place decoder (changed by version 5's contexts and
+// model-guided search and in-place decoder (changed by version 5's contexts and
 // version 6's chroma from luma and trained model starts; the RGB one by the encoder-only
-// chroma-from-luma choice from pc_cfl_pays, helper cflcheap).
+// chroma-from-luma choice from pc_cfl_pays).
 TEST(GoldenStream, PcStepStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::step, 4.0, "cdf97",
                        EntropyCoder::pc),
