@@ -211,7 +211,7 @@ void return_freed_pages() {
 
 // The stream of `c` (assemble's bytes), each codeword freed once copied into it and the
 // freed pages returned every 1/16 of the stream (1 MiB at least), so the codewords and the
-// stream are not both held whole (a stream assembled from held codewords kept both, and a copy of the payloads).
+// stream are not both held whole (assemble holds them and a copy of the payloads).
 std::vector<std::uint8_t> assemble_freeing(const ImagePlan& plan, Coded& c) {
   return_freed_pages();  // what the caller released before: the stream may take its place
   std::vector<std::size_t> sizes(std::size_t(plan.header.levels) + 1, 0);
