@@ -2,7 +2,7 @@
 # Peak resident memory (max RSS, /usr/bin/time) of `pupwave compress` and `decompress` on the
 # 4096 x 4096 mosaics of testimages/ at 1 bpp, beside OpenJPH and Grok in the same run, and of a
 # 32768 x 32768 grey image (the grey mosaic tiled 8 x 8, 1 GiB raw) encoded from PGM (--step 8
-# and --bpp 1) and decoded to PGM at full size and at --level 2 and 4 (issue 16). Writes
+# and --bpp 1) and decoded to PGM at full size and at --level 2 and 4. Writes
 # bench/results/image_memory.md.
 # Usage: bench/image_memory.sh [build-dir] [work-dir]; BIG=0 skips the 32768^2 image (minutes).
 set -euo pipefail

@@ -72,7 +72,7 @@ done
 size() { stat -c %s "$1"; }
 pct() { awk -v a="$1" -v b="$2" 'BEGIN{printf "%+.1f%%", 100 * (a / b - 1)}'; }
 {
-  echo "# Lossless: pupwave lc against JPEG XL and OpenJPEG (issue 20)"
+  echo "# Lossless: pupwave lc against JPEG XL and OpenJPEG"
   echo
   echo "Made by \`bench/lossless_vs_jxl.sh $build $runs\` on $(date -u +%Y-%m-%d) ($(nproc) cores;"
   if have cjxl; then cjxl --version 2>&1 | sed -n 1p; else echo "cjxl not installed"; fi

@@ -1,4 +1,4 @@
-// Issue 20: what a NON-EMBEDDED context coder would give for lossy images, measured before any
+// What a NON-EMBEDDED context coder would give for lossy images, measured before any
 // format work. Each photograph goes through the codec's own colour transform and cdf97 transform
 // (plan_image / transform_all_components, every band one block), every band is dead-zone
 // quantized at the codec's per-band steps (set_base_step) and coded in full in one pass, and the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Full PSNR-target sweep (issue 12): targets 20..70 dB in 0.1 dB steps on every test
+# Full PSNR-target sweep: targets 20..70 dB in 0.1 dB steps on every test
 # photograph, through the same code as the strided ctest sweep (tests/rate/psnr_sweep_test.cpp),
 # which checks every point; the table goes to bench/results/psnr_sweep.md.
 # Usage: bash bench/psnr_sweep.sh [build-dir]

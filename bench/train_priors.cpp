@@ -140,7 +140,7 @@ Starts starts_of(const ContextTally& t, std::size_t c, std::size_t k) {
 
 using Table = std::array<std::array<Prior, kBlockContexts>, 3>;
 
-// The first rule (issue 20's first priors): (ones + 1) / (bits + 2) over the first 16 bits
+// The first rule (the first priors the codec shipped): (ones + 1) / (bits + 2) over the first 16 bits
 // each context codes in a block, worth 7 bits. Kept to compare with the fit.
 Prior mean_of_first_bits(const Starts& starts) {
   double ones = 0.0, bits = 0.0;

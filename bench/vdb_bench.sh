@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sparse OpenVDB volumes side by side (issue 18): file size of pupwave (--max-error) against the
+# Sparse OpenVDB volumes side by side: file size of pupwave (--max-error) against the
 # input .vdb (OpenVDB's zip/blosc) and vdb_tool's half-float output, and wall time / peak memory
 # of compress, decompress and lod against vdb_lod and vdb_tool. Needs vdb_tool, vdb_lod and
 # /usr/bin/time; writes a markdown table to stdout.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Issue 15, route 4: estimate of an SZ3-style prediction coder's size under a point-wise bound E.
+"""Estimate of an SZ3-style prediction coder's size under a point-wise bound E.
 
 Each brick (64^3 as the volume coder's) alone: the corner anchor quantized directly, then
 multilevel interpolation from the coarsest stride down, along x, then y, then z at each level

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Peak memory of `pupwave compress` / `decompress` on raw volumes (issue 17's memory targets):
+# Peak memory of `pupwave compress` / `decompress` on raw volumes (against the memory targets):
 # the 256^3 turbulence field as u8, u16 and f32 (`generate-volume --kind turbulence --size 256`,
 # the integer versions scaled to the full type range), and a 1024x1024x512 float volume (2 GiB,
 # the 256^3 field tiled 4x4x2) that must compress within 3 GiB resident. Peak resident memory

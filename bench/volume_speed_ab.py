@@ -1,4 +1,4 @@
-# Before/after check of a volume coder speed change (issue 17): two pupwave binaries and zfp,
+# Before/after check of a volume coder speed change: two pupwave binaries and zfp,
 # whole-process CPU time (user + system), median of 3 interleaved runs, 1 thread, at 1e-2, 1e-3
 # and 1e-4 of the range on wmag91 and a 256^3 turbulence field; both binaries must give the same
 # stream, and decode the old binary's stream to the same bytes.

@@ -1,7 +1,7 @@
 #pragma once
 // Initial probabilities of the bit-plane block coder's contexts (trained priors instead of 1/2):
 // a 64x64 block codes only a few bits in many of its contexts, and one that starts near its
-// typical probability wastes fewer bits learning it (issue 20: about -1.5% BD-rate against
+// typical probability wastes fewer bits learning it (about -1.5% BD-rate against
 // OpenJPEG on the four scored photographs, -1.3% on ten held-out ones).
 //
 // Trained by bench/train_priors.cpp (rerun it after any change to the contexts or the

@@ -373,7 +373,7 @@ std::vector<std::uint8_t> build_stream(const ImagePlan& plan, Coded& coded, cons
   std::vector<std::size_t> sizes(std::size_t(plan.header.levels) + 1, 0);
   for (std::size_t i = 0; i < passes.size(); ++i)
     sizes[std::size_t(plan.blocks[i].resolution)] += entries[i].length;
-  // Every 1/16 of the stream, 1 MiB at least (issue 16: at 16 MiB a 4 MiB stream and the blocks
+  // Every 1/16 of the stream, 1 MiB at least (at 16 MiB a 4 MiB stream and the blocks
   // it was copied from were both resident at the end).
   FreedMemory freed(
       std::max(std::accumulate(sizes.begin(), sizes.end(), std::size_t(0)) / 16, std::size_t(1) << 20));

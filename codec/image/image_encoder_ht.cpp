@@ -63,7 +63,7 @@ constexpr double kPairRatio = 1.0905;  // 2^(1/8)
 constexpr double kPairAim = 1.015;
 constexpr int kMaxPairPasses = 4;
 // A sample of more bytes than this is freed while a pass runs and surveyed again where another
-// pass follows (issue 16: the grey 4096^2 mosaic's took 8.7 MB, a third of its 2 bpp encode's
+// pass follows (the grey 4096^2 mosaic's took 8.7 MB, a third of its 2 bpp encode's
 // heap); a smaller one is held (a survey again costs a quarter of a pass's transform or more).
 constexpr std::size_t kHeldSampleBytes = std::size_t(1) << 20;
 // Trial encodes (each decoded and measured) for a PSNR target, met within kPsnrTolerance dB above.
@@ -132,7 +132,7 @@ void code_block(const ImagePlan& plan, std::size_t i, const std::vector<std::int
   out.entries[i] = {w.planes, w.planes > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
   if (total.fetch_add(w.bytes.size()) + w.bytes.size() > byte_limit) over = true;
   // The writer's buffer grew by doubling: held as it is, a pass's codewords took 1.4 times
-  // their bytes (issue 16: the pair's codewords were the largest part of a 2 bpp encode).
+  // their bytes (the pair's codewords were the largest part of a 2 bpp encode).
   w.bytes.shrink_to_fit();
   out.words[i] = std::move(w.bytes);
 }
@@ -211,7 +211,7 @@ void return_freed_pages() {
 
 // The stream of `c` (assemble's bytes), each codeword freed once copied into it and the
 // freed pages returned every 1/16 of the stream (1 MiB at least), so the codewords and the
-// stream are not both held whole (issue 16: assemble held them and a copy of the payloads).
+// stream are not both held whole (assemble holds them and a copy of the payloads).
 std::vector<std::uint8_t> assemble_freeing(const ImagePlan& plan, Coded& c) {
   return_freed_pages();  // what the caller released before: the stream may take its place
   std::vector<std::size_t> sizes(std::size_t(plan.header.levels) + 1, 0);
@@ -688,7 +688,7 @@ std::optional<std::size_t> mix_pair(ImagePlan& plan, CodedPair& p, double budget
 }
 
 // A mix of a pair (mix_pair) kept until the search ends: its blocks and steps, not its stream
-// (assembled once, from blocks freed as they are copied: issue 16).
+// (assembled once, from blocks freed as they are copied).
 struct Mixed {
   Coded coded;
   std::vector<float> steps;

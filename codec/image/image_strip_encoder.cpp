@@ -16,7 +16,7 @@ namespace {
 // Rows of coefficients (interleaved) produced per level at a time: the column analysis of a
 // window costs its 2 * reach overlap rows once per chunk, and each level holds a window and a
 // chunk of output rows. 32, not 64: 1.3 MiB less peak resident memory for a 4096-wide grey
-// encode (issue 16: 24 MiB); the overlap it adds costs at most ~2.5% of an ht encode's CPU.
+// encode (of 24 MiB); the overlap it adds costs at most ~2.5% of an ht encode's CPU.
 constexpr std::size_t kChunk = 32;
 // Most rows read, or handed from a level to the next or to a band, at a time: every receiver
 // holds what it needs plus one delivery, so small deliveries keep the buffers near their
@@ -173,7 +173,7 @@ class LevelAnalysis final : public RowSink<T> {
     const std::size_t w0 = window_start(p_), w1 = window_end(p1), n = w1 - w0;
     const std::size_t c0 = p_ / 2, c1 = (p1 + 1) / 2, d1 = p1 / 2, nc = coarse_size(n);
     // The rows go straight into the receivers (a full-width copy of a chunk, nested over the
-    // levels, was 1 MiB of a 4096-wide grey encode's peak: issue 16), handed on in the order
+    // levels, would be 1 MiB of a 4096-wide grey encode's peak), handed on in the order
     // deliver gave them: coarse low and high halves, then detail (one piece each: kChunk / 2
     // rows at most).
     const std::size_t nd = d1 > c0 ? d1 - c0 : 0;

@@ -1,6 +1,6 @@
 #pragma once
 // Internal to the volume codec: the MASK chunk of a sparse box grid without a byte per voxel in
-// memory (issue 22, "empty sparse regions cost nothing"). The zstd frame of voxel states stays
+// memory (empty sparse regions cost nothing). The zstd frame of voxel states stays
 // compressed in the parsed stream and is streamed row by row when needed; one pass at parse time
 // validates it and keeps one byte per brick saying which non-background states the brick holds.
 

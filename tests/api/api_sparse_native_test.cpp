@@ -1,6 +1,6 @@
 // The public API's volume decode of a sparse-native stream (what `pupwave compress` makes of a
-// .vdb): the arrays are the grid's dense active bounding box with its mask. They came back all
-// zeros (the blocks were dropped; found while writing fuzz_c_api, issue 22).
+// .vdb): the arrays are the grid's dense active bounding box with its mask, holding the grid's
+// voxels (not zeros from dropped blocks).
 #include <gtest/gtest.h>
 
 #include <cstring>

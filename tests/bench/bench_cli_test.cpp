@@ -231,7 +231,7 @@ TEST_F(BenchCli, CoarseRunWritesItsTable) {
 }
 
 // A custom spec's own commas (inside its parentheses) do not split the --transforms list, in
-// both experiments (issue 12).
+// both experiments.
 TEST_F(BenchCli, CustomSpecWithCommasIsOneTransform) {
   const std::string custom = "pups:cinpact(c=3,sigma=7.27,l=14)";
   const CliRun coarse = run_cli({"bench", "coarse", "--images", image_.string(), "--transforms",

@@ -1,4 +1,4 @@
-// Issue 12 from the command line: rate targets that never misfire or exceed the lossless
+// Rate targets from the command line: targets that never misfire or exceed the lossless
 // file, tight bounds honoured or refused up front, every numeric option validated, --levels
 // capped, parse errors reported like other errors, '-' as stdin/stdout, --quiet/--verbose.
 #include <gtest/gtest.h>
@@ -235,7 +235,7 @@ TEST_F(RateCli, QuietPrintsNothingAndVerboseMore) {
   expect_error(run_cli({"compress", image("camera.png"), out("a.pw"), "--quiet", "--psnr", "nan"}), "--psnr");
 }
 
-// --effort 2 (issue 20's per-band base-step choice and RDOQ) fits the same budget at a higher
+// --effort 2 (the per-band base-step choice and RDOQ) fits the same budget at a higher
 // PSNR than the default on a photograph; --effort is refused where it would be ignored.
 TEST_F(RateCli, EffortTwoGivesAHigherPsnrWithinTheSameBudget) {
   const auto fast = run_cli(

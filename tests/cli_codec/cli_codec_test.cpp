@@ -133,7 +133,7 @@ TEST_F(CliCodec, BadOptionsFailWithoutOutput) {
 }
 
 // Pins the streams of a real photograph (see tests/codec/golden_stream_test.cpp): the bit-plane
-// coder's lossless stream, and the lc coder's (the --lossless default since issue 20).
+// coder's lossless stream, and the lc coder's (the --lossless default).
 TEST_F(CliCodec, GoldenLosslessStreamOfCamera) {
   ASSERT_EQ(
       run_cli("compress " + image("camera.png") + " " + tmp("g.pw") + " --lossless --entropy ebcot").status,

@@ -81,7 +81,7 @@ Image tiled(const Image& in, std::size_t across, std::size_t down) {
 
 // Streamed byte budgets pinned where the search takes one pass and where it takes two or three:
 // a sample over 1 MiB (the 1536 x 2560 tiling's) is freed during a pass and surveyed again for
-// the next (issue 16), a smaller one held. CRC-32 of each stream as the encoder gave it when
+// the next, a smaller one held. CRC-32 of each stream as the encoder gave it when
 // every sample was held throughout (main before that change; since stream version 6 with that
 // version byte).
 TEST(HtPhotos, StreamedSearchesGiveTheStreamsTheHeldSampleGave) {

@@ -62,7 +62,7 @@ TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
 
 // The search's cost on the test photographs, in coding passes: whole passes, the share of the
 // samples coded by passes abandoned before their finest groups, and trims (a quarter of the
-// samples each). Session 13 measured 1.75 passes + 0.21 abandoned + 0.50 trims a search (2.08
+// samples each). A run measured 1.75 passes + 0.21 abandoned + 0.50 trims a search (2.08
 // passes' worth) where the per-level prior scales without abandoning took 2.25 + 0.40 trims (2.35).
 // The steered search (codec/image/image_encoder_pc.cpp) lands most budgets with one whole pass:
 // 1.41 pass-equivalents on these photographs, a trim counted as the third of the samples it codes

@@ -4,14 +4,14 @@
 // The --bpp stream also pins rate control (which base step and truncation points the encoder
 // picks): an encoder-only change there updates its value without a version bump.
 // Version 2 (transfer and flags bytes in HEAD, optional META/NFIN chunks) changed all five.
-// Version 3 (issue 20: the block coder's far-neighbour contexts and trained priors) changed all six.
-// Version 4 (issue 20: the priors retrained on other photographs, a weight per context) changed
+// Version 3 (the block coder's far-neighbour contexts and trained priors) changed all six.
+// Version 4 (the priors retrained on other photographs, a weight per context) changed
 // all six (the zstd one by its version byte only).
-// Issue 20's size-target encoder (base-step family per band, RDOQ) is effort 2 and has its own value.
-// Entropy coder 4 (pc, issue 20) has its own value: coder, RDOQ and its rate search.
-// Version 5 (issue 20: pc's luma and Cb parents, parent neighbours, faster silent models) changed the
+// The size-target encoder (base-step family per band, RDOQ) is effort 2 and has its own value.
+// Entropy coder 4 (pc) has its own value: coder, RDOQ and its rate search.
+// Version 5 (pc's luma and Cb parents, parent neighbours, faster silent models) changed the
 // pc value and the six others by their version byte only.
-// Version 6 (issue 20: pc predicts chroma detail blocks from luma and Cb, and its models start
+// Version 6 (pc predicts chroma detail blocks from luma and Cb, and its models start
 // from trained states per band class) changed the pc values and the six others by their version
 // byte only.
 #include <gtest/gtest.h>
@@ -57,9 +57,9 @@ TEST(GoldenStream, LossyStreamsAreUnchanged) {
 }
 
 // A --step stream pins the pc coder alone (no search): the same values before and after the
-// pcfast helper's model-guided search and in-place decoder (changed by version 5's contexts and
+// model-guided search and in-place decoder (changed by version 5's contexts and
 // version 6's chroma from luma and trained model starts; the RGB one by the encoder-only
-// chroma-from-luma choice from pc_cfl_pays, helper cflcheap).
+// chroma-from-luma choice from pc_cfl_pays).
 TEST(GoldenStream, PcStepStreamsAreUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::step, 4.0, "cdf97",
                        EntropyCoder::pc),
@@ -72,7 +72,7 @@ TEST(GoldenStream, PcStepStreamsAreUnchanged) {
 TEST(GoldenStream, PcStreamIsUnchanged) {
   EXPECT_EQ(stream_crc(testing::synthetic_image(64, 64, 3, SampleType::u8, 24), RateMode::bpp, 1.0, "cdf97",
                        EntropyCoder::pc),
-            139638909u);  // version 6; session 14's encoder: the steered search lands with the finest
+            139638909u);  // version 6; the steered search lands with the finest
                           // bands' steps moved from the base step's (the format is unchanged)
 }
 

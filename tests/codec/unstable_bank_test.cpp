@@ -12,7 +12,7 @@ namespace pupwave {
 namespace {
 
 TEST(UnstableBank, DefaultLevelsFallBackInsteadOfFailing) {
-  // Float samples: an integer image at so fine a step would be coded lossless instead (issue 12).
+  // Float samples: an integer image at so fine a step would be coded lossless instead.
   const Image img = testing::synthetic_image(256, 256, 1, SampleType::f32);
   EncodeOptions o;
   o.transform = "pups:cinpact-c3";

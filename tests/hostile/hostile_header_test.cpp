@@ -1,6 +1,6 @@
-// Hostile headers with valid checksums (issue 22's table and kin): each runs the release CLI
+// Hostile headers with valid checksums: each runs the release CLI
 // under a 1 GiB address-space limit and a few seconds of CPU time (a 60 s wall-clock guard), and must end
-// with a clear error or a correct small output. Before the decoder bounds these took up to 10 GiB and minutes
+// with a clear error or a correct small output. Unbounded, these would take up to 10 GiB and minutes
 // (docs/bitstream.md, Decoder bounds).
 #include <gtest/gtest.h>
 #include <zstd.h>

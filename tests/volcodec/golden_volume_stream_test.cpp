@@ -3,14 +3,14 @@
 // outlier list changes them. When a format change is deliberate, bump kVolumeStreamVersion,
 // update docs/bitstream.md and these values; an encoder-only change (a different step choice)
 // updates the lossy values without a version bump (as the modelled step choice and the max-error
-// reconstruction offset 0.5 of issue 17 did). Version 3 (sparse-native grids) changed only the version byte
+// reconstruction offset 0.5 did). Version 3 (sparse-native grids) changed only the version byte
 // of these box-grid streams. Version 4 added VHDR's coder byte, codes max-error streams with the
-// coefficient coder and changed the bit-plane coder's contexts (issue 20): all four changed.
-// Version 5 (the block coder's priors retrained, issue 20) changed all four (by the version byte
-// at least). Version 6 (outlier corrections range coded, issues 15/17) changed all four: the
+// coefficient coder and changed the bit-plane coder's contexts: all four changed.
+// Version 5 (the block coder's priors retrained) changed all four (by the version byte
+// at least). Version 6 (outlier corrections range coded) changed all four: the
 // lossless and step streams by the version byte only; the estimated outlier-list size in the
 // step choice (encoder only) changed the sphere stream once more. The max-error quantizer's
-// rounding offset 0.375 with delta 0.125 (issue 15, encoder only) changed both max-error streams.
+// rounding offset 0.375 with delta 0.125 (encoder only) changed both max-error streams.
 #include <gtest/gtest.h>
 
 #include "codec/error.h"

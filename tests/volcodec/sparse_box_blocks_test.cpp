@@ -1,5 +1,5 @@
 // Sparse box grids decoded as blocks of their non-empty bricks (SparseBoxForm::blocks, what .vdb
-// output uses; issue 22): the same voxels, masks and inactive values as the dense box form at
+// output uses): the same voxels, masks and inactive values as the dense box form at
 // every level, with nothing allocated for bricks that hold only inactive background.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Issue 17's max-error coding: the encoder predicts the decoder's reconstruction from the
+// Max-error coding: the encoder predicts the decoder's reconstruction from the
 // quantized coefficients without decoding (requantize_brick), picks a step per brick from a
 // size model, and codes bricks in parallel. Checked here: that prediction is bit-exact for
 // every irreversible transform and stored type, streams do not depend on the thread count,

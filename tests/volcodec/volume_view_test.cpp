@@ -108,8 +108,8 @@ TEST(VolumeView, U16SubBoxGivesTheStreamOfItsContiguousCopy) {
   check_integer_round_trip<std::uint16_t>(VoxelType::u16, 4000.0);
 }
 
-// The encoder gathers a brick as the view's storage type (u8, u16, float; issue 17's memory
-// target), not as double: lossless, fixed-step and max-error coding give the stream of the
+// The encoder gathers a brick as the view's storage type (u8, u16, float, to bound
+// memory), not as double: lossless, fixed-step and max-error coding give the stream of the
 // double path (a Volume, held as double), also for integer voxels in a wider storage.
 template <class T>
 void check_storage_gives_the_double_stream(VoxelType type, double scale) {

@@ -19,7 +19,7 @@ namespace {
 // Average over the box of width 2^k centred on fine voxel p (end samples weighted 1/2), the
 // resolution-2^k footprint of the coarse voxel that sits at p.
 // Where the data ends at the box of a dense grid (`clamp_to` non-empty), the field beyond it is
-// its mirror image (whole-sample symmetric), not background (issue 12: lod extends dense grids
+// its mirror image (whole-sample symmetric), not background (lod extends dense grids
 // symmetrically).
 double box_average(openvdb::FloatGrid::ConstAccessor& acc, const openvdb::Coord& p, int k,
                    const openvdb::CoordBBox& clamp_to) {
@@ -101,7 +101,7 @@ void report(const std::string& dataset, const fs::path& in, const fs::path& dir,
     // half the band); a level shifted by one voxel or mis-scaled is far off.
     EXPECT_LT(e97.rms, 0.05) << dataset << " level " << k;
     EXPECT_LT(e97.max, 0.2) << dataset << " level " << k;
-    // vdb_lod pads every grid with background, so the border of a dense grid darkens (issue 12);
+    // vdb_lod pads every grid with background, so the border of a dense grid darkens;
     // `lod` extends dense grids symmetrically and must beat it there.
     if (dense_grid(*fine))
       EXPECT_LT(e97.rms, ev.rms) << dataset << " level " << k;

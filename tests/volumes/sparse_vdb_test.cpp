@@ -102,7 +102,7 @@ openvdb::GridPtrVec multi_grids() {
     flags->tree().setValueOn(c, i % 2 == 0);
   }
   mask->insertMeta("count", openvdb::Int64Metadata(300));
-  // Metadata of types the stream has no kind for (issue 18: every type kept).
+  // Metadata of types the stream has no kind for (every type is kept).
   density->insertMeta("camera", openvdb::Mat4DMetadata(openvdb::Mat4d(openvdb::Mat4d::identity() * 2.0)));
   velocity->insertMeta("window", openvdb::Vec2IMetadata(openvdb::Vec2i(3, -4)));
   return {density, temperature, velocity, mask, flags};

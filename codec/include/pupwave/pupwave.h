@@ -109,7 +109,7 @@ void pupwave_stream_destroy(pupwave_stream* stream);
 /* Compresses an image: sample (c, x, y) is the element at
  *   data + c * channel_stride + x * pixel_stride + y * row_stride   (strides in ELEMENTS),
  * so interleaved RGB is (1, 3, 3 * width) and planar is (width * height, 1, width).
- * channels 1..4. options NULL: defaults. */
+ * channels 1..64. options NULL: defaults. */
 pupwave_status pupwave_compress_image(const pupwave_options* options, const void* data, pupwave_type type,
                                       size_t width, size_t height, size_t channels, ptrdiff_t channel_stride,
                                       ptrdiff_t pixel_stride, ptrdiff_t row_stride, pupwave_stream** out);
