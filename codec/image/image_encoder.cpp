@@ -941,6 +941,24 @@ EncodeResult encode_capped(const ImageView& image, const EncodeOptions& options)
   return std::move(*lossy);
 }
 
+// A float image's PSNR target that lossy coding cannot reach (finer than the finest step, or
+// indices beyond the coder's range): the stream at the finest step the coder takes, doubled
+// until it fits, comes back with its measured PSNR, so encode_image reports the target as missed
+// (the CLI warns) instead of failing without a file.
+EncodeResult encode_finest(const ImageView& view, const EncodeOptions& options, const CodedDomain& domain) {
+  EncodeOptions step = options;
+  step.mode = RateMode::step;
+  step.measure_psnr = true;  // what was reached is what the caller reports
+  const double peak = psnr_peak(view);
+  for (step.target = kFinestStep * peak;; step.target *= 2.0) {
+    try {
+      return encode_in_domain(view, step, domain);
+    } catch (const IndexRangeError&) {
+      if (step.target > peak) throw;
+    }
+  }
+}
+
 // encode_image before it judges the target.
 EncodeResult encode_any(const ImageView& image, const EncodeOptions& options) {
   if (options.mode != RateMode::lossless && !(options.target > 0.0 && std::isfinite(options.target)))
@@ -964,7 +982,15 @@ EncodeResult encode_any(const ImageView& image, const EncodeOptions& options) {
   if (options.transfer == Transfer::log2) view.peak = 1.0;  // log-PSNR: peak 1 stop
   CodedDomain domain{options.transfer, coded.nonnegative, std::move(coded.nonfinite)};
   const std::size_t kept = domain.nonfinite.size();
-  EncodeResult r = encode_in_domain(view, options, domain);
+  EncodeResult r = [&] {
+    if (options.mode != RateMode::psnr) return encode_in_domain(view, options, domain);
+    try {
+      return encode_in_domain(view, options, domain);
+    } catch (const TargetRangeError&) {
+    } catch (const IndexRangeError&) {
+    }
+    return encode_finest(view, options, domain);
+  }();
   r.metric = metric_name(options.transfer);
   r.nonfinite = kept;
   return r;

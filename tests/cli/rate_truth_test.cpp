@@ -167,6 +167,24 @@ TEST_F(RateTruth, WarningIsThereExactlyWhenTheFileIsOverTheBudget) {
 }
 
 // --strict to stdout: not a byte reaches stdout, and the error says so.
+// A PSNR beyond what lossy coding of a float image reaches (forest_hdr.exr, log-PSNR 115 dB)
+// failed with "quantization index too large" and no file: now the finest stream is written,
+// with a warning giving what it reaches, and --strict refuses it.
+TEST_F(RateTruth, UnreachablePsnrOnAFloatImageIsWrittenAndWarned) {
+  const std::string pw = out("deep.pw"), png = out("deep.exr");
+  const Split r = run_split({"compress", testimage("forest_hdr.exr"), pw, "--psnr", "115"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("warning: --psnr 115 not met: " + pw + " reaches log-PSNR ", 0), 0u) << r.err;
+  const double reached = number_before(r.err, " dB");
+  EXPECT_GT(reached, 60.0) << r.err;
+  EXPECT_LT(reached, 115.0) << r.err;
+  EXPECT_EQ(run_cli({"decompress", pw, png, "-q"}).exit_code, 0);
+  const auto strict =
+      run_cli({"compress", testimage("forest_hdr.exr"), out("s.pw"), "--psnr", "115", "--strict"});
+  EXPECT_EQ(strict.exit_code, 1) << strict.output;
+  EXPECT_FALSE(fs::exists(out("s.pw")));
+}
+
 TEST_F(RateTruth, StrictToStdoutWritesNoBytes) {
   const Split r = run_split({"compress", astronaut_crop(2, 2), "-", "--bpp", "1", "--strict"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
