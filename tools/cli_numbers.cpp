@@ -8,12 +8,6 @@
 namespace pupwave::cli {
 namespace {
 
-std::string shortest(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
-
 // Parses the whole string as a double; false if it is not one.
 bool parse_number(const std::string& text, double& value) {
   if (text.empty()) return false;
@@ -36,6 +30,12 @@ CLI::Validator numbers(const std::string& what, std::function<bool(double)> ok) 
 }
 
 }  // namespace
+
+std::string shortest(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
 
 CLI::Validator positive_number() {
   return numbers("a number > 0", [](double v) { return v > 0.0; });

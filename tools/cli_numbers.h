@@ -8,6 +8,9 @@
 
 namespace pupwave::cli {
 
+// A number as messages print it: %.6g ("0.5", "1e-06").
+std::string shortest(double v);
+
 // A finite number > 0.
 CLI::Validator positive_number();
 // A finite number >= 0.

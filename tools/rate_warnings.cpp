@@ -4,28 +4,18 @@
 #include <stdexcept>
 
 #include "codec/format/container.h"
+#include "tools/cli_numbers.h"
 #include "tools/cli_stdio.h"
 
 namespace pupwave::cli {
-namespace {
-
-// A number for messages (%.6g).
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
-}  // namespace
-
 std::string image_target_miss(const EncodeOptions& enc, const EncodeResult& r, std::size_t width,
                               std::size_t height, const std::string& subject) {
   if (r.target_met) return "";
   if (enc.mode == RateMode::psnr)
-    return "--psnr " + number(enc.target) + " not met: " + subject + " reaches " + r.metric + " " +
-           number(r.psnr) + " dB";
-  std::string text = "--bpp " + number(enc.target) + " not met: " + subject + " is " +
-                     std::to_string(r.bytes.size()) + " bytes (" + number(r.bpp) + " bpp) for this " +
+    return "--psnr " + shortest(enc.target) + " not met: " + subject + " reaches " + r.metric + " " +
+           shortest(r.psnr) + " dB";
+  std::string text = "--bpp " + shortest(enc.target) + " not met: " + subject + " is " +
+                     std::to_string(r.bytes.size()) + " bytes (" + shortest(r.bpp) + " bpp) for this " +
                      std::to_string(width) + "x" + std::to_string(height) + " image";
   // What the stream holds before any coded data, said where it alone exceeds the budget: why a
   // tiny image cannot meet it.
@@ -40,14 +30,14 @@ std::string volume_target_miss(const VolumeEncodeOptions& enc, const VolumeEncod
   if (r.target_met) return "";
   switch (enc.mode) {
     case VolumeRateMode::bpv:
-      return "--bpv " + number(enc.target) + " not met: " + subject + " is " + std::to_string(r.size) +
-             " bytes (" + number(r.bpv) + " bpv)";
+      return "--bpv " + shortest(enc.target) + " not met: " + subject + " is " + std::to_string(r.size) +
+             " bytes (" + shortest(r.bpv) + " bpv)";
     case VolumeRateMode::psnr:
-      return "--psnr " + number(enc.target) + " not met: " + subject + " reaches PSNR " + number(r.psnr) +
+      return "--psnr " + shortest(enc.target) + " not met: " + subject + " reaches PSNR " + shortest(r.psnr) +
              " dB";
     default:  // max_error: the bound in sample units, as --max-error or --max-error-rel set it
-      return "error bound " + number(enc.target) + " not met: " + subject + " has a largest error of " +
-             number(r.max_error);
+      return "error bound " + shortest(enc.target) + " not met: " + subject + " has a largest error of " +
+             shortest(r.max_error);
   }
 }
 

@@ -45,9 +45,6 @@ constexpr std::size_t kMaxTrialBytes = std::size_t(64) << 20;
 constexpr int kMaxStepRefinements = 4;
 // PSNR targets are met from above within this margin (dB) when possible.
 constexpr double kPsnrTolerance = 0.05;
-// The promise to the user (--psnr help): the PSNR reached is at most this far above the
-// target; other base-step families are tried when the first cannot keep it.
-constexpr double kPsnrWithin = 0.15;
 // Base-step families per octave (family_base).
 constexpr int kFamilies = 8;
 // Files below this size search every family: there one pass of a coarse-band block adds a few

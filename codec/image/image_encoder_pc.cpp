@@ -63,8 +63,6 @@ constexpr double kTrimReach = 0.125;
 constexpr double kTrimShare = 0.03;
 constexpr int kTrimTries = 3;
 constexpr int kTrimSearches = 2;  // failed trims (each up to kTrimTries codings) before none
-// The promise to the user (--psnr help): the PSNR reached is at most this far above the target.
-constexpr double kPsnrWithin = 0.15;
 // A PSNR search whose base steps straddle a jump over the window (at low rates a band's RDOQ
 // turning a block on or off moves the PSNR by tenths of a dB: 0.5 dB on a 256 x 256 crop of
 // camera.png near 20 dB) moves the step of one band of a bracket's end by up to kBandReach

@@ -20,6 +20,9 @@ namespace pupwave {
 // Finest quantizer base step, relative to the PSNR peak: float samples hold 24 significant
 // bits, so a finer step only codes rounding noise (and integer images are exact far above it).
 inline constexpr double kFinestStep = 1.0 / 16777216.0;
+// The promise to the user (--psnr help): the PSNR reached is at most this far above the
+// target (dB), with every coder's search.
+inline constexpr double kPsnrWithin = 0.15;
 // Highest PSNR target for float images: the float transform's own rounding sits not far above.
 inline constexpr double kMaxFloatPsnr = 120.0;
 
