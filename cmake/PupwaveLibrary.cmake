@@ -40,30 +40,26 @@ add_custom_target(pupwave_static ALL DEPENDS ${PUPWAVE_STATIC})
 install(TARGETS pupwave_shared LIBRARY DESTINATION lib)
 install(FILES ${PUPWAVE_STATIC} DESTINATION lib)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/codec/include/pupwave DESTINATION include)
-install(TARGETS pupwave RUNTIME DESTINATION bin)
-install(TARGETS pupwave_oiio LIBRARY DESTINATION bin)  # the CLI loads it from beside its binary
-install(TARGETS pupwave_vdb LIBRARY DESTINATION bin)  # likewise, for .vdb files
+if(PUPWAVE_BUILD_TOOLS)
+  install(TARGETS pupwave RUNTIME DESTINATION bin)
+  install(TARGETS pupwave_oiio LIBRARY DESTINATION bin)  # the CLI loads it from beside its binary
+endif()
+if(PUPWAVE_BUILD_VDB)
+  install(TARGETS pupwave_vdb LIBRARY DESTINATION bin)  # likewise, for .vdb files
+endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/PupwaveConfig.cmake.in ${CMAKE_BINARY_DIR}/PupwaveConfig.cmake @ONLY)
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/PupwaveConfigVersion.cmake VERSION ${PROJECT_VERSION}
                                  COMPATIBILITY SameMajorVersion)
 install(FILES ${CMAKE_BINARY_DIR}/PupwaveConfig.cmake ${CMAKE_BINARY_DIR}/PupwaveConfigVersion.cmake
         DESTINATION lib/cmake/Pupwave)
+string(REPLACE ";" " " PUPWAVE_COMPONENTS_PC "${PUPWAVE_COMPONENTS_BUILT}")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/pupwave.pc.in ${CMAKE_BINARY_DIR}/pupwave.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/pupwave.pc DESTINATION lib/pkgconfig)
 
-# The Debian interpreter (whose dist-packages hold python3-numpy and python3-pytest) unless the
-# caller names another with -DPython_EXECUTABLE: a pyenv shim first in PATH must not win.
-if(NOT DEFINED Python_EXECUTABLE AND EXISTS /usr/bin/python3)
-  set(Python_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "Python for the module and its tests")
-endif()
-set(PYBIND11_FINDPYTHON ON)
-find_package(pybind11 CONFIG QUIET)
-option(PUPWAVE_BUILD_PYTHON "Build the Python module (needs pybind11)" ${pybind11_FOUND})
 if(PUPWAVE_BUILD_PYTHON)
   add_subdirectory(${PROJECT_SOURCE_DIR}/tools/python ${CMAKE_BINARY_DIR}/python_module)
 endif()
-option(PUPWAVE_BUILD_OIIO_PLUGIN "Build the OpenImageIO plugin pw.imageio.so" ON)
-if(PUPWAVE_BUILD_OIIO_PLUGIN AND EXISTS ${PROJECT_SOURCE_DIR}/tools/oiio_plugin/CMakeLists.txt)
+if(PUPWAVE_BUILD_OIIO_PLUGIN)
   add_subdirectory(${PROJECT_SOURCE_DIR}/tools/oiio_plugin ${CMAKE_BINARY_DIR}/oiio_plugin)
 endif()
 
@@ -79,6 +75,10 @@ if(PUPWAVE_BUILD_TESTS)
            COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${CMAKE_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
                    -DWORK_DIR=${CMAKE_BINARY_DIR}/consumer_test -DPYTHON=${Python_EXECUTABLE} -P ${PROJECT_SOURCE_DIR}/tests/consumer/run.cmake)
   set_tests_properties(api.install_consumer PROPERTIES TIMEOUT 600)
+  # The library configures alone (Eigen, oneTBB, zstd) and its package lists only the library.
+  add_test(NAME api.core_only_configure
+           COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DWORK_DIR=${CMAKE_BINARY_DIR}/core_only_test
+                   -P ${PROJECT_SOURCE_DIR}/tests/consumer/core_only.cmake)
 endif()
 
 if(PUPWAVE_BUILD_BENCH)
