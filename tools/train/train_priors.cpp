@@ -5,9 +5,9 @@
 // under BitModel's own adaptation. Prints kContextPriors and kContextPriorCounts to paste,
 // and the start-of-block code length of the compiled-in priors, the fitted ones and flat 1/2
 // priors on the training images and on the --check images (held out: never fitted on).
-// Run: build/bench/train_priors [--bpp 0.125,0.25,0.5,1,2] [--effort 1] TRAIN... [--check CHECK...]
+// Run: build/train/train_priors [--bpp 0.125,0.25,0.5,1,2] [--effort 1] TRAIN... [--check CHECK...]
 // (directories: their .png files). Train on photographs other than the scored ones
-// (testimages/); bench/results/rd_issue20.md names the sets used.
+// (testimages/); tools/train/README.md names the sets used.
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -42,7 +42,7 @@ Args parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     if (s == "--bpp" && i + 1 < argc) {
-      a.bpps = pupwave::bench::number_list(argv[++i]);
+      a.bpps = pupwave::train::number_list(argv[++i]);
     } else if (s == "--effort" && i + 1 < argc) {
       a.effort = std::stoi(argv[++i]);
     } else if (s == "--check") {
@@ -50,7 +50,7 @@ Args parse(int argc, char** argv) {
     } else if (!s.empty() && s[0] == '-') {
       throw std::invalid_argument("unknown option " + s);
     } else {
-      pupwave::bench::add_images(s, check ? a.check : a.train);
+      pupwave::train::add_images(s, check ? a.check : a.train);
     }
   }
   if (a.train.empty())

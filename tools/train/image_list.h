@@ -1,6 +1,5 @@
 #pragma once
-// The image and list arguments of the bench tools (nonembedded_rd.cpp, train_priors.cpp,
-// train_pc_priors.cpp).
+// The image and list arguments of the prior trainers (train_priors.cpp, train_pc_priors.cpp).
 
 #include <algorithm>
 #include <filesystem>
@@ -8,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace pupwave::bench {
+namespace pupwave::train {
 
 // The .png files of a directory (sorted, so runs repeat) or the file itself.
 inline void add_images(const std::filesystem::path& arg, std::vector<std::filesystem::path>& out) {
@@ -38,4 +37,4 @@ inline std::vector<double> number_list(const std::string& s) {
   return out;
 }
 
-}  // namespace pupwave::bench
+}  // namespace pupwave::train

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Builds the photograph sets the block coder's priors are trained and checked on
-# (codec/entropy/ctx_priors.h, bench/results/rd_issue20.md) from Debian packages, as 8-bit PNG:
+# (codec/entropy/ctx_priors.h, tools/train/README.md) from Debian packages, as 8-bit PNG:
 #   OUT/train    the 12 photographs of mate-backgrounds (nature/*.jpg), box-reduced to <= 1024 px
 #   OUT/heldout  scikit-image's motorcycle_left, rocket, retina, hubble_deep_field (RGB), coins,
 #                moon, brick, grass, gravel (grey) from python3-skimage, and f3.jpg of the Rust
 #                embedded book when FILE_F3 names it
 # Needs apt-get download (Debian mirrors), dpkg-deb and python3-pil. Nothing is added to the
-# repository. Usage: bench/prior_training_sets.sh OUT [FILE_F3]
-# Then: build/bench/train_priors OUT/train --check testimages/*.png  (and --check OUT/heldout)
+# repository. Usage: tools/train/prior_training_sets.sh OUT [FILE_F3]
+# Then: build/train/train_priors OUT/train --check testimages/*.png  (and --check OUT/heldout)
 set -euo pipefail
 out=$(realpath -m "${1:?usage: prior_training_sets.sh OUT [FILE_F3]}")
 f3=${2:-}
