@@ -60,8 +60,7 @@ inline constexpr std::array<std::uint8_t, 3 * 256> kPcActivityClasses = [] {
 }();
 
 // A block's contexts from outside it: the parent band and, for chroma, the luma parent (pc_visit
-// adds the causal in-band neighbours as the codeword goes). The coder's weights are 1 and 1; the
-// bench estimate (bench/nonembedded_coef.h) tries others.
+// adds the causal in-band neighbours as the codeword goes). The coder's weights are 1 and 1.
 class PcContext {
  public:
   // Weight of Cb's magnitude in Cr's S (3 x the activity): measured best of 3 .. 48 (the
