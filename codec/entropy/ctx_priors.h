@@ -10,8 +10,7 @@
 // at most 1024 pixels on the long side), each coded at 0.125, 0.25, 0.5, 1 and 2 bpp (cdf97, effort 1).
 // Checked on ten others never trained on: scikit-image 0.19's motorcycle_left, rocket,
 // retina, hubble_deep_field, coins, moon, brick, grass, gravel (Debian python3-skimage) and
-// f3.jpg of the Rust embedded book (tools/train/prior_training_sets.sh builds both sets;
-// bench/results/rd_issue20.md).
+// f3.jpg of the Rust embedded book (tools/train/prior_training_sets.sh builds both sets).
 
 #include <array>
 #include <cstdint>

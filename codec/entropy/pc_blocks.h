@@ -8,7 +8,7 @@
 // the child added to the activity sum, the parent's sign to the sign context (ECECOW-style), and for
 // chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h), every
 // model starting from its band class's trained state (pc_priors.h); the chroma detail blocks code
-// the residual of a prediction from luma (and Cb) (pc_cfl.h). Figures: bench/results/rd_issue20.md.
+// the residual of a prediction from luma (and Cb) (pc_cfl.h). Figures: bench/results/image-rd.md.
 
 #include <algorithm>
 #include <array>
