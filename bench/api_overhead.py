@@ -2,7 +2,8 @@
 """Python call-path overhead of pupwave.compress against the C++ library (pupwave::api) on a
 4096x4096 RGB encode at 1 bpp. The image is testimages/chelsea.png mirrored and tiled to
 4096x4096 (a real photograph's statistics, repeated). Runs alternate between the two sides;
-the median of each is compared. Writes bench/results/api_overhead.md.
+the median of each is compared. Prints the report; its table goes into
+bench/results/image-speed-memory.md.
 
 usage: PYTHONPATH=build/python python3 bench/api_overhead.py [--runs N] [--build build]
 """
@@ -99,7 +100,6 @@ def main():
     ]
     text = "\n".join(lines) + "\n"
     print(text)
-    (ROOT / "bench" / "results" / "api_overhead.md").write_text(text)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@
 cubic least-squares fit of PSNR in log10(achieved bpp), mean gap over the common range,
 averaged over images. Pure Python (no numpy).
 
-    python3 bench/bd_vs.py bench/results/pups_rd/results.csv cdf97
+    python3 bench/bd_vs.py bench/results/pups/results.csv cdf97
 """
 import csv
 import math

@@ -4,7 +4,8 @@
 # irreversible everywhere. Runs are interleaved (one run of every coder, then the next round), so
 # a machine shared with other work slows all coders alike and the ratios stay meaningful.
 # OpenJPH has no rate control: its -qstep is bisected once per image and rate to the largest
-# file not above the target size, then timed. Writes bench/results/codec_speed.md.
+# file not above the target size, then timed. Writes $OUT (default
+# /tmp/codec_speed.md); its tables go into bench/results/image-speed-memory.md.
 # Usage: bench/codec_speed.sh [BUILD_DIR] [RUNS] [RATES]
 #   (after scripts/build.sh; defaults: build, 5 runs, "0.25 1 2"; grk/ojph from install-deps.sh)
 set -euo pipefail
@@ -15,7 +16,7 @@ rates=${3:-0.25 1 2}
 pw=$build/tools/pupwave
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-out=bench/results/codec_speed.md
+out=${OUT:-/tmp/codec_speed.md}
 side=4096
 
 "$build/bench/codec_bench" --write-mosaic "$work/rgb.ppm"

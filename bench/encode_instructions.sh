@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Instructions executed inside encode_image (callgrind --toggle-collect: no process start, no PNG
 # read) for one `pupwave compress --threads 1` of each test photograph: a deterministic measure of
-# encode CPU that a loaded machine does not disturb (bench/results/rd_issue20.md).
+# encode CPU that a loaded machine does not disturb (bench/results/image-speed-memory.md).
 # Usage: bench/encode_instructions.sh BIN ENTROPY [BPP]   (ENTROPY: ebcot, pc, ...; default: no
 # --entropy, the default coder's choice; BPP default 1)
 # Prints "photo instructions" per line. Needs valgrind.

@@ -7,7 +7,7 @@ ratio lost to chunking against `pupwave compress` of the whole volume. Writes a 
 
     HDF5_PLUGIN_PATH=build/lib/hdf5/plugins:/usr/lib/x86_64-linux-gnu/hdf5/serial/plugins \
       PYTHONPATH=build/python /usr/bin/python3 bench/hdf5_vs_zfp.py --cli build/tools/pupwave \
-      --out bench/results/hdf5_vs_zfp.md
+      --out T.md   (tables for bench/results/hdf5-zarr.md)
 
 `--volumes wmag91` (or `turbulence`) runs one volume only.
 """

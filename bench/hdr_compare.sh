@@ -3,13 +3,14 @@
 # pupwave (log-domain coding, several --psnr targets, default 40), OpenEXR's lossy DWAA/DWAB
 # (through oiiotool's compression attribute) and JPEG XL (cjxl/djxl). Every decoded image is
 # measured by `pupwave psnr` against the input: ordinary PSNR (peak = value range), log-PSNR,
-# median relative luminance error per decade, sign flips. Writes bench/results/hdr.md.
+# median relative luminance error per decade, sign flips. Writes $OUT (default
+# /tmp/hdr.md); its table goes into bench/results/image-lossless-hdr.md.
 # Usage: bench/hdr_compare.sh [path/to/pupwave]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 pw=${1:-$root/build/tools/pupwave}
 in=$root/testimages/forest_hdr.exr
-out=$root/bench/results/hdr.md
+out=${OUT:-/tmp/hdr.md}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 pixels=$((512 * 256))

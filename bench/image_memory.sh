@@ -3,14 +3,14 @@
 # 4096 x 4096 mosaics of testimages/ at 1 bpp, beside OpenJPH and Grok in the same run, and of a
 # 32768 x 32768 grey image (the grey mosaic tiled 8 x 8, 1 GiB raw) encoded from PGM (--step 8
 # and --bpp 1) and decoded to PGM at full size and at --level 2 and 4. Writes
-# bench/results/image_memory.md.
+# $OUT (default /tmp/image_memory.md); its tables go into bench/results/image-speed-memory.md.
 # Usage: bench/image_memory.sh [build-dir] [work-dir]; BIG=0 skips the 32768^2 image (minutes).
 set -euo pipefail
 build=${1:-build}
 work=${2:-/tmp/pupwave_image_memory}
 big=${BIG:-1}
 here=$(cd "$(dirname "$0")" && pwd)
-out=$here/results/image_memory.md
+out=${OUT:-/tmp/image_memory.md}
 pw=$build/tools/pupwave
 mkdir -p "$work"
 

@@ -7,7 +7,8 @@
 # (user + system) of RUNS interleaved runs, single-threaded where the tool has the option, so
 # other work on the machine inflates it as little as possible. Every decode is checked
 # bit-exact against the input. A peer that is not installed is skipped, saying so.
-# Usage: bench/lossless_vs_jxl.sh [BUILD_DIR] [RUNS]   (writes bench/results/lossless.md)
+# Usage: bench/lossless_vs_jxl.sh [BUILD_DIR] [RUNS]   (writes $OUT, default
+# /tmp/lossless.md; its tables go into bench/results/image-lossless-hdr.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -15,7 +16,7 @@ runs=${2:-3}
 pw=$build/tools/pupwave
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-out=bench/results/lossless.md
+out=${OUT:-/tmp/lossless.md}
 images="astronaut camera chelsea coffee"
 
 have() { command -v "$1" >/dev/null 2>&1; }

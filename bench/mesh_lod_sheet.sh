@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Contact sheets of the sqrt(3) levels of detail (bench/results/mesh_lod.md): two real meshes of
+# Contact sheets of the sqrt(3) levels of detail (bench/results/meshes.md): two real meshes of
 # testimages/ subdivided three times, then `pupwave mesh lod --sheet` back down to the original.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=bench/results
+out=bench/results/meshes
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for name in nefertiti pig; do

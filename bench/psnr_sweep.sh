@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Full PSNR-target sweep: targets 20..70 dB in 0.1 dB steps on every test
 # photograph, through the same code as the strided ctest sweep (tests/rate/psnr_sweep_test.cpp),
-# which checks every point; the table goes to bench/results/psnr_sweep.md.
+# which checks every point; the table goes to $OUT
+# (default /tmp/psnr_sweep.md) and from there into bench/results/image-rd.md.
 # Usage: bash bench/psnr_sweep.sh [build-dir]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
-out=$here/results/psnr_sweep.md
+out=${OUT:-/tmp/psnr_sweep.md}
 table=$(mktemp)
 part=$(mktemp)
 trap 'rm -f "$table" "$part"' EXIT

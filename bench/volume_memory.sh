@@ -10,7 +10,7 @@
 # Usage: bench/volume_memory.sh [BUILD_DIR] [OLD_PUPWAVE]   (SKIP_BIG=1: no 2 GiB case)
 # OLD_PUPWAVE: another build of the CLI measured on the same inputs, for comparison (BIG_OLD=1:
 # on the 2 GiB case too).
-# Writes bench/results/volume_memory.md. Needs ~5 GiB free in $TMPDIR for the 2 GiB case.
+# Writes $OUT (default /tmp/volume_memory.md); its tables go into bench/results/volumes.md. Needs ~5 GiB free in $TMPDIR for the 2 GiB case.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -18,7 +18,7 @@ old=${2:-}
 pw=$build/tools/pupwave
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-out=bench/results/volume_memory.md
+out=${OUT:-/tmp/volume_memory.md}
 mib() { awk -v k="$1" 'BEGIN {printf "%.1f", k / 1024}'; }
 
 # Runs a command once; prints "cpu_seconds max_rss_KiB" (user + system: wall time means little

@@ -253,10 +253,7 @@ void add_bench_command(CLI::App& app) {
   add_report_verbosity_flags(*coarse);
   coarse->callback(
       [opt] { fail_if(run_coarse_into(*opt, opt->out, command_line("coarse", *opt, false, true))); });
-  auto* all =
-      bench->add_subcommand("all",
-                            "Both: rd into --out/rd and coarse into --out/coarse "
-                            "(regenerates bench/results/ with --images testimages --out bench/results)");
+  auto* all = bench->add_subcommand("all", "Both: rd into --out/rd and coarse into --out/coarse");
   add_common(all, *opt, true, true);
   add_report_verbosity_flags(*all);
   all->callback([opt] {

@@ -1,6 +1,6 @@
 #pragma once
 // The bits each block-coder context codes at the start of each block, by band class: what the
-// context priors (ctx_priors.h) are trained from (bench/train_priors.cpp). Off unless a
+// context priors (ctx_priors.h) are trained from (tools/train/train_priors.cpp). Off unless a
 // BlockTallyScope is alive; then every encode_block adds to it, on any thread.
 
 #include <array>

@@ -1,9 +1,9 @@
 #pragma once
 // One quantization index under the coefficient coder's binarisation (coef_contexts.h): unary high
 // part with models (escape: Elias-gamma raw), modelled top low bits, raw rest, sign by context.
-// Shared by the volume coefficient coder (coef_encoder.cpp, coef_decoder.cpp), the parent-context
-// coder (pc_blocks.cpp) and the bench estimate (bench/nonembedded_coef.h). Inline throughout: a
-// call taking the coder's address would keep its state in memory instead of registers.
+// Shared by the volume coefficient coder (coef_encoder.cpp, coef_decoder.cpp) and the
+// parent-context coder (pc_blocks.cpp). Inline throughout: a call taking the coder's address
+// would keep its state in memory instead of registers.
 
 #include <algorithm>
 #include <bit>

@@ -4,14 +4,13 @@
 // typical probability wastes fewer bits learning it (about -1.5% BD-rate against
 // OpenJPEG on the four scored photographs, -1.3% on ten held-out ones).
 //
-// Trained by bench/train_priors.cpp (rerun it after any change to the contexts or the
+// Trained by tools/train/train_priors.cpp (rerun it after any change to the contexts or the
 // adaptation) on photographs that are NOT the scored ones (testimages/): the 12 photographs
 // of Debian's mate-backgrounds 1.26 (usr/share/backgrounds/mate/nature/*.jpg, box-reduced to
 // at most 1024 pixels on the long side), each coded at 0.125, 0.25, 0.5, 1 and 2 bpp (cdf97, effort 1).
 // Checked on ten others never trained on: scikit-image 0.19's motorcycle_left, rocket,
 // retina, hubble_deep_field, coins, moon, brick, grass, gravel (Debian python3-skimage) and
-// f3.jpg of the Rust embedded book (bench/prior_training_sets.sh builds both sets;
-// bench/results/rd_issue20.md).
+// f3.jpg of the Rust embedded book (tools/train/prior_training_sets.sh builds both sets).
 
 #include <array>
 #include <cstdint>

@@ -24,7 +24,6 @@ namespace pupwave {
 // Adaptive probability of a 0: the mean of a fast (settling at 1/64) and a slow (1/1024)
 // estimate, both starting count-based (whole bands are one block, so the statistics are
 // nearly stationary: on the test photographs these rates beat 1/16 and 1/128 by 1.1%).
-// Public for the bench estimate (bench/nonembedded_model.h).
 struct LcModel {
   std::uint16_t fast = 16384, slow = 16384;
   std::uint16_t count = 0;

@@ -4,7 +4,7 @@
 // The coder's unary models of activity class 0 (no non-zero neighbour, parent or luma parent)
 // settle at 1/32 instead of 1/64: whether a coefficient in a silent neighbourhood is zero
 // changes from region to region (flat sky, texture), and the faster estimate follows it
-// (-0.3% BD-rate on the test photographs, -0.2% on held-out ones; bench/results/rd_issue20.md).
+// (-0.3% BD-rate on the test photographs, -0.2% on held-out ones).
 
 #include <algorithm>
 #include <bit>

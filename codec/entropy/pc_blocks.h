@@ -8,7 +8,7 @@
 // the child added to the activity sum, the parent's sign to the sign context (ECECOW-style), and for
 // chroma the co-located luma (and, for Cr, Cb) indices as further parents (pc_groups.h), every
 // model starting from its band class's trained state (pc_priors.h); the chroma detail blocks code
-// the residual of a prediction from luma (and Cb) (pc_cfl.h). Figures: bench/results/rd_issue20.md.
+// the residual of a prediction from luma (and Cb) (pc_cfl.h). Figures: bench/results/image-rd.md.
 
 #include <algorithm>
 #include <array>
@@ -60,8 +60,7 @@ inline constexpr std::array<std::uint8_t, 3 * 256> kPcActivityClasses = [] {
 }();
 
 // A block's contexts from outside it: the parent band and, for chroma, the luma parent (pc_visit
-// adds the causal in-band neighbours as the codeword goes). The coder's weights are 1 and 1; the
-// bench estimate (bench/nonembedded_coef.h) tries others.
+// adds the causal in-band neighbours as the codeword goes). The coder's weights are 1 and 1.
 class PcContext {
  public:
   // Weight of Cb's magnitude in Cr's S (3 x the activity): measured best of 3 .. 48 (the

@@ -92,7 +92,7 @@ inline constexpr std::size_t kPcCflProxySamples = 8192;
 // zero-order entropy of the magnitude classes (bit length of |q|) with their low bits and signs,
 // plus 2 bits per non-zero nearest index. The weights were fitted on the chroma blocks of the
 // first search pass of the training photographs at 0.125-2 bpp, as the ones that best agree with
-// coding both ways (bench/results/rd_issue20.md): the contexts code zeros far
+// coding both ways: the contexts code zeros far
 // below their zero-order cost, so the count of non-zeros carries most of the rate. A block of
 // more than 2 x kPcCflProxySamples values is estimated from every stride-th one (a sum in scale).
 inline double pc_cfl_proxy_cost(std::span<const float> x, double delta, double lambda) {

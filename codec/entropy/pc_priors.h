@@ -5,8 +5,8 @@
 // block starts at its band class's trained probability of a 0, worth kPcPriorCount bits, or
 // flat (1/2, count 0) where the training never used it. Band classes: each detail level (1
 // finest .. 6, coarser levels as 6) x orientation x luma / chroma, and the coarse band luma /
-// chroma. -2.5 points BD-rate against OpenJPEG on the test photographs, -1.1 on held-out ones
-// (bench/results/rd_issue20.md). Tables: pc_priors_table.h (bench/train_pc_priors.cpp).
+// chroma. -2.5 points BD-rate against OpenJPEG on the test photographs, -1.1 on held-out ones.
+// Tables: pc_priors_table.h (tools/train/train_pc_priors.cpp).
 
 #include <algorithm>
 #include <cstddef>

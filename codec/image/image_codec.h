@@ -94,13 +94,13 @@ inline EncodeResult encode_image(const Image& image, const EncodeOptions& option
 // Integer images of up to this many pixels take the pc coder for rate targets by default; larger
 // ones (and float images) the bit-plane coder, whose strip-wise encoder keeps memory bounded
 // however large the image (pc holds every transformed component and its indices, about 8 bytes
-// a sample: 100 MiB at this size in RGB). bench/results/rd_issue20.md has the figures.
+// a sample: 100 MiB at this size in RGB). bench/results/image-speed-memory.md has the figures.
 inline constexpr std::size_t kPcDefaultPixels = std::size_t(1) << 22;
 // Whether encode_image_default_coder codes `image`'s rate targets with the pc coder.
 bool pc_is_default_for(const ImageView& image);
 
 // encode_image with the default coder (options.entropy is ignored): lossless uses the lc coder
-// (smaller than the bit-plane coder's lossless stream, bench/results/lossless.md), rate targets
+// (smaller than the bit-plane coder's lossless stream, bench/results/image-lossless-hdr.md), rate targets
 // the pc coder (pc_is_default_for) or the bit-plane coder, and a rate target that ends lossless
 // (switched_to_lossless) or gives an integer image's lossy file of over a quarter of its raw size
 // gives the lc stream when it is the smaller. The CLI without --entropy and the library both

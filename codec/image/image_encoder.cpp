@@ -202,7 +202,7 @@ constexpr std::size_t kWholeBandBlocks = 64;
 constexpr std::size_t kMinEstimatedBlocks = 2048;
 // The estimate must exceed the byte limit by this factor to skip the exact trial. On 4096^2
 // mosaics and tilings of the test photographs (and one half flat, half noise) the estimate is
-// within 1% of the lossless size (bench/results/codec_speed_grey.md). The margin: with n of a
+// within 1% of the lossless size (bench/results/image-speed-memory.md). The margin: with n of a
 // band's N samples sampled at r_s bytes each and the rest at r_u, the estimate N r_s exceeds
 // 1.5 (n r_s + (N - n) r_u) only if r_u < r_s (N - 1.5 n) / (1.5 (N - n)), 0.62 r_s at
 // n = N/8: a lossless stream that fits is dropped only if the unsampled blocks code in under

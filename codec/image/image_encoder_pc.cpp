@@ -8,7 +8,7 @@
 // bands left take the step that projects the file into the byte window (within kSteerReach), or
 // the pass stops there when it cannot land (a calibration only); a pass that ends a little off is
 // trimmed (a set of bands no other band reads coded again at a step of their own). About 1.5
-// passes a search (bench/results/rd_issue20.md), where a plain secant took 3-5.
+// passes a search, where a plain secant took 3-5.
 #include "codec/image/image_encoder_pc.h"
 
 #include <algorithm>
@@ -88,7 +88,7 @@ constexpr int kAbandonPasses = 2;  // in a search; then every pass is coded whol
 // At those checkpoints the bands left may be steered by up to this factor (log) in step: a pass
 // that lands within the byte window saves a second one, while steps that move further from the
 // others' cost rate-distortion (0.075 against 0.05 to 0.25 measured on the training, test and
-// held-out photographs: bench/results/rd_issue20.md).
+// held-out photographs).
 constexpr double kSteerReach = 0.075;
 
 // One coding pass: every block's entry and codeword (its indices stay in the coder's planes

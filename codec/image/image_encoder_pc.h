@@ -6,8 +6,8 @@
 
 namespace pupwave {
 
-// RDOQ slope (squared index-unit error per bit) and reconstruction offset, measured best in
-// bench/results/rd_issue20.md (the estimate bench/nonembedded_rd, coefp + RDOQ).
+// RDOQ slope (squared index-unit error per bit) and reconstruction offset, measured best by a
+// rate-distortion estimate of non-embedded coders on the test photographs (coefp + RDOQ).
 inline constexpr double kPcLambda = 0.1;
 inline constexpr double kPcDelta = 0.05;
 

@@ -31,7 +31,7 @@ constexpr double kUniformFrom = 2.0 * kBinsPerOctave;
 // Real bytes of the pc coder over the model's (bits_of_band) in a detail band, by the model's
 // log2 bits per sample of the band from -4 to 3 (linear between, flat beyond), luma and chroma,
 // and in the coarse band: bytes summed over the last pass of every --bpp search (0.125-2 bpp) on
-// the training photographs (/work/photosets/train; bench/results/rd_issue20.md).
+// the training photographs (tools/train/README.md).
 constexpr double kLumaShare[] = {0.42, 0.44, 0.48, 0.58, 0.69, 0.78, 0.86, 0.94};
 constexpr double kChromaShare[] = {0.41, 0.38, 0.54, 0.67, 0.87, 0.90, 0.93, 0.97};
 constexpr double kCoarseShare = 0.95;

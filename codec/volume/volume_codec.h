@@ -34,7 +34,7 @@ enum class VolumeRateMode : std::uint8_t {
 
 // The transform the CLI and the C/C++/Python API use for max-error volumes when none is named:
 // whole volumes are 1.7-3.5% smaller than with cdf97 (wmag91, turbulence 256^3, 1e-2..1e-4 of the
-// range) at 1.1-1.2x the encode CPU (bench/results/volume_ratio.md).
+// range) at 1.1-1.2x the encode CPU (bench/results/volumes.md).
 // VolumeEncodeOptions itself keeps cdf97, the bank of the other rate modes: each entry point (CLI, C/C++
 // and Python APIs, numcodecs, the HDF5 filter) picks this one when the mode is max-error.
 inline constexpr const char* kMaxErrorVolumeTransform = "pups:cinpact-interp-vm4";

@@ -162,7 +162,7 @@ TEST(BlockCoder, PriorModelsStartAtTheirPriorWithWeight) {
     }
 }
 
-// Prior training (bench/train_priors.cpp) keeps, per block and context, the first
+// Prior training (tools/train/train_priors.cpp) keeps, per block and context, the first
 // kTallyWindow bits coded, in the block's band class, only while a scope is alive: a block of
 // all-ones magnitudes codes one run bit, a 1 (the next columns have significant neighbours).
 TEST(BlockCoder, TallyKeepsTheFirstBitsOfEachContextWhileAScopeLives) {

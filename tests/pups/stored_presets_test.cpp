@@ -1,7 +1,7 @@
 // The stored preset banks (preset_banks.inc) are the designs bit for bit, so a preset transform
 // built from the table equals the one built by designing: streams naming a preset keep their
 // coefficients. After a change to the design or the presets, regenerate the table with
-// `build/bench/preset_bank_table > transforms/pups/preset_banks.inc`.
+// `build/train/preset_bank_table > transforms/pups/preset_banks.inc`.
 #include <gtest/gtest.h>
 
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 // The designed banks of the PUPs presets, stored in their to_bytes form (preset_banks.inc,
-// written by bench/preset_bank_table.cpp), so that building a preset's transform (every encode
+// written by tools/train/preset_bank_table.cpp), so that building a preset's transform (every encode
 // and decode of a stream naming one) skips the 15-60 ms least-squares design. The stored bank
 // equals design_preset's bit for bit (tests/pups/stored_presets_test.cpp), so streams do not
 // change.
