@@ -21,7 +21,8 @@
 #    comments.
 # 2. README commands run: each fenced block whose info string is exactly `sh` is run from the
 #    repository root as one `set -e` bash script, with the binary's folder first in PATH, out/
-#    created (git-ignored; examples write there), stdin empty and a 300 s limit per block. Lines
+#    created (git-ignored; examples write there), stdin empty and a 300 s limit per block. A block
+#    that adds or changes a file git sees (an output outside out/) is reported too. Lines
 #    running what CI runs itself (bash scripts/test.sh, bash scripts/sanitize.sh) are skipped.
 #    Blocks tagged console, text, bash, ... are not run. --flags-only skips this part.
 #
@@ -288,6 +289,13 @@ def run_block(start, body, bin_dir, timeout, readme):
     return f"{readme}:{number}: sh block (from line {start}) failed with exit {result.returncode}{detail}"
 
 
+def repository_changes():
+    """git status lines (untracked files one by one, ignored ones such as out/ left out)."""
+    status = subprocess.run(["git", "status", "--porcelain", "--untracked-files=all"], cwd=ROOT,
+                            capture_output=True, text=True)
+    return set(status.stdout.splitlines()) if status.returncode == 0 else set()
+
+
 def check_readme_blocks(readme, bin_dir, timeout, problems):
     with open(readme, encoding="utf-8") as f:
         lines = f.read().splitlines()
@@ -297,9 +305,13 @@ def check_readme_blocks(readme, bin_dir, timeout, problems):
         if info != "sh":
             continue
         ran += 1
+        before_block = repository_changes()
         problem = run_block(start, body, bin_dir, timeout, readme)
         if problem:
             problems.append(problem)
+        # examples write under out/ (git-ignored): a block must not add or change repository files
+        for change in sorted(repository_changes() - before_block):
+            problems.append(f"{readme}:{start}: sh block wrote into the repository (write under out/): {change[3:]}")
     return ran
 
 

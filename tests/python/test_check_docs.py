@@ -5,6 +5,8 @@ import os
 import pathlib
 import subprocess
 
+import pytest
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCRIPT = ROOT / "scripts" / "check-docs.sh"
 
@@ -90,3 +92,24 @@ def test_failing_readme_sh_block_is_reported(cli, tmp_path):
     rc, out = check_docs(cli, readme=readme, pages=[])
     assert rc == 0, out
     assert "1 README sh blocks ran" in out
+
+
+def test_readme_block_writing_outside_out_is_reported(cli, tmp_path):
+    if subprocess.run(["git", "-C", str(ROOT), "rev-parse"], capture_output=True).returncode != 0:
+        pytest.skip("not a git work tree: the check reads git status")
+    stray = ROOT / f"check_docs_stray_{os.getpid()}.pw"
+    readme = tmp_path / "README.md"
+    readme.write_text(
+        "```sh\n"
+        f"pupwave compress testimages/camera.png out/check_docs_{os.getpid()}.pw --bpp 0.25 -q\n"
+        f"pupwave compress testimages/camera.png {stray.name} --bpp 0.25 -q\n"
+        "```\n"
+    )
+    try:
+        rc, out = check_docs(cli, readme=readme, pages=[])
+    finally:
+        stray.unlink(missing_ok=True)
+        (ROOT / "out" / f"check_docs_{os.getpid()}.pw").unlink(missing_ok=True)
+    assert rc == 1, out
+    assert f"{readme}:1: sh block wrote into the repository (write under out/): {stray.name}" in out
+    assert "out/check_docs_" not in out  # out/ is git-ignored: where examples write
