@@ -8,7 +8,8 @@
 #    `pupwave --help`). Checked:
 #    - in code blocks and inline code, each shell command (split at ; && || $( and at a | that
 #      does not lead to another flag) that starts with pupwave, build/tools/pupwave, a path
-#      ending in /pupwave or $pw, after VAR=value words and do/then/time/nice/timeout; a usage
+#      ending in /pupwave or $pw, after a `$ ` prompt, VAR=value words and do/then/time/nice/
+#      timeout/env/sudo; a usage
 #      line continued by a trailing \ or by an indented line starting with [ or - is one command;
 #      long flags in a `# ...` comment on that line count too (the comment is about the command);
 #    - inline code starting with a subcommand and then a flag, a subsubcommand or ... (`decompress
@@ -42,7 +43,7 @@ ROOT = os.getcwd()
 # Commands CI already runs (.ci/run): a README block repeating them is not run again.
 SKIPPED_LINES = {"bash scripts/test.sh", "bash scripts/sanitize.sh"}
 # Words that may precede the program name in a shell command.
-PREFIX_WORDS = {"do", "then", "else", "time", "/usr/bin/time", "nice", "exec", "!"}
+PREFIX_WORDS = {"$", "do", "then", "else", "time", "/usr/bin/time", "nice", "exec", "env", "sudo", "!"}
 PROGRAM = re.compile(r"""^["']?(\$\{?pw\}?|(\S*/)?pupwave)["']?$""")
 FLAG = re.compile(r"(?<![\w\-/.=:])(--[A-Za-z][\w-]*|-[A-Za-z])(?![\w-])")
 LONG_FLAG = re.compile(r"(?<![\w\-/.=:])(--[A-Za-z][\w-]*)(?![\w-])")

@@ -44,6 +44,10 @@ def test_made_up_flags_in_a_docs_page_are_reported(cli, tmp_path):
         "    --jobs 2 --bogus-jobs 3\n"
         "cmake --build build --not-a-pupwave-flag\n"
         "```\n"
+        "\n"
+        "```console\n"
+        "$ pupwave info out/c.pw --made-up-detail\n"
+        "```\n"
     )
     rc, out = check_docs(cli, "--flags-only", readme=ROOT / "README.md", pages=[page])
     assert rc == 1, out
@@ -51,6 +55,7 @@ def test_made_up_flags_in_a_docs_page_are_reported(cli, tmp_path):
     assert f"{page}:7: pupwave decompress has no option --bpp" in out
     assert f"{page}:10: pupwave compress has no option --made-up-rate" in out
     assert f"{page}:11: pupwave bench rd has no option --bogus-jobs" in out
+    assert f"{page}:17: pupwave info has no option --made-up-detail" in out
     # real options and other programs' flags are not reported
     for flag in ("--quiet", "--level", "--psnr", "--jobs", "--not-a-pupwave-flag"):
         assert f"option {flag}\n" not in out + "\n", flag
