@@ -6,17 +6,18 @@
 # 1. Flags: every pupwave command line in README.md and docs/*.md may use only the options its
 #    subcommand has, as `pupwave SUB [SUBSUB] --help` lists them (subcommands found by walking
 #    `pupwave --help`). Checked:
-#    - in code blocks and inline code, each shell command (split at ; && || $( and at a | that
-#      does not lead to another flag) that starts with pupwave, build/tools/pupwave, a path
-#      ending in /pupwave or $pw, after a `$ ` prompt, VAR=value words and do/then/time/nice/
-#      timeout/env/sudo; a usage
-#      line continued by a trailing \ or by an indented line starting with [ or - is one command;
-#      long flags in a `# ...` comment on that line count too (the comment is about the command);
+#    - in code blocks and inline code, each shell command (split at ; && || $( and at a spaced |
+#      not followed by a flag) that starts with pupwave, build/tools/pupwave, a path ending in
+#      /pupwave or $pw, after a `$ ` prompt, VAR=value words and do/then/time/nice/timeout/env/
+#      sudo; a usage line continued by a trailing \ or by an indented line starting with [ or -
+#      is one command; long flags in a `# ...` comment on that line count too (the comment is
+#      about the command);
 #    - inline code starting with a subcommand and then a flag, a subsubcommand or ... (`decompress
 #      --level k`, `bench ... --out`);
 #    - inline code starting with a flag, in README.md and docs/cli.md only (pages about the CLI):
 #      checked against the subcommand named in the section heading of docs/cli.md, else against
 #      every subcommand's options together.
+#    A lower-case word where a subcommand belongs that names none (`pupwave encode`) is reported.
 #    Not checked: flags of other programs (cmake, oiiotool, cjxl, ...), flags after a placeholder
 #    subcommand (SUBCOMMAND, ..., <x>) beyond "some subcommand below has it", short flags in
 #    comments.
@@ -43,7 +44,7 @@ ROOT = os.getcwd()
 # Commands CI already runs (.ci/run): a README block repeating them is not run again.
 SKIPPED_LINES = {"bash scripts/test.sh", "bash scripts/sanitize.sh"}
 # Words that may precede the program name in a shell command.
-PREFIX_WORDS = {"$", "do", "then", "else", "time", "/usr/bin/time", "nice", "exec", "env", "sudo", "!"}
+PREFIX_WORDS = {"$", "do", "then", "else", "time", "/usr/bin/time", "timeout", "nice", "exec", "env", "sudo", "!"}
 PROGRAM = re.compile(r"""^["']?(\$\{?pw\}?|(\S*/)?pupwave)["']?$""")
 FLAG = re.compile(r"(?<![\w\-/.=:])(--[A-Za-z][\w-]*|-[A-Za-z])(?![\w-])")
 LONG_FLAG = re.compile(r"(?<![\w\-/.=:])(--[A-Za-z][\w-]*)(?![\w-])")
