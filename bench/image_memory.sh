@@ -104,7 +104,7 @@ notes=$( [[ -f $out ]] && sed -n "/^$marker\$/,\$p" "$out" || true)
     printf '%s\n' "${big_rows[@]}"
   else
     echo
-    echo "The 32768 x 32768 part was skipped (BIG=0); see the memory section of codec_speed.md."
+    echo "The 32768 x 32768 part was skipped (BIG=0); see the memory section of bench/results/image-speed-memory.md."
   fi
   if [[ -n $notes ]]; then
     echo

@@ -9,7 +9,7 @@ mkdir -p out
 # to a log that is shown only when the build fails. scripts/build.sh builds everything.
 build_cli() {
   bash scripts/install-deps.sh
-  [ -f build/CMakeCache.txt ] || cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+  [ -f build/CMakeCache.txt ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
   cmake --build build -j"$(nproc)" --target pupwave
 }
 if ! build_cli >out/build.log 2>&1; then

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   # build
-  build-essential cmake pkg-config clang-format
+  build-essential cmake ninja-build pkg-config clang-format
   # libraries found by CMake with find_package
   libeigen3-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev python3-imath libopenvdb-dev
   libboost-iostreams-dev libzstd-dev libcli11-dev nlohmann-json3-dev

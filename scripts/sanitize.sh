@@ -14,7 +14,10 @@ jobs=$(nproc)
 asan_tests="codec_tests volcodec_tests cli_tests fuzz_image fuzz_image_level fuzz_volume fuzz_info fuzz_pnm
   fuzz_spec fuzz_mesh fuzz_c_api fuzz_hdf5_chunk"
 # -O1: sanitizer builds compile about twice as fast as at -O3 and still run the tests quickly.
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+# Ninja for a new build folder (better parallelism); an existing one keeps its generator.
+generator() { [ -f "$1/CMakeCache.txt" ] || echo "-G Ninja"; }
+# shellcheck disable=SC2046
+cmake -S . -B build-asan $(generator build-asan) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
   -DPUPWAVE_SANITIZE=ON -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
 # shellcheck disable=SC2086
 cmake --build build-asan -j"$jobs" --target pupwave $asan_tests
@@ -28,7 +31,8 @@ ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 \
 
 # libFuzzer targets, two at a time, each from a scratch copy of its corpus (new inputs stay
 # out of the repository) with the dictionaries.
-cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+# shellcheck disable=SC2046
+cmake -S . -B build-fuzz $(generator build-fuzz) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPUPWAVE_BUILD_FUZZERS=ON -DPUPWAVE_BUILD_TESTS=OFF -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
 targets="image image_level volume info pnm spec mesh c_api hdf5_chunk"
 cmake --build build-fuzz -j"$jobs" --target $(printf 'fuzz_%s ' $targets)

@@ -60,7 +60,7 @@ std::size_t bytes_per_sample(SampleType type);
 // Planar, interleaved and padded-row buffers are all views; nothing is copied to encode.
 struct ImageView {
   const void* data = nullptr;
-  std::size_t width = 0, height = 0, channels = 0;  // channels 1..4 (grey, grey+alpha, RGB, RGBA)
+  std::size_t width = 0, height = 0, channels = 0;  // channels 1..64 (grey, grey+alpha, RGB, RGBA, more)
   SampleType type = SampleType::u8;
   std::ptrdiff_t channel_stride = 0, pixel_stride = 0, row_stride = 0;
 };
