@@ -23,8 +23,8 @@ constexpr std::size_t kColumnChunk = 128;
 
 // Rows [first, end) of `width` samples, dropped at the front and added at the back. Dropped
 // rows are let go lazily, once they are at least as many as the rows kept, so each kept row is
-// moved to the front about once instead of on every drop (moving them was 7% of a decode);
-// the buffer holds at most about twice the rows kept.
+// moved to the front about once instead of on every drop (moving them on every drop costs 7% of
+// a decode); the buffer holds at most about twice the rows kept.
 template <class T>
 class RowWindow {
  public:

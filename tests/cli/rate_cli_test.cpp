@@ -52,7 +52,7 @@ void expect_error(const test::CliResult& r, const std::string& needle) {
   EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in:\n" << r.output;
 }
 
-// chelsea --psnr 30 used to give a 494,759-byte lossless-quality file (PSNR inf).
+// chelsea --psnr 30 must not give a lossless-quality file (494,759 bytes, PSNR inf).
 TEST_F(RateCli, PsnrTargetGivesASmallFileJustAboveTheTarget) {
   for (const auto& [name, target] :
        std::vector<std::pair<std::string, double>>{{"chelsea.png", 30.0}, {"astronaut.png", 50.0}}) {
@@ -65,7 +65,8 @@ TEST_F(RateCli, PsnrTargetGivesASmallFileJustAboveTheTarget) {
   }
 }
 
-// camera --bpp 8 gave 262,141 bytes against 126,108 lossless; --psnr 100 and --bpp 1000 too.
+// camera --bpp 8, --bpp 1000 and --psnr 100 ask for more than the 126,108-byte lossless file; they
+// get at most that.
 TEST_F(RateCli, NoRateTargetExceedsTheLosslessFile) {
   ASSERT_EQ(run_cli({"compress", image("camera.png"), out("l.pw"), "--lossless"}).exit_code, 0);
   const auto lossless = fs::file_size(out("l.pw"));
