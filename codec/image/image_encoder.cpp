@@ -73,7 +73,7 @@ constexpr std::size_t kMaxFillCandidates = 64;
 // that component alone; with colour, the chroma components it leaves out are margin enough,
 // a grey image gets one bit-plane more. A guess that turns out too coarse is refined below.
 double guess_margin(const ImagePlan& plan) { return plan.header.channels >= 3 ? 1.0 : 2.0; }
-// Never finer than the old fixed start refined kMaxStepRefinements times (peak / 2^17):
+// Never finer than peak / 2^13 refined kMaxStepRefinements times (peak / 2^17):
 // finer indices would overflow the block coder without improving the result.
 constexpr double kFinestBaseStep = 1.0 / 131072.0;
 

@@ -233,8 +233,8 @@ std::size_t find_band(const ImagePlan& plan, int level, unsigned orientation) {
 }
 
 // Rows [y0, y1) of component c (colour converted and level shifted) as tasks of a few rows
-// each: the converters split rows into tasks of 2^16 samples, so a strip of a wide image was
-// one task, and its colour conversion (6% of an RGB ht encode) ran on one thread.
+// each: the converters split rows into tasks of 2^16 samples, so a strip of a wide image would be
+// one task, and its colour conversion (6% of an RGB ht encode) would run on one thread.
 template <class T>
 void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out,
                     const Executor& ex) {
@@ -246,8 +246,8 @@ void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::s
 
 // Rows [y0, y1) of component c (colour converted and level shifted). Colour converted rows go
 // as tasks of a few rows each: the converters split rows into tasks of 2^16 samples, so a
-// strip of a 4096-wide image was one task, and its ICT (6% of an RGB ht encode) ran on one
-// thread. Rows only level shifted keep the converters' tasks (a smaller one costs more than it).
+// strip of a 4096-wide image would be one task, and its ICT (6% of an RGB ht encode) would run
+// on one thread. Rows only level shifted keep the converters' tasks (a smaller one costs more than it).
 template <class T>
 void strip_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out) {
   if (plan.header.colour == ColourTransform::none || c >= 3)
