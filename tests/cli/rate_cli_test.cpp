@@ -134,7 +134,8 @@ TEST_F(RateCli, VolumeBoundsPastThePrecisionAreRefusedUpFront) {
   EXPECT_LE(number_after(ok.output, "max error "), 2e-6) << ok.output;
 }
 
-// NaN was silently ignored (--psnr 40 used); --bpp 0 printed a 309-digit range.
+// NaN is refused, never ignored (falling back to --psnr 40); --bpp 0 names its range in words,
+// not as a 309-digit number.
 TEST_F(RateCli, EveryNumericOptionIsValidated) {
   const std::string cam = image("camera.png");
   const std::vector<std::vector<std::string>> cases = {
@@ -164,7 +165,7 @@ TEST_F(RateCli, EveryNumericOptionIsValidated) {
   }
 }
 
-// A 33x65 image with --levels 32 gave 8.7 dB.
+// --levels 32 on a 33x65 image is refused, not coded at 8.7 dB.
 TEST_F(RateCli, LevelsBeyondTheImageAreRefused) {
   const Image cam = cli::read_image(image("camera.png"));
   Image crop(33, 65, 1, cam.type);

@@ -102,8 +102,8 @@ std::size_t count(const std::string& text, const std::string& needle) {
   return n;
 }
 
-// Crops of a photograph whose header alone exceeds --bpp 1 (2x2: 110 bytes, 220 bpp) were
-// written with exit 0 and not a word, and "the lossless file fits --bpp 1" was printed.
+// Crops of a photograph whose header alone exceeds --bpp 1 (2x2: 110 bytes, 220 bpp) are written
+// with one warning, never silently and never with the claim "the lossless file fits --bpp 1".
 TEST_F(RateTruth, TinyImagesMissingTheBudgetAreWrittenWithOneWarning) {
   for (const auto& [w, h] : std::vector<std::pair<std::size_t, std::size_t>>{{2, 2}, {1, 1}, {3, 5}}) {
     const std::string in = astronaut_crop(w, h), pw = out("tiny.pw");
