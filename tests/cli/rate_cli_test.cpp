@@ -109,8 +109,8 @@ TEST_F(RateCli, FloatImageBoundsPastFloatPrecisionAreRefused) {
   EXPECT_GE(number_after(r.output, "PSNR "), 90.0) << r.output;
 }
 
-// --max-error 1e-6 on wmag91 and 1e-8 on a double grid of values 1..2 failed mid-way with
-// "quantization index too large for the block coder".
+// --max-error 1e-6 on wmag91 and 1e-8 on a double grid of values 1..2 are refused up front, not
+// part-way through with "quantization index too large for the block coder".
 TEST_F(RateCli, VolumeBoundsPastThePrecisionAreRefusedUpFront) {
   const auto r = run_cli({"compress", image("wmag91.float"), out("v.pw"), "--dims", "91,91,91", "--dtype",
                           "f32", "--max-error", "1e-6"});
@@ -179,7 +179,8 @@ TEST_F(RateCli, LevelsBeyondTheImageAreRefused) {
   EXPECT_GE(number_after(r.output, "PSNR "), 37.0) << r.output;
 }
 
-// CLI11 exited 105/106/109 without the prefix; typos get the closest name.
+// Parse errors exit 1 with the usual prefix (CLI11's own exits, 105/106/109, lack it); typos get
+// the closest name.
 TEST_F(RateCli, ParseErrorsReadLikeOtherErrorsAndSuggestNames) {
   expect_error(run_cli({"compress", image("camera.png"), out("a.pw"), "--psnrr", "30"}),
                "did you mean --psnr?");
@@ -195,7 +196,7 @@ TEST_F(RateCli, ParseErrorsReadLikeOtherErrorsAndSuggestNames) {
   EXPECT_EQ(help.output.find("->"), std::string::npos) << help.output;
 }
 
-// --entropy zstd with --psnr did not print the PSNR its help promises.
+// --entropy zstd with --psnr prints the PSNR its help promises.
 TEST_F(RateCli, ZstdPsnrTargetReportsItsPsnr) {
   const auto r = run_cli({"compress", image("camera.png"), out("a.pw"), "--entropy", "zstd", "--psnr", "35"});
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -168,8 +168,8 @@ TEST_F(RateTruth, WarningIsThereExactlyWhenTheFileIsOverTheBudget) {
 
 // --strict to stdout: not a byte reaches stdout, and the error says so.
 // A PSNR beyond what lossy coding of a float image reaches (forest_hdr.exr, log-PSNR 115 dB)
-// failed with "quantization index too large" and no file: now the finest stream is written,
-// with a warning giving what it reaches, and --strict refuses it.
+// writes the finest stream (not "quantization index too large" and no file), with a warning
+// giving what it reaches, and --strict refuses it.
 TEST_F(RateTruth, UnreachablePsnrOnAFloatImageIsWrittenAndWarned) {
   const std::string pw = out("deep.pw"), png = out("deep.exr");
   const Split r = run_split({"compress", testimage("forest_hdr.exr"), pw, "--psnr", "115"});

@@ -88,8 +88,8 @@ TEST(VolumeMemory, EncodingFromAU8ViewHoldsNoWholeVolumeCopy) {
 
 // Given a writer, the encoder hands each brick's chunk on as soon as the bricks before it are
 // written: it holds the bricks in flight (per thread a brick's samples and transform, a few
-// chunks waiting), never the coded volume (which the old encoder kept until all bricks were
-// coded). The field here is noisy, so the stream (most of the u8 voxels' size) dwarfs a brick.
+// chunks waiting), never the whole coded volume. The field here is noisy, so the stream (most of
+// the u8 voxels' size) dwarfs a brick.
 TEST(VolumeMemory, EncodingToAWriterHoldsOnlyTheBricksInFlight) {
   auto voxels = smooth_u8(kEdge);
   std::uint32_t seed = 12345;
