@@ -80,8 +80,8 @@ TEST(VolumeMemory, EncodingFromAU8ViewHoldsNoWholeVolumeCopy) {
       [&] { bytes = pupwave::encode_volumes({pupwave::describe_view(view, "u8")}, views, o).bytes.size(); });
   EXPECT_GT(bytes, 0u);
   ::testing::Test::RecordProperty("peak_live_heap_bytes", std::to_string(peak));
-  // The old path held the volume as double (8 bytes a voxel) before coding a brick; the coded
-  // bricks and the stream (~1.7 MB here) stay well below a u16 copy, a quarter of that.
+  // A copy of the volume as double would be 8 bytes a voxel; the coded bricks and the stream
+  // (~1.7 MB here) stay well below a u16 copy, a quarter of that.
   EXPECT_LT(peak, 2 * voxels.size()) << "peak live heap bytes " << peak << " for " << voxels.size()
                                      << " u8 voxels";
 }
