@@ -63,7 +63,7 @@ constexpr double kPairRatio = 1.0905;  // 2^(1/8)
 constexpr double kPairAim = 1.015;
 constexpr int kMaxPairPasses = 4;
 // A sample of more bytes than this is freed while a pass runs and surveyed again where another
-// pass follows (the grey 4096^2 mosaic's took 8.7 MB, a third of its 2 bpp encode's
+// pass follows (the grey 4096^2 mosaic's takes 8.7 MB, a third of its 2 bpp encode's
 // heap); a smaller one is held (a survey again costs a quarter of a pass's transform or more).
 constexpr std::size_t kHeldSampleBytes = std::size_t(1) << 20;
 // Trial encodes (each decoded and measured) for a PSNR target, met within kPsnrTolerance dB above.

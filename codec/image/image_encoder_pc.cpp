@@ -8,7 +8,7 @@
 // bands left take the step that projects the file into the byte window (within kSteerReach), or
 // the pass stops there when it cannot land (a calibration only); a pass that ends a little off is
 // trimmed (a set of bands no other band reads coded again at a step of their own). About 1.5
-// passes a search, where a plain secant took 3-5.
+// passes a search, where a plain secant takes 3-5.
 #include "codec/image/image_encoder_pc.h"
 
 #include <algorithm>

@@ -292,7 +292,7 @@ void stream_component(const ImagePlan& plan, std::size_t c, const BlockSink<T>& 
     const std::size_t y1 = std::min(height, y0 + kPiece);
     strip_rows<T>(plan, c, y0, y1, rows.data());
     // With the rows before too: the kernel may map pages again while mapping those after them
-    // (ext4's large folios; 4 MB of a 16 MB PGM stayed mapped when only [y0, y1) was dropped).
+    // (ext4's large folios; 4 MB of a 16 MB PGM stay mapped when only [y0, y1) is dropped).
     if (plan.source.drop_rows)
       plan.source.drop_rows(plan.source.drop_context, plan.source, y0 > kChunk ? y0 - kChunk : 0, y1);
     top->add(rows.data(), width, y1 - y0);

@@ -381,7 +381,7 @@ Image ImageStripDecoder::next(std::size_t rows) {
   copy_rows(st.float_rows, y0, y1, strip);
   if (st.gain != 1.0)  // dividing by exactly 1 would change no value
     for (float& v : strip.samples) v = float(double(v) / st.gain);
-  finish_image_in_place(strip, h.colour, *st.ex);  // in parallel (5% of decode CPU was serial here)
+  finish_image_in_place(strip, h.colour, *st.ex);  // in parallel (serial, 5% of decode CPU)
   return strip;
 }
 
