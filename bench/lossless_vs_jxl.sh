@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Lossless sizes and CPU times on the four test photographs: pupwave's lc coder (the --lossless
-# default), pupwave's bit-plane coder (--entropy ebcot: the lossless mode before lc), JPEG XL
+# default), pupwave's bit-plane coder (--entropy ebcot), JPEG XL
 # (cjxl -d 0 -e 7) and OpenJPEG (opj_compress, lossless 5/3 by default). Every tool reads the
 # same binary PNM (pupwave maps it without its image library, whose start-up costs about 0.25 s
 # of CPU per process; cjxl and opj_compress read PNM natively). Each time is the least CPU time

@@ -1,5 +1,5 @@
-// In-process encode CPU of the pc coder (`--entropy pc`) against the default bit-plane
-// coder, one thread, each test photograph at 1 bpp (as `pupwave compress --bpp 1 --threads 1`
+// In-process encode CPU of the pc coder (`--entropy pc`) against the bit-plane coder (`--entropy
+// ebcot`), one thread, each test photograph at 1 bpp (as `pupwave compress --bpp 1 --threads 1`
 // without process start-up and image reading, which dominate a whole-process time on 512 x 512).
 // Run: build/bench/pc_cpu_bench --benchmark_min_time=1   (CPU column: one thread, so CPU = work)
 // build/bench/pc_cpu_bench --passes: the rate search's coding passes per photograph and target

@@ -8,7 +8,7 @@
 # bound by bench/volume_maxerr.c, independently of the codecs.
 # Times: whole process (file I/O included), median of 3 (1 run at 512^3).
 # Usage: bench/volume_speed.sh [path/to/pupwave] > T.md  (tables for bench/results/volumes.md)
-# (the Notes section of bench/results/volumes.md is written by hand below the tables).
+# (the prose around the tables in volumes.md is written by hand).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 pupwave=$(realpath "${1:-$here/../build/tools/pupwave}")

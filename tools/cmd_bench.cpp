@@ -1,5 +1,6 @@
-// `pupwave bench rd|coarse|all`: the PSNR comparison harness (rate-distortion against JPEG 2000
-// and JPEG XL, and the coarse-band experiment of the PUPs multiresolution paper).
+// `pupwave bench rd|coarse|all`: the PSNR comparison harness (rate-distortion against JPEG 2000,
+// JPEG XL, AVIF, HEVC intra and WebP, and the coarse-band experiment of the PUPs multiresolution
+// paper).
 #include <unistd.h>
 
 #include <algorithm>

@@ -1,4 +1,5 @@
-// `pupwave info FILE`: describe a compressed pupwave file or an image file.
+// `pupwave info FILE`: describe a compressed pupwave image or volume stream, an OpenVDB file or an
+// image file.
 #include <fstream>
 #include <iostream>
 #include <memory>

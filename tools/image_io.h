@@ -1,6 +1,7 @@
 #pragma once
-// Image files <-> the library's planar Image, through OpenImageIO. The only place that knows
-// about image file formats.
+// Image files <-> the library's planar Image: binary PGM/PPM directly (pnm_io.h), every other
+// format through OpenImageIO (the module of oiio_module.h). The one entry point the CLI uses for
+// image file formats.
 
 #include <filesystem>
 #include <memory>

@@ -246,9 +246,9 @@ void write_binary_pnm(const Image& image, const fs::path& file) {
 
 namespace {
 
-// Writes strips on its own thread while the caller decodes the next one: packing and the
-// copy into the page cache were a serial tenth of a strip decode's CPU, idle time for the
-// decoder's other threads. One strip waits at most, so memory stays two strips.
+// Writes strips on its own thread while the caller decodes the next one: done inline, packing
+// and the copy into the page cache would be a serial tenth of a strip decode's CPU, idle time
+// for the decoder's other threads. One strip waits at most, so memory stays two strips.
 class OverlappedStripWriter {
  public:
   explicit OverlappedStripWriter(std::FILE* f) : f_(f), thread_([this] { loop(); }) {}

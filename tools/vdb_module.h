@@ -1,8 +1,8 @@
 #pragma once
 // The OpenVDB half of volume file I/O lives in a module (tools/vdb/, built as a shared module
-// next to the `pupwave` binary) that is loaded on first use. Linking OpenVDB (with Boost, Blosc,
-// TBB, log4cplus) made ld.so resolve its symbols at every start of the CLI: about 30 ms of CPU,
-// twice zfp's whole run on a 91^3 volume. Commands that touch no .vdb file never load it.
+// next to the `pupwave` binary) that is loaded on first use. Linked into the CLI, OpenVDB (with
+// Boost, Blosc, TBB, log4cplus) would make ld.so resolve its symbols at every start: about 30 ms
+// of CPU, twice zfp's whole run on a 91^3 volume. Commands that touch no .vdb file never load it.
 
 #include <cstddef>
 #include <filesystem>

@@ -1,6 +1,8 @@
 #pragma once
 // Volume files <-> the library's Volume / VolumeGrid: raw dense volumes (little endian) and
-// OpenVDB files (FloatGrid, DoubleGrid). The only place that knows about volume file formats.
+// OpenVDB files (FloatGrid, DoubleGrid; the OpenVDB code is in the module of vdb_module.h).
+// Raw files compressed and decompressed in their own type, without a copy, go through
+// volume_raw.h instead.
 
 #include <cstddef>
 #include <filesystem>

@@ -21,8 +21,8 @@ std::span<T> thread_scratch(std::size_t n, unsigned slot = 0) {
 }
 
 // An allocator that leaves the elements std::vector::resize adds uninitialised (for arithmetic
-// T), for buffers whose every element is written before it is read: zeroing them first was a
-// whole extra pass over the strip coders' row buffers.
+// T), for buffers whose every element is written before it is read: zeroing them first would be
+// a whole extra pass over the strip coders' row buffers.
 template <class T>
 struct UninitializedAllocator : std::allocator<T> {
   using value_type = T;

@@ -145,7 +145,7 @@ class BlockState {
 };
 
 // Always inlined: called once per significant coefficient from the passes' inner loops, and
-// too large for the compiler's own inlining limit since the far bits were added.
+// too large (with the far-neighbour bits) for the compiler's own inlining limit.
 [[gnu::always_inline]] inline void BlockState::make_significant(std::size_t p, std::size_t x, std::size_t y,
                                                                 std::size_t z, bool negative) {
   // Counts and signs in the neighbours' words: h and v are the horizontal and vertical

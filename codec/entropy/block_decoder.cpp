@@ -59,8 +59,8 @@ class BitPlaneDecoder {
     int p;
 
     // Decodes the sign of row r of column x of stripe s, which has just become significant.
-    // Always inlined, as are make_significant and decode_significance: GCC stopped inlining them
-    // when the far bits were added, and the calls showed as a tenth of the decode time.
+    // Always inlined, as are make_significant and decode_significance: with the far bits GCC does
+    // not inline them on its own, and the calls would be a tenth of the decode time.
     [[gnu::always_inline]] void become_significant(const Stripe& s, std::size_t x, unsigned r) {
       const std::size_t f = s.f0 + x + r * stride;
       const auto [ctx, flip] = state.sign_context(f);

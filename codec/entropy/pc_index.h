@@ -97,8 +97,8 @@ inline std::uint32_t get_pc_index(RangeDecoder& dec, PcModels& m, const PcCtx& c
 }
 
 // -log2(p / 2^15) for every 15-bit probability p: the counter's cost of a decision, looked up
-// rather than computed because RDOQ prices three candidates per index (log2 was a tenth of a pc
-// encode). Float holds the cost to 2^-24 relative, far below any difference RDOQ decides on.
+// rather than computed because RDOQ prices three candidates per index (log2 would be a tenth of a
+// pc encode). Float holds the cost to 2^-24 relative, far below any difference RDOQ decides on.
 inline const std::array<float, kProbabilityOne + 1> kPcBitCost = [] {
   std::array<float, kProbabilityOne + 1> cost{};
   cost[0] = 64.0f;  // never looked up: models keep p inside [kMinP, 2^15 - kMinP]

@@ -1,7 +1,7 @@
 #pragma once
 // Internal to the image encoder (image_encoder.cpp): holds the coded blocks of a byte-budget
 // encode with only the passes rate control can still choose (the blocks are coded
-// finer than the budget keeps, and holding every pass of a gigapixel image took 0.4 GB).
+// finer than the budget keeps, and holding every pass of a gigapixel image would take 0.4 GB).
 
 #include <cstddef>
 #include <mutex>

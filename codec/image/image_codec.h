@@ -1,7 +1,8 @@
 #pragma once
 // Image compression and decompression: colour transform, separable wavelet transform,
-// dead-zone quantization, code-blocks coded by the bit-plane coder (or zstd), rate control
-// by PCRD, and the .pw container. The CLI (tools/cmd_compress.cpp) is a thin layer over this.
+// dead-zone quantization, code-blocks coded by the bit-plane coder (or the ht, lc, pc or zstd
+// coder), rate control (PCRD for the bit-plane coder), and the .pw container. The CLI
+// (tools/cmd_compress.cpp) is a thin layer over this.
 
 #include <cstdint>
 #include <span>

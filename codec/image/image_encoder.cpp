@@ -38,7 +38,7 @@ namespace pupwave {
 namespace {
 
 // Most codeword bytes a trial encode against a byte limit holds (code_every_pass): the
-// lossless trial of a 32768^2 image at 1 bpp held 128 MiB before it overflowed. Above it, a
+// lossless trial of a 32768^2 image at 1 bpp holds 128 MiB before it overflows. Above it, a
 // trial that fits after all is coded twice.
 constexpr std::size_t kMaxTrialBytes = std::size_t(64) << 20;
 // Finest base step tried when a target needs more precision than the first guess.
@@ -73,7 +73,7 @@ constexpr std::size_t kMaxFillCandidates = 64;
 // that component alone; with colour, the chroma components it leaves out are margin enough,
 // a grey image gets one bit-plane more. A guess that turns out too coarse is refined below.
 double guess_margin(const ImagePlan& plan) { return plan.header.channels >= 3 ? 1.0 : 2.0; }
-// Never finer than the old fixed start refined kMaxStepRefinements times (peak / 2^17):
+// Never finer than peak / 2^13 refined kMaxStepRefinements times (peak / 2^17):
 // finer indices would overflow the block coder without improving the result.
 constexpr double kFinestBaseStep = 1.0 / 131072.0;
 
@@ -371,7 +371,7 @@ std::vector<std::uint8_t> build_stream(const ImagePlan& plan, Coded& coded, cons
   for (std::size_t i = 0; i < passes.size(); ++i)
     sizes[std::size_t(plan.blocks[i].resolution)] += entries[i].length;
   // Every 1/16 of the stream, 1 MiB at least (at 16 MiB a 4 MiB stream and the blocks
-  // it was copied from were both resident at the end).
+  // it is copied from would both be resident at the end).
   FreedMemory freed(
       std::max(std::accumulate(sizes.begin(), sizes.end(), std::size_t(0)) / 16, std::size_t(1) << 20));
   return write_container(plan.header, entries, sizes, [&](std::size_t r, std::vector<std::uint8_t>& out) {

@@ -63,7 +63,7 @@ constexpr double kPairRatio = 1.0905;  // 2^(1/8)
 constexpr double kPairAim = 1.015;
 constexpr int kMaxPairPasses = 4;
 // A sample of more bytes than this is freed while a pass runs and surveyed again where another
-// pass follows (the grey 4096^2 mosaic's took 8.7 MB, a third of its 2 bpp encode's
+// pass follows (the grey 4096^2 mosaic's takes 8.7 MB, a third of its 2 bpp encode's
 // heap); a smaller one is held (a survey again costs a quarter of a pass's transform or more).
 constexpr std::size_t kHeldSampleBytes = std::size_t(1) << 20;
 // Trial encodes (each decoded and measured) for a PSNR target, met within kPsnrTolerance dB above.
@@ -131,8 +131,8 @@ void code_block(const ImagePlan& plan, std::size_t i, const std::vector<std::int
   HtCodeword w = ht_encode_block(q, b.size[0], b.size[1]);
   out.entries[i] = {w.planes, w.planes > 0 ? 1 : 0, std::uint32_t(w.bytes.size())};
   if (total.fetch_add(w.bytes.size()) + w.bytes.size() > byte_limit) over = true;
-  // The writer's buffer grew by doubling: held as it is, a pass's codewords took 1.4 times
-  // their bytes (the pair's codewords were the largest part of a 2 bpp encode).
+  // The writer's buffer grows by doubling: held as it is, a pass's codewords would take 1.4 times
+  // their bytes (the pair's codewords are the largest part of a 2 bpp encode).
   w.bytes.shrink_to_fit();
   out.words[i] = std::move(w.bytes);
 }
@@ -308,8 +308,8 @@ double model_step(const ImagePlan& plan, double budget) {
 }
 
 // Signed indices of `values` at step 1 / inv (as indices_of); returns the squared error in
-// index units. Four samples at a time (GCC/Clang vector extensions: the scalar loop did not
-// vectorize and cost 13% of an encode), summed in a fixed order: the same on any thread.
+// index units. Four samples at a time (GCC/Clang vector extensions: a scalar loop does not
+// vectorize and costs 13% of an encode), summed in a fixed order: the same on any thread.
 double quantize_error(std::span<const float> values, float inv, float delta, std::vector<std::int32_t>& q) {
   using F4 = float __attribute__((vector_size(16)));
   using I4 = std::int32_t __attribute__((vector_size(16)));

@@ -8,7 +8,7 @@
 // bands left take the step that projects the file into the byte window (within kSteerReach), or
 // the pass stops there when it cannot land (a calibration only); a pass that ends a little off is
 // trimmed (a set of bands no other band reads coded again at a step of their own). About 1.5
-// passes a search, where a plain secant took 3-5.
+// passes a search, where a plain secant takes 3-5.
 #include "codec/image/image_encoder_pc.h"
 
 #include <algorithm>
@@ -52,7 +52,7 @@ constexpr double kMaxResidualSlope = 0.5;
 constexpr double kBracketMargin = 0.02;
 // After the per-band fit the residual still grows as the step gets finer (the bands' ratios
 // drift beyond what coded_bits_of_band's density shape carries): the slope in log bytes per log
-// step that best predicted the next pass from one on the training photographs (it was -0.08
+// step that best predicts the next pass from one on the training photographs (it is -0.08
 // with constant per-band scales).
 constexpr double kBytesResidualSlope = -0.04;
 // A bracket narrower than this in log step (a sixth of the byte window's width) ends the search.

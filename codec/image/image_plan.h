@@ -1,7 +1,7 @@
 #pragma once
 // Internal to the image encoder: an image after colour and wavelet transform, partitioned
-// into code-blocks, with the container header being built. Shared by the bit-plane and
-// zstd encoding paths (image_encoder.cpp, image_encoder_zstd.cpp).
+// into code-blocks, with the container header being built. Shared by the encoding paths of
+// every entropy coder (image_encoder.cpp, image_encoder_ht/lc/pc/zstd.cpp) and the decoder.
 
 #include <cstdint>
 #include <optional>

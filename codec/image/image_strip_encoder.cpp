@@ -233,8 +233,8 @@ std::size_t find_band(const ImagePlan& plan, int level, unsigned orientation) {
 }
 
 // Rows [y0, y1) of component c (colour converted and level shifted) as tasks of a few rows
-// each: the converters split rows into tasks of 2^16 samples, so a strip of a wide image was
-// one task, and its colour conversion (6% of an RGB ht encode) ran on one thread.
+// each: the converters split rows into tasks of 2^16 samples, so a strip of a wide image would be
+// one task, and its colour conversion (6% of an RGB ht encode) would run on one thread.
 template <class T>
 void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out,
                     const Executor& ex) {
@@ -246,8 +246,8 @@ void component_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::s
 
 // Rows [y0, y1) of component c (colour converted and level shifted). Colour converted rows go
 // as tasks of a few rows each: the converters split rows into tasks of 2^16 samples, so a
-// strip of a 4096-wide image was one task, and its ICT (6% of an RGB ht encode) ran on one
-// thread. Rows only level shifted keep the converters' tasks (a smaller one costs more than it).
+// strip of a 4096-wide image would be one task, and its ICT (6% of an RGB ht encode) would run
+// on one thread. Rows only level shifted keep the converters' tasks (a smaller one costs more than it).
 template <class T>
 void strip_rows(const ImagePlan& plan, std::size_t c, std::size_t y0, std::size_t y1, T* out) {
   if (plan.header.colour == ColourTransform::none || c >= 3)
@@ -292,7 +292,7 @@ void stream_component(const ImagePlan& plan, std::size_t c, const BlockSink<T>& 
     const std::size_t y1 = std::min(height, y0 + kPiece);
     strip_rows<T>(plan, c, y0, y1, rows.data());
     // With the rows before too: the kernel may map pages again while mapping those after them
-    // (ext4's large folios; 4 MB of a 16 MB PGM stayed mapped when only [y0, y1) was dropped).
+    // (ext4's large folios; 4 MB of a 16 MB PGM stay mapped when only [y0, y1) is dropped).
     if (plan.source.drop_rows)
       plan.source.drop_rows(plan.source.drop_context, plan.source, y0 > kChunk ? y0 - kChunk : 0, y1);
     top->add(rows.data(), width, y1 - y0);

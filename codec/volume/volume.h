@@ -1,5 +1,5 @@
 #pragma once
-// The plain in-memory volume every layer exchanges (the 3-D sibling of codec/image.h): a dense
+// The plain in-memory volume every layer exchanges (the 3-D sibling of codec/image/image.h): a dense
 // scalar field, optionally sparse (active mask + background), plus the grid description the
 // tools layer fills from OpenVDB or raw files and the codec stores opaquely. No file-format
 // types appear here.

@@ -1,7 +1,8 @@
 #pragma once
 // Volume compression: every grid is cut into bricks (default 64^3) so memory stays bounded and
 // any brick decodes alone; each brick goes through the 3-D separable transform of any transform
-// spec, the dead-zone quantizer and the bit-plane coder over 3-D code-blocks. For float data a
+// spec, the dead-zone quantizer and the bit-plane coder over 3-D code-blocks (max-error
+// bricks: the non-embedded coefficient coder, codec/entropy/coef_encoder.h). For float data a
 // point-wise error bound is guaranteed by coding the voxels the transform coding leaves outside
 // the bound as explicit corrections (as SPERR does). Sparse grids code only bricks holding
 // active voxels; the active mask, background and inactive values are restored exactly.

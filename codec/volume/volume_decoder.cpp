@@ -291,7 +291,7 @@ void restore_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
 }
 
 // Active masks and exact inactive values of the sparse grids (coarsened at level > 0); sparse
-// boxes turned into blocks (box_to_blocks) were restored then.
+// boxes turned into blocks get theirs in box_to_blocks.
 void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s, int level, bool to_blocks) {
   for (std::size_t g = 0; g < grids.size(); ++g) {
     if (s.header.blocked[g] == 1) restore_blocks(grids[g], s.layouts[g], level);

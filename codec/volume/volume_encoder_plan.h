@@ -1,7 +1,8 @@
 #pragma once
 // Internal to the volume encoder: the validated options, the stream header being built and the
-// bricks to code, shared by the fixed-step / max-error path (volume_encoder.cpp) and the
-// rate-controlled path (volume_encoder_rate.cpp).
+// bricks to code, shared by the fixed-step / lossless / max-error path (volume_encoder.cpp,
+// volume_encoder_bricks.cpp, volume_encoder_bound.cpp) and the rate-controlled path
+// (volume_encoder_rate.cpp).
 
 #include <atomic>
 #include <memory>

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # ctest oiio_plugin.round_trip: OpenImageIO's own tools read and write .pw through the plugin
 # pw.imageio.so: oiiotool writes the CLI's exact bytes for the same settings, iinfo describes
-# the file, resolution levels read as MIP levels (--iconfig pupwave:mip 1), oiiotool decodes to EXR/PNG exactly as the CLI decodes, a
-# reduced level reads as a MIP level, lossless survives, and a corrupt file is an error.
+# the file, resolution levels show as MIP levels (--iconfig pupwave:mip 1), oiiotool decodes to
+# EXR/PNG exactly as the CLI decodes, a reduced MIP level reads as the CLI's --level decode,
+# lossless survives, and a corrupt file is an error.
 # Usage: oiio_round_trip.sh PLUGIN_DIR PUPWAVE_CLI TESTIMAGES WORK_DIR
 set -euo pipefail
 plugins=$1 cli=$2 images=$3 work=$4

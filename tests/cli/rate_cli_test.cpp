@@ -52,7 +52,7 @@ void expect_error(const test::CliResult& r, const std::string& needle) {
   EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in:\n" << r.output;
 }
 
-// chelsea --psnr 30 used to give a 494,759-byte lossless-quality file (PSNR inf).
+// chelsea --psnr 30 must not give a lossless-quality file (494,759 bytes, PSNR inf).
 TEST_F(RateCli, PsnrTargetGivesASmallFileJustAboveTheTarget) {
   for (const auto& [name, target] :
        std::vector<std::pair<std::string, double>>{{"chelsea.png", 30.0}, {"astronaut.png", 50.0}}) {
@@ -65,7 +65,8 @@ TEST_F(RateCli, PsnrTargetGivesASmallFileJustAboveTheTarget) {
   }
 }
 
-// camera --bpp 8 gave 262,141 bytes against 126,108 lossless; --psnr 100 and --bpp 1000 too.
+// camera --bpp 8, --bpp 1000 and --psnr 100 ask for more than the 126,108-byte lossless file; they
+// get at most that.
 TEST_F(RateCli, NoRateTargetExceedsTheLosslessFile) {
   ASSERT_EQ(run_cli({"compress", image("camera.png"), out("l.pw"), "--lossless"}).exit_code, 0);
   const auto lossless = fs::file_size(out("l.pw"));
@@ -108,8 +109,8 @@ TEST_F(RateCli, FloatImageBoundsPastFloatPrecisionAreRefused) {
   EXPECT_GE(number_after(r.output, "PSNR "), 90.0) << r.output;
 }
 
-// --max-error 1e-6 on wmag91 and 1e-8 on a double grid of values 1..2 failed mid-way with
-// "quantization index too large for the block coder".
+// --max-error 1e-6 on wmag91 and 1e-8 on a double grid of values 1..2 are refused up front, not
+// part-way through with "quantization index too large for the block coder".
 TEST_F(RateCli, VolumeBoundsPastThePrecisionAreRefusedUpFront) {
   const auto r = run_cli({"compress", image("wmag91.float"), out("v.pw"), "--dims", "91,91,91", "--dtype",
                           "f32", "--max-error", "1e-6"});
@@ -133,7 +134,8 @@ TEST_F(RateCli, VolumeBoundsPastThePrecisionAreRefusedUpFront) {
   EXPECT_LE(number_after(ok.output, "max error "), 2e-6) << ok.output;
 }
 
-// NaN was silently ignored (--psnr 40 used); --bpp 0 printed a 309-digit range.
+// NaN is refused, never ignored (falling back to --psnr 40); --bpp 0 names its range in words,
+// not as a 309-digit number.
 TEST_F(RateCli, EveryNumericOptionIsValidated) {
   const std::string cam = image("camera.png");
   const std::vector<std::vector<std::string>> cases = {
@@ -163,7 +165,7 @@ TEST_F(RateCli, EveryNumericOptionIsValidated) {
   }
 }
 
-// A 33x65 image with --levels 32 gave 8.7 dB.
+// --levels 32 on a 33x65 image is refused, not coded at 8.7 dB.
 TEST_F(RateCli, LevelsBeyondTheImageAreRefused) {
   const Image cam = cli::read_image(image("camera.png"));
   Image crop(33, 65, 1, cam.type);
@@ -177,7 +179,8 @@ TEST_F(RateCli, LevelsBeyondTheImageAreRefused) {
   EXPECT_GE(number_after(r.output, "PSNR "), 37.0) << r.output;
 }
 
-// CLI11 exited 105/106/109 without the prefix; typos get the closest name.
+// Parse errors exit 1 with the usual prefix (CLI11's own exits, 105/106/109, lack it); typos get
+// the closest name.
 TEST_F(RateCli, ParseErrorsReadLikeOtherErrorsAndSuggestNames) {
   expect_error(run_cli({"compress", image("camera.png"), out("a.pw"), "--psnrr", "30"}),
                "did you mean --psnr?");
@@ -193,7 +196,7 @@ TEST_F(RateCli, ParseErrorsReadLikeOtherErrorsAndSuggestNames) {
   EXPECT_EQ(help.output.find("->"), std::string::npos) << help.output;
 }
 
-// --entropy zstd with --psnr did not print the PSNR its help promises.
+// --entropy zstd with --psnr prints the PSNR its help promises.
 TEST_F(RateCli, ZstdPsnrTargetReportsItsPsnr) {
   const auto r = run_cli({"compress", image("camera.png"), out("a.pw"), "--entropy", "zstd", "--psnr", "35"});
   ASSERT_EQ(r.exit_code, 0) << r.output;

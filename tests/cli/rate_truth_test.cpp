@@ -102,8 +102,8 @@ std::size_t count(const std::string& text, const std::string& needle) {
   return n;
 }
 
-// Crops of a photograph whose header alone exceeds --bpp 1 (2x2: 110 bytes, 220 bpp) were
-// written with exit 0 and not a word, and "the lossless file fits --bpp 1" was printed.
+// Crops of a photograph whose header alone exceeds --bpp 1 (2x2: 110 bytes, 220 bpp) are written
+// with one warning, never silently and never with the claim "the lossless file fits --bpp 1".
 TEST_F(RateTruth, TinyImagesMissingTheBudgetAreWrittenWithOneWarning) {
   for (const auto& [w, h] : std::vector<std::pair<std::size_t, std::size_t>>{{2, 2}, {1, 1}, {3, 5}}) {
     const std::string in = astronaut_crop(w, h), pw = out("tiny.pw");
@@ -168,8 +168,8 @@ TEST_F(RateTruth, WarningIsThereExactlyWhenTheFileIsOverTheBudget) {
 
 // --strict to stdout: not a byte reaches stdout, and the error says so.
 // A PSNR beyond what lossy coding of a float image reaches (forest_hdr.exr, log-PSNR 115 dB)
-// failed with "quantization index too large" and no file: now the finest stream is written,
-// with a warning giving what it reaches, and --strict refuses it.
+// writes the finest stream (not "quantization index too large" and no file), with a warning
+// giving what it reaches, and --strict refuses it.
 TEST_F(RateTruth, UnreachablePsnrOnAFloatImageIsWrittenAndWarned) {
   const std::string pw = out("deep.pw"), png = out("deep.exr");
   const Split r = run_split({"compress", testimage("forest_hdr.exr"), pw, "--psnr", "115"});

@@ -81,9 +81,8 @@ Image tiled(const Image& in, std::size_t across, std::size_t down) {
 
 // Streamed byte budgets pinned where the search takes one pass and where it takes two or three:
 // a sample over 1 MiB (the 1536 x 2560 tiling's) is freed during a pass and surveyed again for
-// the next, a smaller one held. CRC-32 of each stream as the encoder gave it when
-// every sample was held throughout (main before that change; since stream version 6 with that
-// version byte).
+// the next, a smaller one held. CRC-32 of each stream as an encoder holding every sample
+// throughout gives it (stream version 6).
 TEST(HtPhotos, StreamedSearchesGiveTheStreamsTheHeldSampleGave) {
   const Image camera = photo("camera.png"), tall = tiled(camera, 1, 5), wide = tiled(camera, 3, 5);
   const struct {

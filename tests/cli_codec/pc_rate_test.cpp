@@ -55,7 +55,7 @@ TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
       ++searches;
     }
   }
-  // The secant alone took 3.9 passes a search here; the calibrated model about 2.1.
+  // The secant alone takes 3.9 passes a search here; the calibrated model about 2.1.
   EXPECT_LE(double(passes) / searches, 2.6);
   EXPECT_GT(trimmed, 0);  // the trim path is exercised
 }
@@ -63,10 +63,10 @@ TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
 // The search's cost on the test photographs, in coding passes: whole passes, the share of the
 // samples coded by passes abandoned before their finest groups, and trims (a quarter of the
 // samples each). A run measured 1.75 passes + 0.21 abandoned + 0.50 trims a search (2.08
-// passes' worth) where the per-level prior scales without abandoning took 2.25 + 0.40 trims (2.35).
+// passes' worth) where the per-level prior scales without abandoning take 2.25 + 0.40 trims (2.35).
 // The steered search (codec/image/image_encoder_pc.cpp) lands most budgets with one whole pass:
 // 1.41 pass-equivalents on these photographs, a trim counted as the third of the samples it codes
-// at most (the search before the steering took 2.1).
+// at most (the search without the steering takes 2.1).
 TEST(PcRate, SearchesCostUnderOneAndSixTenthsPasses) {
   int passes = 0, trims = 0, searches = 0;
   double abandoned = 0.0;

@@ -1,5 +1,6 @@
 #pragma once
-// The test photographs and their crops, shared by the strip encoder, decoder and pc tests.
+// The test photographs and their crops, shared by the tests of tests/cli_codec (every coder, the
+// strip encoder and decoder, rate targets).
 
 #include <cstddef>
 #include <string>

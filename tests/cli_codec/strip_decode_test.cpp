@@ -1,6 +1,6 @@
 // Strip-wise decoding (codec/image/image_strips.h, `pupwave decompress` to PGM/PPM) gives the
 // pixels of the whole-image decoder exactly, on the test photographs: every transform whose
-// synthesis is local, lossy and lossless, both entropy coders, every reduced level, odd sizes,
+// synthesis is local, lossy and lossless, the bit-plane, zstd and ht coders, every reduced level, odd sizes,
 // 8- and 16-bit samples, any strip height and thread count.
 #include <gtest/gtest.h>
 

@@ -45,7 +45,7 @@ def test_hdf5_edge_chunks_of_wmag91_are_trimmed(tmp_path, wmag91, rel):
         assert chunk[2] == TRIMMED
         box = tuple(min(64, 91 - o) for o in reversed(offset))  # x fastest; 27 where HDF5 padded
         assert head(chunk) == ((64, 64, 64), box)
-    # One 91^3 chunk has no padding: 64^3 chunks used to be 14-17% larger, now within 5%.
+    # One 91^3 chunk has no padding: padded 64^3 chunks are 14-17% larger, trimmed ones within 5%.
     whole = h5_write(tmp_path / "one.h5", wmag91, wmag91.shape, **hdf5_filter(max_error=bound))
     assert stored < 1.05 * whole
 

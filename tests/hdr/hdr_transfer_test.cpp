@@ -1,7 +1,7 @@
 // Float (HDR) images are coded in the log domain: on a real HDR photograph the default setting
 // keeps every well-populated decade of luminance within 3 % median relative error and never
-// turns a non-negative sample negative. Coded linearly (as before the log transfer), the dark
-// decades are lost, which is what these tests would catch.
+// turns a non-negative sample negative. Coded linearly, the dark decades would be lost, which is
+// what these tests catch.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -114,7 +114,7 @@ void expect_refused(const testing::ChildResult& r, const std::string& message) {
 }
 
 TEST(HostileHeader, HugeEmptyImageIsRefusedByTheDecodeLimit) {
-  // 65536 x 32768 grey, every block empty: was 262 s, 8.1 GiB and a 2 GiB PGM.
+  // 65536 x 32768 grey, every block empty: unbounded, 262 s, 8.1 GiB and a 2 GiB PGM.
   const auto bytes = empty_image_stream(65536, 32768, 8);
   EXPECT_LT(bytes.size(), 1000u);
   save(scratch("huge.pw"), bytes);
@@ -137,7 +137,7 @@ TEST(HostileHeader, HugeEmptyImageIsRefusedByTheDecodeLimit) {
 }
 
 TEST(HostileHeader, ReducedLevelDecodeAllocatesOnlyItsLevel) {
-  // 16384^2 empty at --level 5: was 2.0 GiB of full-size planes for a 512^2 output.
+  // 16384^2 empty at --level 5: full-size planes would be 2.0 GiB for a 512^2 output.
   save(scratch("big.pw"), empty_image_stream(16384, 16384, 6));
   const auto r = run_cli_bounded(
       {"decompress", scratch("big.pw"), scratch("big5.pgm"), "--level", "5", "--threads", "2"});
@@ -152,7 +152,7 @@ TEST(HostileHeader, ReducedLevelDecodeAllocatesOnlyItsLevel) {
 }
 
 TEST(HostileHeader, BrickBlockCountsAreCheckedBeforeTheIndexIsStored) {
-  // 100 BRIK chunks each claiming 2^20 code-blocks: was 37 s and 2.8 GiB.
+  // 100 BRIK chunks each claiming 2^20 code-blocks: unchecked, 37 s and 2.8 GiB.
   std::vector<std::uint8_t> bytes;
   write_volume_signature(bytes);
   write_header_chunk(bytes, volume_header({256, 256, 256}, false, 100));
@@ -200,11 +200,12 @@ std::vector<std::uint8_t> sparse_box_stream(std::size_t n, VoxelType type, std::
 }
 
 TEST(HostileHeader, EmptySparseRegionsCostNothing) {
-  // The old cost shows in memory (over the 1 GiB address-space limit), not only in time; wall time is
-  // recorded, not asserted (it flaked at 5 s on a loaded machine), and a hang is killed after a minute.
+  // The unbounded cost shows in memory (over the 1 GiB address-space limit), not only in time; wall
+  // time is recorded, not asserted (a loaded machine makes it vary), and a hang is killed after a
+  // minute.
   constexpr double kGuard = 60.0;
-  // Sparse 512^3 and 1024^3, every voxel inactive (4.4 KB, 33 KB): were 27 s and 2.8 GiB, and
-  // std::bad_alloc after 35 s and 10 GiB. To .vdb they decode to empty grids; info reads them.
+  // Sparse 512^3 and 1024^3, every voxel inactive (4.4 KB, 33 KB): unbounded, 27 s and 2.8 GiB,
+  // and std::bad_alloc after 35 s and 10 GiB. To .vdb they decode to empty grids; info reads them.
   for (const std::size_t n : {512, 1024}) {
     const std::string name = "empty" + std::to_string(n);
     const auto bytes = sparse_box_stream(n, VoxelType::f32);
@@ -213,7 +214,7 @@ TEST(HostileHeader, EmptySparseRegionsCostNothing) {
     const auto r = run_cli_bounded(
         {"decompress", scratch(name + ".pw"), scratch(name + ".vdb"), "--threads", "2"}, kGuard);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    // Was 2.8 GiB at 512^3: now the stream, one mask batch and the program.
+    // The stream, one mask batch and the program (unbounded: 2.8 GiB at 512^3).
     EXPECT_LT(r.max_rss_kb, 200 * 1024) << n;
     ::testing::Test::RecordProperty(
         name + "_vdb", std::to_string(r.seconds) + " s, " + std::to_string(r.max_rss_kb) + " KiB resident");
@@ -298,11 +299,11 @@ TEST(HostileHeader, OneActiveVoxelInTheCornerOfAHugeSparseBox) {
 }
 
 TEST(HostileHeader, TransformSpecsInAStreamAreBoundedBeforeDesign) {
-  // cinpact c=200 with 2e6 samples: was 289 s and 12 GiB designing before any data was read.
+  // cinpact c=200 with 2e6 samples: unbounded, 289 s and 12 GiB designing before any data is read.
   save(scratch("cinpact.pw"), empty_image_stream(64, 64, 2, "pups:cinpact(c=200,sigma=4,samples=2000000)"));
   expect_refused(run_cli_bounded({"decompress", scratch("cinpact.pw"), scratch("c.pgm")}),
                  "support 400 over 64");
-  // `info` on bspline degree 20 with 5e7 samples: was still running at 300 s.
+  // `info` on bspline degree 20 with 5e7 samples: unbounded, still running at 300 s.
   save(scratch("bspline.pw"), empty_image_stream(64, 64, 2, "pups:bspline(degree=20,samples=50000000)"));
   expect_refused(run_cli_bounded({"info", scratch("bspline.pw")}), "samples outside 1..1000000");
   // Kin: a long polynomial, a large extension.
@@ -326,7 +327,7 @@ TEST(HostileHeader, InfoDescribesAStreamWithoutDesigningItsBank) {
 }
 
 TEST(HostileHeader, NonAffineGridTransformIsRefusedBeforeWriting) {
-  // Was: decoded, then writing .vdb failed with OpenVDB's ArithmeticError.
+  // Unchecked, the stream decodes and then writing .vdb fails with OpenVDB's ArithmeticError.
   auto grids = cli::read_vdb(fs::path(PUPWAVE_TESTIMAGES_DIR) / "sphere_ls.vdb");
   ASSERT_FALSE(grids.empty());
   grids.resize(1);
@@ -340,8 +341,8 @@ TEST(HostileHeader, NonAffineGridTransformIsRefusedBeforeWriting) {
 }
 
 TEST(HostileHeader, GridOriginOutsideTheIndexRangeIsRefused) {
-  // Found by fuzz_volume (10-minute run): a grid origin of -2^63 overflowed the level placement's
-  // negation at --level 1 (undefined behaviour). Origins are OpenVDB int32 coordinates.
+  // A grid origin of -2^63 (found by fuzz_volume) would overflow the level placement's negation
+  // at --level 1 (undefined behaviour). Origins are OpenVDB int32 coordinates.
   auto h = volume_header({8, 8, 8}, false, 0);
   h.grids[0].origin = {std::numeric_limits<std::int64_t>::min(), 0, 0};
   std::vector<std::uint8_t> bytes;

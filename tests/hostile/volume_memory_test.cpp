@@ -80,16 +80,16 @@ TEST(VolumeMemory, EncodingFromAU8ViewHoldsNoWholeVolumeCopy) {
       [&] { bytes = pupwave::encode_volumes({pupwave::describe_view(view, "u8")}, views, o).bytes.size(); });
   EXPECT_GT(bytes, 0u);
   ::testing::Test::RecordProperty("peak_live_heap_bytes", std::to_string(peak));
-  // The old path held the volume as double (8 bytes a voxel) before coding a brick; the coded
-  // bricks and the stream (~1.7 MB here) stay well below a u16 copy, a quarter of that.
+  // A copy of the volume as double would be 8 bytes a voxel; the coded bricks and the stream
+  // (~1.7 MB here) stay well below a u16 copy, a quarter of that.
   EXPECT_LT(peak, 2 * voxels.size()) << "peak live heap bytes " << peak << " for " << voxels.size()
                                      << " u8 voxels";
 }
 
 // Given a writer, the encoder hands each brick's chunk on as soon as the bricks before it are
 // written: it holds the bricks in flight (per thread a brick's samples and transform, a few
-// chunks waiting), never the coded volume (which the old encoder kept until all bricks were
-// coded). The field here is noisy, so the stream (most of the u8 voxels' size) dwarfs a brick.
+// chunks waiting), never the whole coded volume. The field here is noisy, so the stream (most of
+// the u8 voxels' size) dwarfs a brick.
 TEST(VolumeMemory, EncodingToAWriterHoldsOnlyTheBricksInFlight) {
   auto voxels = smooth_u8(kEdge);
   std::uint32_t seed = 12345;

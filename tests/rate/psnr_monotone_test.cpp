@@ -1,7 +1,7 @@
-// PSNR targets 0.1 dB apart where the full sweep (bench/psnr_sweep.sh) once found the file
-// shrinking as the target rose: each answer lands within 0.15 dB above its target, and the
+// PSNR targets 0.1 dB apart at the points of the full sweep (bench/psnr_sweep.sh) where a file
+// can shrink as the target rises: each answer lands within 0.15 dB above its target, and the
 // higher target never gets a file more than 0.5% smaller. Small files (chelsea at 20-26 dB,
-// under 1 KB) once took a different base step per target; near lossless (camera at 58.7 dB)
+// under 1 KB) are prone to a different base step per target; near lossless (camera at 58.7 dB)
 // 8-bit rounding makes the PSNR jumpy.
 #include <gtest/gtest.h>
 

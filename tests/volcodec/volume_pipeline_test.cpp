@@ -1,7 +1,7 @@
 // The encoder's and decoder's passes outside the block coder: the one-pass value
 // summary of a view, the fused store-and-correct pass of the max-error encoder, the vectorised
-// requantization's model statistics and the decoder's row writes each give exactly what the
-// plain per-voxel code they replace gives.
+// requantization's model statistics and the decoder's row writes each give exactly what
+// plain per-voxel reference code (written here) gives.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 #pragma once
 // The codecs the rate-distortion harness compares, all driven as external programs: pupwave
-// itself (one per transform spec) and the anchors OpenJPEG (JPEG 2000) and JPEG XL.
+// itself (one per transform spec) and the anchors OpenJPEG (JPEG 2000) and JPEG XL, plus the
+// modern anchors of modern_anchors.h (AVIF, HEVC intra, WebP).
 
 #include <cstddef>
 #include <cstdint>

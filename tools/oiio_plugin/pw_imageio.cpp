@@ -1,8 +1,9 @@
 // pw.imageio.so: an OpenImageIO format plugin for .pw image streams, so any OIIO application
-// (iinfo, oiiotool, ...) reads and writes Pupwave files. Reading exposes every resolution level
-// as a MIP level (level k = 1/2^k size, decoded from only the data it needs). Writing takes
-// the rate from the attributes pupwave:bpp, pupwave:psnr, pupwave:step, pupwave:lossless (or
-// "compression" = "lossless"), pupwave:transform and pupwave:levels; default PSNR 40 dB.
+// (iinfo, oiiotool, ...) reads and writes Pupwave files. Reading with the config pupwave:mip = 1
+// exposes every resolution level as a MIP level (level k = 1/2^k size, decoded from only the
+// data it needs). Writing takes the rate from the attributes pupwave:bpp, pupwave:psnr,
+// pupwave:step, pupwave:lossless (or "compression" = "lossless"), pupwave:transform and
+// pupwave:levels; default PSNR 40 dB.
 // It is built on the public C++ API (pupwave/pupwave.hpp). Not to be confused with
 // tools/oiio/ (libpupwave_oiio.so), the CLI's own loader for PNG/TIFF/EXR input files.
 #include <OpenImageIO/filesystem.h>

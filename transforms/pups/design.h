@@ -21,7 +21,7 @@ FilterBank design(const DesignParams& params, const ExtensionRule& rule);
 
 // How the transform reads a line beyond its ends (docs/pups.md, Boundary rules). Either
 // rule reconstructs perfectly; it is part of the transform spec, so it never changes for a
-// given spec string (old files decode the same).
+// given spec string (every stream naming it decodes the same).
 enum class BoundaryRule : std::uint8_t {
   wire_hss,  // half-sample symmetric extension of each wire (the default; spec key absent)
   line_wss,  // whole-sample symmetric extension of the line, JPEG 2000's rule ("boundary=wss"):
