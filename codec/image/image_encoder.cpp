@@ -27,6 +27,7 @@
 #include "codec/image/image_strip_encoder.h"
 #include "codec/image/kept_block.h"
 #include "codec/image/transfer.h"
+#include "codec/rate/byte_budget.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/pcrd.h"
 #include "codec/rate/quantizer.h"
@@ -570,7 +571,7 @@ Family code_family(ImagePlan& plan, double base, double budget, bool keep) {
 // band takes the family that serves it best at the final slope (choose_families; the header holds a step per
 // band), and isolated last-plane coefficients are requantized (RDOQ).
 EncodeResult encode_for_size(const ImageView& image, ImagePlan& plan, double bpp, int effort) {
-  const double budget = std::floor(bpp * double(plan.pixels) / 8.0);
+  const double budget = byte_budget(bpp, plan.pixels);
   double base = plan.peak / 512.0;
   const bool keep = effort >= 2 && !plan.header.reversible && plan.samples <= kMaxKeptSamples;
   if (!plan.header.reversible && streams(plan, 0, keep)) {
@@ -915,7 +916,7 @@ std::optional<EncodeResult> encode_exact(const ImageView& image, const EncodeOpt
 // stream at least as large all give the lossless stream instead.
 EncodeResult encode_capped(const ImageView& image, const EncodeOptions& options) {
   if (options.mode == RateMode::bpp) {
-    const double bytes = std::floor(options.target * double(image.plane_size()) / 8.0);
+    const double bytes = byte_budget(options.target, image.plane_size());
     const std::size_t budget = bytes < 1e18 ? std::size_t(bytes) : std::numeric_limits<std::size_t>::max();
     if (auto exact = encode_exact(image, options, budget)) return std::move(*exact);
     return encode_in_domain(image, options, CodedDomain{});

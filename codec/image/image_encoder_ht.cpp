@@ -29,6 +29,7 @@
 #include "codec/entropy/ht_blocks.h"
 #include "codec/image/image_encoder_ht.h"
 #include "codec/image/image_strip_encoder.h"
+#include "codec/rate/byte_budget.h"
 #include "codec/rate/rate_guess.h"
 
 namespace pupwave {
@@ -842,7 +843,7 @@ EncodeResult encode_ht(const ImageView& image, ImagePlan& plan, const EncodeOpti
   std::vector<std::uint8_t> bytes;
   double base = 1.0;
   if (options.mode == RateMode::bpp) {
-    const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
+    const double budget = byte_budget(options.target, plan.pixels);
     std::tie(bytes, base) = plan.strip_reach > 0 && !plan.header.reversible
                                 ? search_size_streamed(plan, options, budget)
                                 : search_size_held(plan, budget);

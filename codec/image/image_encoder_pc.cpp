@@ -29,6 +29,7 @@
 #include "codec/image/image_components.h"
 #include "codec/image/lc_parent.h"
 #include "codec/image/pc_decoder.h"
+#include "codec/rate/byte_budget.h"
 #include "codec/rate/pc_rate_model.h"
 #include "codec/rate/quantizer.h"
 #include "transforms/separable.h"
@@ -749,7 +750,7 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
   }
   const PcRateModel model(plan, plan.header.delta);
   if (options.mode == RateMode::bpp) {
-    const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
+    const double budget = byte_budget(options.target, plan.pixels);
     const double goal = std::log(budget), tolerance = -std::log1p(-kSizeTolerance);
     // The model of the bytes: the container's (header, steps, index; about, until a pass says),
     // each band's estimate times its scale, or a band's real bytes (`fixed`) where the model

@@ -5,6 +5,7 @@
 
 #include "codec/entropy/zstd_blocks.h"
 #include "codec/image/image_plan.h"
+#include "codec/rate/byte_budget.h"
 
 namespace pupwave {
 namespace {
@@ -65,7 +66,7 @@ EncodeResult encode_zstd(const ImageView& image, ImagePlan& plan, const EncodeOp
     base = options.target;
     bytes = code_with_zstd(plan, base);
   } else if (options.mode == RateMode::bpp) {
-    const double budget = std::floor(options.target * double(plan.pixels) / 8.0);
+    const double budget = byte_budget(options.target, plan.pixels);
     std::tie(bytes, base) = bisect_step(
         plan, true, [&](const std::vector<std::uint8_t>& b) { return double(b.size()) <= budget; });
   } else {

@@ -9,6 +9,7 @@
 
 #include "codec/error.h"
 #include "codec/image/image_components.h"
+#include "codec/rate/byte_budget.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/quantizer.h"
 #include "transforms/norms.h"
@@ -257,7 +258,7 @@ std::vector<std::uint8_t> assemble(const ImagePlan& plan, const std::vector<Bloc
 
 bool meets_target(const EncodeResult& r, const EncodeOptions& options, std::size_t pixels) {
   switch (options.mode) {
-    case RateMode::bpp: return double(r.bytes.size()) <= std::floor(options.target * double(pixels) / 8.0);
+    case RateMode::bpp: return double(r.bytes.size()) <= byte_budget(options.target, pixels);
     case RateMode::psnr: return r.psnr >= options.target;  // NaN (not measured) counts as missed
     case RateMode::step:
     case RateMode::lossless: break;

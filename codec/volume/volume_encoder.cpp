@@ -11,6 +11,7 @@
 
 #include "codec/entropy/block_encoder.h"
 #include "codec/error.h"
+#include "codec/rate/byte_budget.h"
 #include "codec/rate/quantizer.h"
 #include "codec/volume/volume_encoder_plan.h"
 #include "codec/volume/volume_outliers.h"
@@ -430,7 +431,7 @@ namespace {
 bool meets_target(const VolumeEncodeResult& r, const VolumeEncodeOptions& options, std::size_t voxels) {
   switch (options.mode) {
     case VolumeRateMode::bpv:
-      return double(r.size) <= std::floor(options.target * double(std::max<std::size_t>(voxels, 1)) / 8.0);
+      return double(r.size) <= byte_budget(options.target, std::max<std::size_t>(voxels, 1));
     case VolumeRateMode::psnr: return r.psnr >= options.target;
     case VolumeRateMode::max_error: return r.max_error <= options.target;
     case VolumeRateMode::step:

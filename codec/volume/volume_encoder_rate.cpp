@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "codec/rate/byte_budget.h"
 #include "codec/rate/pcrd.h"
 #include "codec/volume/volume_encoder_plan.h"
 #include "codec/volume/volume_outliers.h"
@@ -81,7 +82,7 @@ double measure_all(const std::vector<VolumeGrid>& grids, const VolumePlan& plan,
 }
 
 std::vector<BrickCode> for_size(const std::vector<VolumeGrid>& grids, VolumePlan& plan, double bpv) {
-  const double budget = std::floor(bpv * double(plan.voxels) / 8.0);
+  const double budget = byte_budget(bpv, plan.voxels);
   double base = plan.range > 0.0 ? plan.range / 1024.0 : 1.0;
   for (int round = 0;; ++round, base /= 4.0) {
     Coded c = code_all(plan, base);
