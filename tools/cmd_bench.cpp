@@ -37,9 +37,9 @@ struct BenchOptions {
   std::string levels = "1..5";
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   std::string out;
-  std::string cli;                  // pupwave binary driving our codec; default: this very program
-  int effort = 1;                   // pupwave compress --effort for every pupwave encode
-  std::string entropy = "default";  // comma list of entropy coders ("default": no --entropy)
+  std::string cli;               // pupwave binary driving our codec; default: this very program
+  int effort = 1;                // pupwave compress --effort for every pupwave encode
+  std::string entropy = "auto";  // comma list of entropy coders ("auto": no --entropy)
 };
 
 // Splits at commas outside parentheses, so custom specs such as
@@ -109,7 +109,7 @@ std::string command_line(const std::string& sub, const BenchOptions& o, bool rd,
   if (rd)
     c += " --bpp " + o.bpps + " --anchors " + o.anchors +
          (o.effort != 1 ? " --effort " + std::to_string(o.effort) : "") +
-         (o.entropy != "default" ? " --entropy " + o.entropy : "");
+         (o.entropy != "auto" ? " --entropy " + o.entropy : "");
   if (coarse) c += " --levels " + o.levels;
   return c + " --jobs " + std::to_string(o.jobs) + " --out " + o.out;
 }
@@ -131,7 +131,7 @@ std::vector<RdCodecPtr> build_codecs(const BenchOptions& o, const std::vector<st
   std::vector<RdCodecPtr> codecs;
   for (const std::string& spec : specs)
     for (const std::string& coder : split_list(o.entropy))
-      codecs.push_back(make_pupwave_codec(cli, spec, o.effort, coder == "default" ? "" : coder));
+      codecs.push_back(make_pupwave_codec(cli, spec, o.effort, coder == "auto" ? "" : coder));
   const auto anchors = o.anchors == "none" ? std::vector<std::string>{} : split_list(o.anchors);
   for (const std::string& name : anchors) {
     std::string missing;
@@ -222,8 +222,8 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
         ->check(CLI::Range(1, 2));
     cmd->add_option(
            "--entropy", o.entropy,
-           "comma list of pupwave entropy coders, each a curve per transform (SPEC+CODER): 'default' "
-           "(the CLI's choice), ebcot, ht, zstd or pc")
+           "comma list of pupwave entropy coders (compress --entropy names), each a curve per transform "
+           "(SPEC+CODER): auto (the default choice), ebcot, pc, lc, ht or zstd")
         ->capture_default_str();
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "codec/api/api_coder.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "codec/volume/volume_codec.h"
@@ -40,8 +41,8 @@ struct CompressOptions {
   int levels = -1;
   double bpp = 0.0, psnr = 0.0, step = 0.0;
   bool lossless = false;
-  std::string entropy;  // empty: the library's default choice (encode_image_default_coder)
-  int effort = 0;       // 0: not given (1)
+  std::string entropy = "auto";  // --entropy: a coder name of pupwave::api::coder_from_name
+  int effort = 0;                // 0: not given (1)
   unsigned threads = 0;
   bool report_psnr = false;
   bool keep_nonfinite = false;
@@ -54,11 +55,21 @@ struct CompressOptions {
   Verbosity verbosity;
 };
 
-EntropyCoder entropy_coder(const std::string& name) {
-  if (name == "zstd") return EntropyCoder::zstd;
-  if (name == "lc") return EntropyCoder::lc;
-  if (name == "pc") return EntropyCoder::pc;
-  return name == "ht" ? EntropyCoder::ht : EntropyCoder::ebcot;
+// --entropy's value, already checked and spelled as the library names it (coder_option).
+pupwave::api::Coder coder_of(const CompressOptions& opt) {
+  return *pupwave::api::coder_from_name(opt.entropy);
+}
+
+// Checks an --entropy name against the library's table and spells it the library's way.
+CLI::Validator coder_option() {
+  return CLI::Validator(
+      [](std::string& name) -> std::string {
+        const auto coder = pupwave::api::coder_from_name(name);
+        if (!coder) return "unknown entropy coder " + name + " (one of " + pupwave::api::coder_names() + ")";
+        name = std::string(pupwave::api::coder_name(*coder));
+        return "";
+      },
+      "CODER");
 }
 
 bool is_volume_input(const CompressOptions& opt) { return !opt.dims.empty() || is_vdb_path(opt.input); }
@@ -147,7 +158,7 @@ void set_volume_rate(const CompressOptions& opt, const VolumeInput& in, VolumeEn
 }
 
 void run_compress_volume(const CompressOptions& opt) {
-  if (!opt.entropy.empty() && opt.entropy != "ebcot")
+  if (opt.entropy != "auto" && opt.entropy != "ebcot")
     throw std::invalid_argument("--entropy applies to images only");
   if (opt.effort != 0) throw std::invalid_argument("--effort applies to image --bpp targets only");
   const VolumeInput in = read_volume_input(opt);
@@ -259,9 +270,9 @@ void run_compress(const CompressOptions& opt) {
   EncodeOptions enc;
   if (!opt.transform.empty()) enc.transform = opt.transform;
   enc.levels = opt.levels;
-  // Without --entropy the library's default coder choice applies (encode_image_default_coder:
-  // lc for lossless, pc or the bit-plane coder for rate targets).
-  if (!opt.entropy.empty()) enc.entropy = entropy_coder(opt.entropy);
+  // auto: the library's default coder choice (encode_image_default_coder: lc for lossless, pc or
+  // the bit-plane coder for rate targets).
+  if (const auto coder = pupwave::api::entropy_coder(coder_of(opt))) enc.entropy = *coder;
   // Only the bit-plane coder's byte-budget search has more than one effort; elsewhere the option
   // would be ignored.
   if (opt.effort != 0 && !(opt.bpp > 0.0))
@@ -279,7 +290,7 @@ void run_compress(const CompressOptions& opt) {
   const EncodeResult r = [&] {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
     if (!image.metadata.empty()) enc.metadata = &image.metadata;
-    return opt.entropy.empty() ? encode_image_default_coder(view, enc) : encode_image(view, enc);
+    return opt.entropy == "auto" ? encode_image_default_coder(view, enc) : encode_image(view, enc);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   refuse_if_strict(opt.strict, image_target_miss(enc, r, view.width, view.height, "the stream"), opt.output);
@@ -358,14 +369,15 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--brick", opt->brick, "volumes: brick edge (power of two, 8..256, default 64)");
   cmd->add_option(
          "--entropy", opt->entropy,
-         "entropy coder: pc (lossy only, the default for rate targets on integer images of up to 4 "
+         "entropy coder: auto (the default: lc for --lossless, else pc or ebcot as below), pc (lossy only, "
+         "the default for rate targets on integer images of up to 4 "
          "Mpixel: one pass per band with parent contexts, chroma from luma and rate-distortion optimised "
          "quantization; about 10% fewer bits than ebcot at equal PSNR on photographs; holds the "
          "transformed image), ebcot (bit-plane, the default for larger and float images: encodes 8-bit "
          "PGM/PPM by strips in bounded memory), ht (high-throughput, no arithmetic coding), zstd, or lc "
          "(lossless only, the default with --lossless: weighted prediction and context modelling, the "
          "smallest lossless files)")
-      ->transform(CLI::IsMember({"ebcot", "ht", "zstd", "lc", "pc"}, CLI::ignore_case));
+      ->transform(coder_option());
   cmd->add_option("--effort", opt->effort,
                   "images, --bpp, --entropy ebcot: 1 (default, fastest) or 2 (three base steps per band and "
                   "RDOQ: about 1% smaller at equal PSNR, up to 1.9x the encode time)")

@@ -19,10 +19,7 @@ struct pupwave_options {
   int levels = -1;
   unsigned threads = 0;
   std::size_t brick = 64;
-  bool zstd = false;
-  bool ht = false;
-  bool pc = false;
-  bool ebcot = false;
+  pupwave_coder coder = PUPWAVE_CODER_AUTO;
   int effort = 1;
 };
 
@@ -75,7 +72,7 @@ pupwave_status guarded(F&& f) {
   }
 }
 
-void require(bool condition, const char* message) {
+void require(bool condition, const std::string& message) {
   if (!condition) throw pupwave::api::Error(pupwave::api::Status::invalid_argument, message);
 }
 
@@ -113,10 +110,7 @@ pupwave::api::ImageOptions image_options(const pupwave_options* o) {
   out.transform = o->transform;
   out.levels = o->levels;
   out.threads = o->threads;
-  out.zstd = o->zstd;
-  out.ht = o->ht;
-  out.pc = o->pc;
-  out.ebcot = o->ebcot;
+  out.coder = pupwave::api::Coder(o->coder);
   out.effort = o->effort;
   return out;
 }
@@ -132,8 +126,9 @@ pupwave::api::VolumeOptions volume_options(const pupwave_options* o) {
     out.rate = rates[o->rate];
     out.target = o->target;
   }
-  require(!o->zstd, "the zstd entropy coder applies to images only");
-  require(!o->ht, "the ht entropy coder applies to images only");
+  // Volumes have their own coders: an image coder chosen for a volume is a mistake, said.
+  require(o->coder == PUPWAVE_CODER_AUTO || o->coder == PUPWAVE_CODER_EBCOT,
+          std::string("the ") + pupwave_coder_name(o->coder) + " entropy coder applies to images only");
   out.transform = o->transform;
   out.levels = o->levels;
   out.threads = o->threads;
@@ -204,33 +199,36 @@ pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick)
   });
 }
 
-pupwave_status pupwave_options_set_zstd(pupwave_options* options, int zstd) {
+pupwave_status pupwave_options_set_coder(pupwave_options* options, pupwave_coder coder) {
   return guarded([&] {
     require(options != nullptr, "options is null");
-    options->zstd = zstd != 0;
+    require(pupwave_coder_name(coder) != nullptr, "unknown entropy coder " + std::to_string(int(coder)));
+    options->coder = coder;
   });
 }
 
-pupwave_status pupwave_options_set_ht(pupwave_options* options, int ht) {
+pupwave_status pupwave_coder_from_name(const char* name, pupwave_coder* coder) {
   return guarded([&] {
-    require(options != nullptr, "options is null");
-    options->ht = ht != 0;
+    require(name != nullptr && coder != nullptr, "name or coder is null");
+    const auto found = pupwave::api::coder_from_name(name);
+    require(found.has_value(),
+            "unknown entropy coder '" + std::string(name) + "' (one of " + pupwave::api::coder_names() + ")");
+    *coder = pupwave_coder(*found);
   });
 }
 
-pupwave_status pupwave_options_set_pc(pupwave_options* options, int pc) {
-  return guarded([&] {
-    require(options != nullptr, "options is null");
-    options->pc = pc != 0;
-  });
+const char* pupwave_coder_name(pupwave_coder coder) {
+  // The C enumerators are the C++ ones (static_asserts below); names are string literals.
+  if (int(coder) < int(PUPWAVE_CODER_AUTO) || int(coder) > int(PUPWAVE_CODER_ZSTD)) return nullptr;
+  return pupwave::api::coder_name(pupwave::api::Coder(coder)).data();
 }
 
-pupwave_status pupwave_options_set_ebcot(pupwave_options* options, int ebcot) {
-  return guarded([&] {
-    require(options != nullptr, "options is null");
-    options->ebcot = ebcot != 0;
-  });
-}
+static_assert(int(PUPWAVE_CODER_AUTO) == int(pupwave::api::Coder::automatic) &&
+              int(PUPWAVE_CODER_EBCOT) == int(pupwave::api::Coder::ebcot) &&
+              int(PUPWAVE_CODER_PC) == int(pupwave::api::Coder::pc) &&
+              int(PUPWAVE_CODER_LC) == int(pupwave::api::Coder::lc) &&
+              int(PUPWAVE_CODER_HT) == int(pupwave::api::Coder::ht) &&
+              int(PUPWAVE_CODER_ZSTD) == int(pupwave::api::Coder::zstd));
 
 pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort) {
   return guarded([&] {

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "codec/api/api_attributes.h"
+#include "codec/api/api_coder.h"
 #include "codec/api/api_errors.h"
 #include "codec/format/container.h"
 #include "codec/image/image_codec.h"
@@ -74,12 +75,7 @@ void store_interleaved(const pupwave::Image& image, std::byte* out) {
 EncodeOptions encode_options(const ImageOptions& options) {
   EncodeOptions enc;
   enc.levels = options.levels;
-  if (int(options.zstd) + int(options.ht) + int(options.pc) + int(options.ebcot) > 1)
-    detail::fail("choose one entropy coder: zstd, ht, pc or ebcot");
-  enc.entropy = options.ht     ? EntropyCoder::ht
-                : options.zstd ? EntropyCoder::zstd
-                : options.pc   ? EntropyCoder::pc
-                               : EntropyCoder::ebcot;
+  enc.entropy = entropy_coder(options.coder).value_or(EntropyCoder::ebcot);
   enc.effort = options.effort;
   enc.measure_psnr = false;
   enc.target = options.target;
@@ -156,8 +152,8 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOpti
     view.pixel_stride = image.pixel_stride;
     view.row_stride = image.row_stride;
     // No coder chosen: the default choice, as the CLI makes it (lc for lossless).
-    const bool chosen = options.zstd || options.ht || options.pc || options.ebcot;
-    EncodeResult r = chosen ? encode_image(view, enc) : encode_image_default_coder(view, enc);
+    EncodeResult r =
+        options.coder == Coder::automatic ? encode_image_default_coder(view, enc) : encode_image(view, enc);
     check_decodable(r.bytes);
     outcome.met = r.target_met;
     outcome.achieved = enc.mode == RateMode::bpp    ? r.bpp

@@ -165,16 +165,9 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   options.levels = levels.value_or(-1);
   options.effort = effort;
   options.attributes = to_attributes(attributes);
-  if (entropy == "pc")
-    options.pc = true;
-  else if (entropy == "ebcot")
-    options.ebcot = true;
-  else if (entropy == "ht")
-    options.ht = true;
-  else if (entropy == "zstd")
-    options.zstd = true;
-  else if (entropy != "default")
-    throw py::value_error("entropy must be default, pc, ebcot, ht or zstd, got " + entropy);
+  const auto coder = api::coder_from_name(entropy);
+  if (!coder) throw py::value_error("entropy must be one of " + api::coder_names() + ", got " + entropy);
+  options.coder = *coder;
   std::vector<std::uint8_t> out;
   api::TargetOutcome outcome;
   {
@@ -315,7 +308,7 @@ PYBIND11_MODULE(_pupwave, m) {
   m.attr("__version__") = PUPWAVE_VERSION_STRING;
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = "cdf97",
-        py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "default",
+        py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "auto",
         py::arg("attributes") = std::map<std::string, std::string>{},
         "pupwave.compress on a uint8/uint16/float16/float32 array; attributes (str -> str) are stored "
         "in the stream; a missed bpp or psnr target gives a RuntimeWarning saying what the stream reached.");

@@ -59,7 +59,7 @@ typedef enum pupwave_rate {
 /* Encoding parameters. Defaults: images PSNR 40 dB, volumes MAX_ERROR_REL 1e-3 (the mode is
  * checked against the data kind when compressing); transform "" (cdf97, cdf53 for lossless,
  * pups:cinpact-interp-vm4 for volumes in a max-error mode);
- * levels -1 (from the size); 64^3 bricks; zstd off; all cores. */
+ * levels -1 (from the size); 64^3 bricks; coder AUTO; all cores. */
 typedef struct pupwave_options pupwave_options;
 pupwave_options* pupwave_options_create(void); /* NULL when out of memory */
 void pupwave_options_destroy(pupwave_options* options);
@@ -73,21 +73,27 @@ pupwave_status pupwave_options_set_levels(pupwave_options* options, int levels);
 pupwave_status pupwave_options_set_threads(pupwave_options* options, unsigned threads);
 /* Volumes: brick edge (power of two, 8..256). */
 pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick);
-/* Images: 1 selects the zstd entropy coder instead of the default (for rate targets the
- * parent-context coder pc on integer images of up to 4 Mpixel, the bit-plane coder on larger or
- * float ones; the lossless context coder lc for lossless). */
-pupwave_status pupwave_options_set_zstd(pupwave_options* options, int zstd);
-/* Images: 1 selects the high-throughput block coder (no arithmetic coding; faster, larger files
- * at the same quality). Not together with zstd. */
-pupwave_status pupwave_options_set_ht(pupwave_options* options, int ht);
-/* Images: 1 selects the parent-context coder (lossy targets only: one pass per band, no quality
- * layers; the default for integer images of up to 4 Mpixel), also on larger images. One coder only. */
-pupwave_status pupwave_options_set_pc(pupwave_options* options, int pc);
-/* Images: 1 selects the bit-plane coder (embedded; about 10 % more rate than pc at equal PSNR on
- * photographs, encodes in less time and, from 8-bit PGM/PPM files, in bounded memory), also on small
- * images. One coder only. */
-pupwave_status pupwave_options_set_ebcot(pupwave_options* options, int ebcot);
-/* Images, BPP targets with the bit-plane coder (set_ebcot): encoder effort 1 (default, fastest) or 2 (three
+/* Images: the entropy coder, with the names of the CLI's --entropy and Python's entropy=
+ * (pupwave_coder_name): AUTO (the default: LC for lossless; for rate targets PC on integer images
+ * of up to 4 Mpixel, EBCOT on larger or float ones), EBCOT (bit-plane coder: embedded, bounded
+ * memory from 8-bit PGM/PPM files), PC (parent-context coder: the smallest lossy files; lossy
+ * only), LC (lossless context coder; lossless only), HT (high-throughput block coder: no
+ * arithmetic coding, faster, larger files), ZSTD. */
+typedef enum pupwave_coder {
+  PUPWAVE_CODER_AUTO = 0,
+  PUPWAVE_CODER_EBCOT = 1,
+  PUPWAVE_CODER_PC = 2,
+  PUPWAVE_CODER_LC = 3,
+  PUPWAVE_CODER_HT = 4,
+  PUPWAVE_CODER_ZSTD = 5
+} pupwave_coder;
+pupwave_status pupwave_options_set_coder(pupwave_options* options, pupwave_coder coder);
+/* The coder named NAME ("auto", "ebcot", "pc", "lc", "ht", "zstd"; any case) into *coder;
+ * PUPWAVE_ERROR_ARGUMENT for another name. */
+pupwave_status pupwave_coder_from_name(const char* name, pupwave_coder* coder);
+/* CODER's name, or NULL when CODER is not a pupwave_coder value. */
+const char* pupwave_coder_name(pupwave_coder coder);
+/* Images, BPP targets with PUPWAVE_CODER_EBCOT: encoder effort 1 (default, fastest) or 2 (three
  * base steps per band and RDOQ: about 1 % less rate at equal PSNR for up to 1.9x the encode time). */
 pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort);
 

@@ -15,9 +15,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pupwave::api {
@@ -79,18 +81,27 @@ enum class ImageRate : std::uint8_t {
   lossless,  // bit exact (integer samples only; reversible transform)
 };
 
+// The image entropy coders. One set of names for every front door: the CLI's --entropy NAME,
+// Python's entropy="NAME" and the C API's PUPWAVE_CODER_* (same order):
+//   auto   lc for lossless; for rate targets pc on integer images of up to 4 Mpixel, ebcot on
+//          larger or float ones
+//   ebcot  bit-plane coder: embedded, bounded memory from 8-bit PGM/PPM; effort 2 applies to it
+//   pc     parent-context coder: the smallest lossy files; lossy only, holds the transformed image
+//   lc     lossless context coder: the smallest lossless files; lossless only
+//   ht     high-throughput block coder: no arithmetic coding, fastest, larger files
+//   zstd   quantized coefficients through zstd
+enum class Coder : std::uint8_t { automatic, ebcot, pc, lc, ht, zstd };
+std::string_view coder_name(Coder coder);                     // "auto", "ebcot", ...
+std::optional<Coder> coder_from_name(std::string_view name);  // any case; nullopt when unknown
+std::string coder_names();                                    // "auto, ebcot, pc, lc, ht, zstd"
+
 struct ImageOptions {
   ImageRate rate = ImageRate::psnr;
   double target = 40.0;   // dB, bits per pixel or step; ignored for lossless
   std::string transform;  // transform spec (cdf97, cdf53, pups:..., kobbelt:...); "": cdf97, cdf53 lossless
   int levels = -1;        // decomposition levels, -1: from the image size
-  // Entropy coder, at most one of these; none: the default choice (lc for lossless; for rate
-  // targets pc on integer images of up to 4 Mpixel, the bit-plane coder on larger or float ones).
-  bool zstd = false;   // zstd
-  bool ht = false;     // high-throughput block coder
-  bool pc = false;     // parent-context coder, lossy only
-  bool ebcot = false;  // bit-plane coder (embedded; the one effort 2 applies to)
-  unsigned threads = 0;  // most worker threads (0: all cores, 1: the calling thread)
+  Coder coder = Coder::automatic;  // entropy coder (Coder above)
+  unsigned threads = 0;            // most worker threads (0: all cores, 1: the calling thread)
   // Encoder effort for bpp targets with ebcot: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
   // and more memory (same format; other rates ignore it).
   int effort = 1;

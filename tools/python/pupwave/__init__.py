@@ -1,7 +1,7 @@
 """Pupwave wavelet codec for numpy arrays (docs/api.md).
 
 compress(array, bpp=None, psnr=None, step=None, lossless=False, transform="cdf97", levels=None, effort=1,
-         entropy="default") -> bytes
+         entropy="auto") -> bytes
 decompress(data, level=0) -> numpy.ndarray
 compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False) -> bytes
 decompress_volume(data, level=0) -> numpy.ndarray
@@ -25,10 +25,10 @@ __all__ = ["compress", "decompress", "compress_volume", "decompress_volume", "in
 
 
 def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform="cdf97", levels=None, effort=1,
-             entropy="default"):
+             entropy="auto"):
     """Compress a 2-D (grey) or HxWxC (C 1..64) array to .pw bytes. At most one of bpp, psnr, step,
-    lossless (default psnr=40). entropy: default (pc for rate targets on integer images up to
-    4 Mpixel, else ebcot; lc for lossless), pc, ebcot, ht or zstd. effort=2 (with entropy='ebcot'):
+    lossless (default psnr=40). entropy: auto (pc for rate targets on integer images up to
+    4 Mpixel, else ebcot; lc for lossless), ebcot, pc, lc, ht or zstd (the CLI's --entropy names). effort=2 (with entropy='ebcot'):
     bpp targets search three base steps per band (about 1% smaller, up to 1.9x slower)."""
     stored, attributes = dtypes.to_stored(array, dtypes.IMAGE)
     return _pupwave.compress(stored, bpp, psnr, step, lossless, transform, levels, effort, entropy, attributes)

@@ -1,0 +1,59 @@
+// The image coders' names, shared by the C++ and C APIs, Python and the CLI.
+#include "codec/api/api_coder.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+
+#include "codec/api/api_errors.h"
+
+namespace pupwave::api {
+namespace {
+
+struct CoderRow {
+  Coder coder;
+  std::string_view name;
+  std::optional<EntropyCoder> entropy;  // nullopt: the default choice
+};
+
+// One row per coder, in the order of enum Coder (and of the C API's PUPWAVE_CODER_*).
+constexpr std::array<CoderRow, 6> kCoders{{
+    {Coder::automatic, "auto", std::nullopt},
+    {Coder::ebcot, "ebcot", EntropyCoder::ebcot},
+    {Coder::pc, "pc", EntropyCoder::pc},
+    {Coder::lc, "lc", EntropyCoder::lc},
+    {Coder::ht, "ht", EntropyCoder::ht},
+    {Coder::zstd, "zstd", EntropyCoder::zstd},
+}};
+
+const CoderRow& row(Coder coder) {
+  const auto i = std::size_t(coder);
+  if (i >= kCoders.size()) detail::fail("unknown entropy coder " + std::to_string(i));
+  return kCoders[i];
+}
+
+bool same_name(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+}  // namespace
+
+std::string_view coder_name(Coder coder) { return row(coder).name; }
+
+std::optional<Coder> coder_from_name(std::string_view name) {
+  for (const CoderRow& r : kCoders)
+    if (same_name(r.name, name)) return r.coder;
+  return std::nullopt;
+}
+
+std::string coder_names() {
+  std::string names;
+  for (const CoderRow& r : kCoders) names += (names.empty() ? "" : ", ") + std::string(r.name);
+  return names;
+}
+
+std::optional<EntropyCoder> entropy_coder(Coder coder) { return row(coder).entropy; }
+
+}  // namespace pupwave::api
