@@ -158,7 +158,7 @@ void set_volume_rate(const CompressOptions& opt, const VolumeInput& in, VolumeEn
 }
 
 void run_compress_volume(const CompressOptions& opt) {
-  if (opt.entropy != "auto" && opt.entropy != "ebcot")
+  if (coder_of(opt) != pupwave::api::Coder::automatic && coder_of(opt) != pupwave::api::Coder::ebcot)
     throw std::invalid_argument("--entropy applies to images only");
   if (opt.effort != 0) throw std::invalid_argument("--effort applies to image --bpp targets only");
   const VolumeInput in = read_volume_input(opt);
@@ -277,7 +277,7 @@ void run_compress(const CompressOptions& opt) {
   // would be ignored.
   if (opt.effort != 0 && !(opt.bpp > 0.0))
     throw std::invalid_argument("--effort applies to --bpp targets only");
-  if (opt.effort != 0 && opt.entropy != "ebcot")
+  if (opt.effort != 0 && coder_of(opt) != pupwave::api::Coder::ebcot)
     throw std::invalid_argument("--effort applies to the bit-plane coder: add --entropy ebcot");
   enc.effort = opt.effort == 0 ? 1 : opt.effort;
   const auto executor = make_pool_executor(opt.threads);
@@ -290,7 +290,8 @@ void run_compress(const CompressOptions& opt) {
   const EncodeResult r = [&] {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
     if (!image.metadata.empty()) enc.metadata = &image.metadata;
-    return opt.entropy == "auto" ? encode_image_default_coder(view, enc) : encode_image(view, enc);
+    return coder_of(opt) == pupwave::api::Coder::automatic ? encode_image_default_coder(view, enc)
+                                                           : encode_image(view, enc);
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   refuse_if_strict(opt.strict, image_target_miss(enc, r, view.width, view.height, "the stream"), opt.output);
