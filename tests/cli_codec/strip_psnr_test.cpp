@@ -1,7 +1,7 @@
 // The encoder's PSNR check decoded by strips (strip_psnr, codec/image/image_strips.h) gives the
 // figure of the whole-plane decode (full_planes_psnr) on the test photographs: integer and
-// float images, lossy and lossless, the bit-plane, ht and zstd coders; lc and pc streams are
-// left to the whole-plane route.
+// float images, lossy and lossless, the bit-plane, ht and zstd coders, images narrower and wider
+// than its column tiles; lc and pc streams are left to the whole-plane route.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -65,6 +65,39 @@ TEST(StripPsnr, IntegerPhotographsEveryBlockCoder) {
       expect_strip_psnr_matches(view, encode(view, coder, RateMode::lossless, 0.0, "cdf53"),
                                 what + " lossless");
     }
+  }
+}
+
+// Four photographs side by side, the second and fourth mirrored (so no seam is flat), cropped
+// to `width` columns: wider than the check's column tiles, so it decodes in several of them.
+Image wide_photograph(std::size_t width) {
+  const Image a = photo("astronaut.png");
+  Image wide(width, a.height, a.channels, a.type);
+  for (std::size_t c = 0; c < a.channels; ++c)
+    for (std::size_t y = 0; y < a.height; ++y)
+      for (std::size_t x = 0; x < width; ++x) {
+        const std::size_t tile = x / a.width, u = x % a.width;
+        wide.plane(c)[y * width + x] = a.plane(c)[y * a.width + (tile % 2 ? a.width - 1 - u : u)];
+      }
+  return wide;
+}
+
+TEST(StripPsnr, WideImagesInColumnTiles) {
+  for (std::size_t width : {std::size_t(1100), std::size_t(2047)}) {
+    const Image image = wide_photograph(width);
+    const ImageView view = view_of(image);
+    const std::string what = std::to_string(width) + " columns";
+    for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::ht}) {
+      const auto bytes = encode(view, coder, RateMode::bpp, 0.5);
+      expect_strip_psnr_matches(view, bytes, what + " " + to_string(coder));
+      EXPECT_NEAR(measure_psnr(view, bytes, default_executor()),
+                  compare_images(image, decode_image(bytes)).overall.psnr, 1e-9 * 40.0)
+          << what;
+    }
+    expect_strip_psnr_matches(view, encode(view, EntropyCoder::ebcot, RateMode::step, 8.0, "cdf53"),
+                              what + " cdf53 step 8");
+    expect_strip_psnr_matches(view, encode(view, EntropyCoder::ebcot, RateMode::lossless, 0.0, "cdf53"),
+                              what + " lossless");
   }
 }
 
