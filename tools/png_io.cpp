@@ -112,6 +112,14 @@ bool png_holds(std::size_t channels, SampleType type, const ImageMetadata& metad
 
 std::size_t png_sample_bytes(SampleType type) { return type == SampleType::u16 ? 2 : 1; }
 
+// A buffer for one row of interleaved samples, held as 16-bit words (so 16-bit samples are read
+// and written as what they are) and handed to libpng as bytes.
+std::vector<std::uint16_t> png_row_buffer(std::size_t width, std::size_t channels, SampleType type) {
+  return std::vector<std::uint16_t>((width * channels * png_sample_bytes(type) + 1) / 2);
+}
+
+png_bytep png_bytes_of(std::vector<std::uint16_t>& row) { return reinterpret_cast<png_bytep>(row.data()); }
+
 // The rows of a PNG file read with png_read_row, a strip at a time.
 class PngRows final : public ImageRowReader {
  public:
@@ -135,7 +143,7 @@ class PngRows final : public ImageRowReader {
     next_row_ = y1;
     Image strip(width_, y1 - y0, channels_, type_);
     for (std::size_t y = y0; y < y1; ++y) {
-      if (!png_step_read_row(call_, row_.data())) fail();
+      if (!png_step_read_row(call_, png_bytes_of(row_))) fail();
       const ImageView row = interleaved_view(row_.data(), width_, 1, channels_, type_);
       for (std::size_t c = 0; c < channels_; ++c) row.read_row(c, 0, strip.plane(c) + (y - y0) * width_);
     }
@@ -162,7 +170,7 @@ class PngRows final : public ImageRowReader {
     // OpenImageIO's data window origin for a PNG; its channel names are the defaults (not kept).
     metadata_.x = png_get_x_offset_pixels(call_.png, call_.info);
     metadata_.y = png_get_y_offset_pixels(call_.png, call_.info);
-    row_.resize(width_ * channels_ * png_sample_bytes(type_));
+    row_ = png_row_buffer(width_, channels_, type_);
     return true;
   }
 
@@ -176,7 +184,7 @@ class PngRows final : public ImageRowReader {
   SampleType type_ = SampleType::u8;
   ImageMetadata metadata_;
   std::size_t next_row_ = 0;
-  std::vector<std::uint8_t> row_;  // one row as libpng gives it
+  std::vector<std::uint16_t> row_;  // one row as libpng gives it
 };
 
 std::unique_ptr<PngRows> PngRows::open(const fs::path& path) {
@@ -205,7 +213,7 @@ class PngWriter {
  public:
   PngWriter(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
             SampleType type, const ImageMetadata& metadata)
-      : file_(file), type_(type), row_(width * channels * png_sample_bytes(type)) {
+      : file_(file), type_(type), row_(png_row_buffer(width, channels, type)) {
     call_.file = std::fopen(file.c_str(), "wb");
     if (!call_.file) throw_write_error(file);
     call_.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &call_, on_png_error, on_png_warning);
@@ -228,20 +236,20 @@ class PngWriter {
   void put(const Image& strip) {
     const std::size_t c = strip.channels;
     const float top = float(nominal_max(type_));
-    auto* wide = reinterpret_cast<std::uint16_t*>(row_.data());
+    png_bytep narrow = png_bytes_of(row_);
     for (std::size_t y = 0; y < strip.height; ++y) {
       for (std::size_t ch = 0; ch < c; ++ch) {
         const float* src = strip.plane(ch) + y * strip.width;
         for (std::size_t x = 0; x < strip.width; ++x) {
           const auto v = unsigned(std::clamp(src[x], 0.0f, top) + 0.5f);
           if (type_ == SampleType::u16)
-            wide[x * c + ch] = std::uint16_t(v);
+            row_[x * c + ch] = std::uint16_t(v);
           else
-            row_[x * c + ch] = std::uint8_t(v);
+            narrow[x * c + ch] = std::uint8_t(v);
         }
       }
       errno = 0;
-      if (!png_step_write_row(call_, row_.data())) fail();
+      if (!png_step_write_row(call_, png_bytes_of(row_))) fail();
     }
   }
 
@@ -264,7 +272,7 @@ class PngWriter {
   fs::path file_;
   SampleType type_;
   PngCall call_;
-  std::vector<std::uint8_t> row_;  // one row as libpng takes it (16-bit samples in host order)
+  std::vector<std::uint16_t> row_;  // one row as libpng takes it (16-bit samples in host order)
 };
 
 }  // namespace
