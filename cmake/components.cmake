@@ -114,9 +114,11 @@ if(PUPWAVE_BUILD_TOOLS)
   pupwave_require(PUPWAVE_BUILD_TOOLS nlohmann-json3-dev "nlohmann_json 3" "${nlohmann_json_FOUND}")
   find_package(CLI11 QUIET)
   pupwave_require(PUPWAVE_BUILD_TOOLS libcli11-dev "CLI11" "${CLI11_FOUND}")
+  find_package(PNG QUIET)
+  pupwave_require(PUPWAVE_BUILD_TOOLS libpng-dev "libpng" "${PNG_FOUND}")
 endif()
 pupwave_component(cli PUPWAVE_BUILD_TOOLS "the pupwave CLI"
-                  "OpenImageIO ${OpenImageIO_VERSION}, OpenEXR ${OpenEXR_VERSION}, CLI11 ${CLI11_VERSION}, nlohmann_json ${nlohmann_json_VERSION}")
+                  "OpenImageIO ${OpenImageIO_VERSION}, OpenEXR ${OpenEXR_VERSION}, libpng ${PNG_VERSION_STRING}, CLI11 ${CLI11_VERSION}, nlohmann_json ${nlohmann_json_VERSION}")
 
 # --- vdb: the CLI's OpenVDB module ------------------------------------------------------------
 if(PUPWAVE_BUILD_VDB)

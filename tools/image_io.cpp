@@ -9,6 +9,7 @@
 
 #include "tools/atomic_file.h"
 #include "tools/oiio_module.h"
+#include "tools/png_io.h"
 #include "tools/pnm_io.h"
 
 namespace pupwave::cli {
@@ -26,6 +27,13 @@ std::vector<SampleType> format_types(const std::string& format) {
   if (format == "jpeg" || format == "bmp" || format == "targa") return {S::u8};
   if (format == "openexr") return {S::f16, S::f32};
   return {};
+}
+
+// OpenImageIO's name for the format a path's extension picks; PNM and PNG without loading it.
+std::string image_format_name(const fs::path& path) {
+  if (has_pnm_extension(path)) return "pnm";
+  if (has_png_extension(path)) return "png";
+  return oiio_module().format_name(path);
 }
 
 // Closest storable type: exact if possible, else the most precise of the kind allowed.
@@ -74,7 +82,7 @@ constexpr std::size_t kStripRows = 64;
 SampleType stored_type(const fs::path& format, std::size_t channels, SampleType type) {
   if (binary_pnm_writable(format, channels, type)) return type;  // never loads OpenImageIO
   // OpenImageIO writes PNM with 8 bits only; the binary writer takes the 1- and 3-channel cases.
-  if (oiio_module().format_name(format) == "pnm" && channels != 1 && channels != 3) return SampleType::u8;
+  if (image_format_name(format) == "pnm" && channels != 1 && channels != 3) return SampleType::u8;
   return storable_type(format, type);
 }
 
@@ -83,18 +91,20 @@ SampleType stored_type(const fs::path& format, std::size_t channels, SampleType 
 std::unique_ptr<ImageRowReader> open_image_rows(const fs::path& path) {
   if (auto mapped = MappedPnm::open(path)) return std::make_unique<ViewRows>(std::move(mapped));
   if (auto pnm = read_binary_pnm(path)) return std::make_unique<ViewRows>(std::move(*pnm));
+  if (auto png = open_png_rows(path)) return png;
   return oiio_module().open_rows(path);
 }
 
 Image read_image(const fs::path& path) {
   if (auto pnm = read_binary_pnm(path)) return std::move(*pnm);
+  if (auto png = read_png(path)) return std::move(*png);
   return oiio_module().read(path);
 }
 
 std::string describe_image_file(const fs::path& path) { return oiio_module().describe(path); }
 
 SampleType storable_type(const fs::path& path, SampleType type) {
-  return closest_type(type, format_types(oiio_module().format_name(path)));
+  return closest_type(type, format_types(image_format_name(path)));
 }
 
 Image convert_sample_type(Image image, SampleType target) {
@@ -121,7 +131,7 @@ fs::path format_name_path(const fs::path& path, const std::string& format) {
 fs::path stdout_image_format(SampleType type) { return is_integer(type) ? "-.png" : "-.exr"; }
 
 void check_image_format(const fs::path& path, const fs::path& format_as) {
-  if (has_pnm_extension(format_as)) return;
+  if (has_pnm_extension(format_as) || has_png_extension(format_as)) return;
   try {
     (void)oiio_module().format_name(format_as);
   } catch (const std::exception&) {
@@ -148,6 +158,8 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
   write_output(path, [&](const fs::path& tmp) {
     if (binary_pnm_writable(format, stored))
       write_binary_pnm(stored, tmp);
+    else if (png_writable(format, stored.channels, stored.type, stored.metadata))
+      write_png(stored, tmp);
     else
       oiio_module().write(stored, format, tmp);
   });
@@ -163,6 +175,8 @@ SampleType write_image_rows(ImageRowReader& rows, const fs::path& path, const fs
   write_output(path, [&](const fs::path& tmp) {
     if (binary_pnm_writable(format, rows.channels(), target))
       write_binary_pnm_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
+    else if (png_writable(format, rows.channels(), target, rows.metadata()))
+      write_png_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
     else
       oiio_module().write_rows(ImageShape{rows.width(), rows.height(), rows.channels(), target},
                                rows.metadata(), format, tmp, next);

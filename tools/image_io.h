@@ -1,7 +1,8 @@
 #pragma once
-// Image files <-> the library's planar Image: binary PGM/PPM directly (pnm_io.h), every other
-// format through OpenImageIO (the module of oiio_module.h). The one entry point the CLI uses for
-// image file formats.
+// Image files <-> the library's planar Image: binary PGM/PPM (pnm_io.h) and PNG (png_io.h: all
+// but palette, 1/2/4-bit, tRNS and interlaced files on read) directly, every other file through
+// OpenImageIO (the module of oiio_module.h). The one entry point the CLI uses for image file
+// formats.
 
 #include <filesystem>
 #include <memory>
@@ -41,8 +42,8 @@ class ImageRowReader {
 };
 
 // The rows of an image file (as read_image reads it): a binary 8-bit PGM/PPM mapped and read in
-// place, a scanline file through OpenImageIO a strip at a time; a 16-bit PGM/PPM or a tiled file
-// is read whole first.
+// place, a PNG through libpng and another scanline file through OpenImageIO a strip at a time; a
+// 16-bit PGM/PPM or a tiled file is read whole first.
 std::unique_ptr<ImageRowReader> open_image_rows(const std::filesystem::path& path);
 
 // Describes an image file without decoding its pixels (format, size, channels, type).

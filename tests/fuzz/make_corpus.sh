@@ -12,7 +12,7 @@ out=tests/fuzz/corpus
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 seeds=$(dirname "$(dirname "$cli")")/tests/fuzz/fuzz_make_seeds
-for t in image image_level volume info pnm spec mesh c_api hdf5_chunk; do
+for t in image image_level volume info pnm png spec mesh c_api hdf5_chunk; do
   mkdir -p "$out/$t"
   find "$out/$t" -type f ! -name 'regress-*' -delete
 done
@@ -46,6 +46,8 @@ crop "$tmp/camera.pgm" 200 100 40 32 "$tmp/grey.pgm"
 crop "$tmp/astronaut.ppm" 180 60 24 20 "$tmp/rgb.ppm"
 crop "$tmp/camera.pgm" 10 10 7 5 "$tmp/tiny.pgm"
 cp "$tmp/grey.pgm" "$tmp/tiny.pgm" "$tmp/rgb.ppm" "$out/pnm/"
+"$cli" convert "$tmp/grey.pgm" "$out/png/grey.png" > /dev/null
+"$cli" convert "$tmp/rgb.ppm" "$out/png/rgb.png" > /dev/null
 
 # Image streams: lossless and lossy, every coder, every transform family, odd sizes.
 img=0

@@ -1,4 +1,5 @@
-// Image file round trips through OpenImageIO for every format, sample type and channel count.
+// Image file round trips (OpenImageIO, and tools/pnm_io.cpp and png_io.cpp) for every format,
+// sample type and channel count.
 #include <gtest/gtest.h>
 
 #include <Imath/half.h>

@@ -1,0 +1,328 @@
+#include "tools/png_io.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "codec/image/image_view.h"
+#include "tools/atomic_file.h"
+
+namespace pupwave::cli {
+namespace fs = std::filesystem;
+namespace {
+
+// libpng's default limit on each side, under which OpenImageIO reads PNGs: the same files are
+// refused by both paths.
+constexpr png_uint_32 kPngMaxSide = 1000000;
+
+// What libpng's callbacks share with the code calling into libpng: plain C data, so that the
+// longjmp out of an error skips no destructor.
+struct PngCall {
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  std::FILE* file = nullptr;
+  char message[256] = "";
+};
+
+// Keeps libpng's message and returns to the setjmp of the png_step_* function that called libpng.
+[[noreturn]] void on_png_error(png_structp png, png_const_charp message) {
+  auto* call = static_cast<PngCall*>(png_get_error_ptr(png));
+  std::snprintf(call->message, sizeof call->message, "%s", message);
+  png_longjmp(png, 1);
+}
+
+// Warnings (a bad CRC in an ancillary chunk, which libpng then skips) are dropped, as OpenImageIO
+// drops them.
+void on_png_warning(png_structp, png_const_charp) {}
+
+// The only functions that call setjmp: each runs one libpng step and returns false, with
+// call.message set, when libpng reports an error. They hold no C++ object with a destructor, so
+// the longjmp back into them skips none.
+bool png_step_read_info(PngCall& call) {
+  if (setjmp(png_jmpbuf(call.png))) return false;
+  png_read_info(call.png, call.info);
+  // 16-bit samples are big-endian in the file; the rows come out in host order.
+  if constexpr (std::endian::native == std::endian::little) png_set_swap(call.png);
+  png_read_update_info(call.png, call.info);
+  return true;
+}
+
+bool png_step_read_row(PngCall& call, png_bytep row) {
+  if (setjmp(png_jmpbuf(call.png))) return false;
+  png_read_row(call.png, row, nullptr);
+  return true;
+}
+
+bool png_step_write_header(PngCall& call, png_uint_32 width, png_uint_32 height, int depth, int color_type,
+                           const ImageMetadata& metadata) {
+  if (setjmp(png_jmpbuf(call.png))) return false;
+  png_set_IHDR(call.png, call.info, width, height, depth, color_type, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // The data window origin, where OpenImageIO writes and reads it.
+  if (metadata.x != 0 || metadata.y != 0)
+    png_set_oFFs(call.png, call.info, metadata.x, metadata.y, PNG_OFFSET_PIXEL);
+  png_write_info(call.png, call.info);
+  if constexpr (std::endian::native == std::endian::little) png_set_swap(call.png);
+  return true;
+}
+
+bool png_step_write_row(PngCall& call, png_const_bytep row) {
+  if (setjmp(png_jmpbuf(call.png))) return false;
+  png_write_row(call.png, row);
+  return true;
+}
+
+bool png_step_write_end(PngCall& call) {
+  if (setjmp(png_jmpbuf(call.png))) return false;
+  png_write_end(call.png, nullptr);
+  return true;
+}
+
+// Channels of a PNG colour type read here (no palette); 0 for the others.
+std::size_t png_channels(int color_type) {
+  switch (color_type) {
+    case PNG_COLOR_TYPE_GRAY: return 1;
+    case PNG_COLOR_TYPE_GRAY_ALPHA: return 2;
+    case PNG_COLOR_TYPE_RGB: return 3;
+    case PNG_COLOR_TYPE_RGB_ALPHA: return 4;
+    default: return 0;
+  }
+}
+
+int png_color_type(std::size_t channels) {
+  static const int types[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                              PNG_COLOR_TYPE_RGB_ALPHA};
+  return types[channels - 1];
+}
+
+// Grey, grey+alpha, RGB or RGBA of 8- or 16-bit samples, without attributes (OpenImageIO writes
+// those as text chunks).
+bool png_holds(std::size_t channels, SampleType type, const ImageMetadata& metadata) {
+  return channels >= 1 && channels <= 4 && is_integer(type) && metadata.attributes.empty();
+}
+
+std::size_t png_sample_bytes(SampleType type) { return type == SampleType::u16 ? 2 : 1; }
+
+// A buffer for one row of interleaved samples, held as 16-bit words (so 16-bit samples are read
+// and written as what they are) and handed to libpng as bytes.
+std::vector<std::uint16_t> png_row_buffer(std::size_t width, std::size_t channels, SampleType type) {
+  return std::vector<std::uint16_t>((width * channels * png_sample_bytes(type) + 1) / 2);
+}
+
+png_bytep png_bytes_of(std::vector<std::uint16_t>& row) { return reinterpret_cast<png_bytep>(row.data()); }
+
+// The rows of a PNG file read with png_read_row, a strip at a time.
+class PngRows final : public ImageRowReader {
+ public:
+  // Null when the file is not a PNG of the kinds read here; throws for a corrupt one.
+  static std::unique_ptr<PngRows> open(const fs::path& path);
+  ~PngRows() override {
+    png_destroy_read_struct(&call_.png, &call_.info, nullptr);
+    if (call_.file) std::fclose(call_.file);
+  }
+  PngRows(const PngRows&) = delete;
+  PngRows& operator=(const PngRows&) = delete;
+
+  std::size_t width() const override { return width_; }
+  std::size_t height() const override { return height_; }
+  std::size_t channels() const override { return channels_; }
+  SampleType type() const override { return type_; }
+  const ImageMetadata& metadata() const override { return metadata_; }
+
+  Image next(std::size_t rows) override {
+    const std::size_t y0 = next_row_, y1 = std::min(height_, y0 + std::max<std::size_t>(rows, 1));
+    next_row_ = y1;
+    Image strip(width_, y1 - y0, channels_, type_);
+    for (std::size_t y = y0; y < y1; ++y) {
+      if (!png_step_read_row(call_, png_bytes_of(row_))) fail();
+      const ImageView row = interleaved_view(row_.data(), width_, 1, channels_, type_);
+      for (std::size_t c = 0; c < channels_; ++c) row.read_row(c, 0, strip.plane(c) + (y - y0) * width_);
+    }
+    return strip;
+  }
+
+ private:
+  explicit PngRows(const fs::path& path) : path_(path) {}
+
+  // Takes the header read by png_step_read_info; false for a kind of PNG left to OpenImageIO.
+  bool take_header() {
+    const int depth = png_get_bit_depth(call_.png, call_.info);
+    channels_ = png_channels(png_get_color_type(call_.png, call_.info));
+    // Palette, 1/2/4-bit, tRNS and interlaced files need expanding or reordering: OpenImageIO's.
+    if (channels_ == 0 || (depth != 8 && depth != 16) ||
+        png_get_interlace_type(call_.png, call_.info) != PNG_INTERLACE_NONE ||
+        png_get_valid(call_.png, call_.info, PNG_INFO_tRNS) != 0)
+      return false;
+    width_ = png_get_image_width(call_.png, call_.info);
+    height_ = png_get_image_height(call_.png, call_.info);
+    type_ = depth == 16 ? SampleType::u16 : SampleType::u8;
+    if (width_ * height_ > kMaxImageSamples / channels_)
+      throw std::runtime_error("cannot read " + path_.string() + ": image too large");
+    // OpenImageIO's data window origin for a PNG; its channel names are the defaults (not kept).
+    metadata_.x = png_get_x_offset_pixels(call_.png, call_.info);
+    metadata_.y = png_get_y_offset_pixels(call_.png, call_.info);
+    row_ = png_row_buffer(width_, channels_, type_);
+    return true;
+  }
+
+  [[noreturn]] void fail() const {
+    throw std::runtime_error("cannot read " + path_.string() + ": " + call_.message);
+  }
+
+  fs::path path_;
+  PngCall call_;
+  std::size_t width_ = 0, height_ = 0, channels_ = 0;
+  SampleType type_ = SampleType::u8;
+  ImageMetadata metadata_;
+  std::size_t next_row_ = 0;
+  std::vector<std::uint16_t> row_;  // one row as libpng gives it
+};
+
+std::unique_ptr<PngRows> PngRows::open(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return nullptr;  // OpenImageIO's path reports why
+  std::unique_ptr<PngRows> rows(new PngRows(path));
+  PngCall& call = rows->call_;
+  call.file = std::fopen(path.c_str(), "rb");
+  png_byte signature[8] = {};
+  if (!call.file || std::fread(signature, 1, sizeof signature, call.file) != sizeof signature ||
+      png_sig_cmp(signature, 0, sizeof signature) != 0)
+    return nullptr;
+  call.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &call, on_png_error, on_png_warning);
+  if (call.png) call.info = png_create_info_struct(call.png);
+  if (!call.info) throw std::bad_alloc();
+  png_init_io(call.png, call.file);
+  png_set_sig_bytes(call.png, sizeof signature);
+  png_set_user_limits(call.png, kPngMaxSide, kPngMaxSide);
+  if (!png_step_read_info(call)) rows->fail();
+  if (!rows->take_header()) return nullptr;
+  return rows;
+}
+
+// A PNG being written: libpng's structures and the file, released together.
+class PngWriter {
+ public:
+  PngWriter(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
+            SampleType type, const ImageMetadata& metadata)
+      : file_(file), type_(type), row_(png_row_buffer(width, channels, type)) {
+    call_.file = std::fopen(file.c_str(), "wb");
+    if (!call_.file) throw_write_error(file);
+    call_.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &call_, on_png_error, on_png_warning);
+    if (call_.png) call_.info = png_create_info_struct(call_.png);
+    if (!call_.info) throw std::bad_alloc();
+    png_init_io(call_.png, call_.file);
+    errno = 0;
+    if (!png_step_write_header(call_, png_uint_32(width), png_uint_32(height),
+                               int(8 * png_sample_bytes(type)), png_color_type(channels), metadata))
+      fail();
+  }
+  ~PngWriter() {
+    png_destroy_write_struct(&call_.png, &call_.info);
+    if (call_.file) std::fclose(call_.file);
+  }
+  PngWriter(const PngWriter&) = delete;
+  PngWriter& operator=(const PngWriter&) = delete;
+
+  // Appends the rows of `strip`, rounded and clamped to the sample type's range.
+  void put(const Image& strip) {
+    const std::size_t c = strip.channels;
+    const float top = float(nominal_max(type_));
+    png_bytep narrow = png_bytes_of(row_);
+    for (std::size_t y = 0; y < strip.height; ++y) {
+      for (std::size_t ch = 0; ch < c; ++ch) {
+        const float* src = strip.plane(ch) + y * strip.width;
+        for (std::size_t x = 0; x < strip.width; ++x) {
+          const auto v = unsigned(std::clamp(src[x], 0.0f, top) + 0.5f);
+          if (type_ == SampleType::u16)
+            row_[x * c + ch] = std::uint16_t(v);
+          else
+            narrow[x * c + ch] = std::uint8_t(v);
+        }
+      }
+      errno = 0;
+      if (!png_step_write_row(call_, png_bytes_of(row_))) fail();
+    }
+  }
+
+  // Ends the file; throws if any of it could not be written.
+  void finish() {
+    errno = 0;
+    if (!png_step_write_end(call_)) fail();
+    std::FILE* f = call_.file;
+    call_.file = nullptr;
+    if (std::fclose(f) != 0) throw_write_error(file_);
+  }
+
+ private:
+  // A failed stdio write (errno, cleared before each step, says why) or libpng's refusal.
+  [[noreturn]] void fail() const {
+    if (errno != 0) throw_write_error(file_);
+    throw std::runtime_error("cannot write " + file_.string() + ": " + call_.message);
+  }
+
+  fs::path file_;
+  SampleType type_;
+  PngCall call_;
+  std::vector<std::uint16_t> row_;  // one row as libpng takes it (16-bit samples in host order)
+};
+
+}  // namespace
+
+bool has_png_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return char(std::tolower(ch)); });
+  return ext == ".png";
+}
+
+std::unique_ptr<ImageRowReader> open_png_rows(const fs::path& path) { return PngRows::open(path); }
+
+std::optional<Image> read_png(const fs::path& path) {
+  const auto rows = PngRows::open(path);
+  if (!rows) return std::nullopt;
+  Image image = rows->next(rows->height());  // one strip: the whole image, read row by row into place
+  image.metadata = rows->metadata();
+  return image;
+}
+
+bool png_writable(const fs::path& path, std::size_t channels, SampleType type,
+                  const ImageMetadata& metadata) {
+  return has_png_extension(path) && png_holds(channels, type, metadata);
+}
+
+void write_png(const Image& image, const fs::path& file) {
+  if (!png_holds(image.channels, image.type, image.metadata))
+    throw std::invalid_argument("write_png: needs 1 to 4 channels of 8- or 16-bit samples and no attributes");
+  PngWriter writer(file, image.width, image.height, image.channels, image.type, image.metadata);
+  writer.put(image);
+  writer.finish();
+}
+
+void write_png_rows(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
+                    SampleType type, const ImageMetadata& metadata,
+                    const std::function<Image()>& next_strip) {
+  if (!png_holds(channels, type, metadata))
+    throw std::invalid_argument(
+        "write_png_rows: needs 1 to 4 channels of 8- or 16-bit samples and no attributes");
+  PngWriter writer(file, width, height, channels, type, metadata);
+  for (std::size_t rows = 0; rows < height;) {
+    const Image strip = next_strip();
+    if (strip.height == 0 || strip.width != width || strip.channels != channels || strip.type != type ||
+        rows + strip.height > height)
+      throw std::runtime_error("write_png_rows: a strip does not fit the image");
+    writer.put(strip);
+    rows += strip.height;
+  }
+  writer.finish();
+}
+
+}  // namespace pupwave::cli
