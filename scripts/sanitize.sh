@@ -34,7 +34,7 @@ ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 \
 # shellcheck disable=SC2046
 cmake -S . -B build-fuzz $(generator build-fuzz) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPUPWAVE_BUILD_FUZZERS=ON -DPUPWAVE_BUILD_TESTS=OFF -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
-targets="image image_level volume info pnm spec mesh c_api hdf5_chunk"
+targets="image image_level volume info pnm png spec mesh c_api hdf5_chunk"
 cmake --build build-fuzz -j"$jobs" --target $(printf 'fuzz_%s ' $targets)
 dict_for() {
   case $1 in

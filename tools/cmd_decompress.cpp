@@ -19,6 +19,7 @@
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/mapped_file.h"
+#include "tools/png_io.h"
 #include "tools/pnm_io.h"
 #include "tools/volume_io.h"
 #include "tools/volume_raw.h"
@@ -127,22 +128,30 @@ void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const Decompr
 // packed bytes), so a few rows keep that small next to the pipeline's own buffers.
 constexpr std::size_t kStripRows = 16;
 
-// An integer image to binary PGM/PPM, decoded and written strip by strip, so neither the
-// image nor its coefficients are ever whole in memory. False, having written nothing, when
+// An integer image to binary PGM/PPM or PNG, decoded and written strip by strip, so neither
+// the image nor its coefficients are ever whole in memory. False, having written nothing, when
 // the stream or the output needs the whole image (decode_image and write_image then).
-bool decompress_pnm_strips(std::span<const std::uint8_t> bytes, const DecompressOptions& opt) {
-  if (!opt.grid.empty() || is_volume_stream(bytes) ||
-      !binary_pnm_writable(opt.format_as, 1, SampleType::u8))  // not a .pgm/.ppm/.pnm name
-    return false;
+bool decompress_strips(std::span<const std::uint8_t> bytes, const DecompressOptions& opt) {
+  const bool pnm = has_pnm_extension(opt.format_as), png = has_png_extension(opt.format_as);
+  if (!opt.grid.empty() || is_volume_stream(bytes) || !(pnm || png)) return false;
   const auto start = std::chrono::steady_clock::now();
   const auto ex = make_pool_executor(opt.threads);
   const auto decoder = ImageStripDecoder::open(bytes, opt.level, *ex, opt.limits);
-  if (!decoder || !binary_pnm_writable(opt.format_as, decoder->channels(), decoder->type())) return false;
+  if (!decoder) return false;
+  const ImageMetadata metadata = decoder->metadata();
+  if (pnm ? !binary_pnm_writable(opt.format_as, decoder->channels(), decoder->type())
+          : !png_writable(opt.format_as, decoder->channels(), decoder->type(), metadata))
+    return false;
   {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
     write_output(opt.output, [&](const std::filesystem::path& tmp) {
-      write_binary_pnm_rows(tmp, decoder->width(), decoder->height(), decoder->channels(), decoder->type(),
-                            [&] { return decoder->next(kStripRows); });
+      const auto next = [&] { return decoder->next(kStripRows); };
+      if (pnm)
+        write_binary_pnm_rows(tmp, decoder->width(), decoder->height(), decoder->channels(), decoder->type(),
+                              next);
+      else
+        write_png_rows(tmp, decoder->width(), decoder->height(), decoder->channels(), decoder->type(),
+                       metadata, next);
     });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -166,7 +175,7 @@ void run_decompress(const DecompressOptions& opt) {
   if (mappable) {
     const MappedFile input(opt.input);  // the strip decoder reads only the pages it needs
     if (!is_volume_stream(input.bytes())) check_image_output(opt);
-    if (decompress_pnm_strips(input.bytes(), opt)) return;
+    if (decompress_strips(input.bytes(), opt)) return;
   }
   // stdin, a FIFO or a device is read to its end.
   const auto bytes = read_file_bytes(opt.input);

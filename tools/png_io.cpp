@@ -23,6 +23,8 @@ namespace {
 // libpng's default limit on each side, under which OpenImageIO reads PNGs: the same files are
 // refused by both paths.
 constexpr png_uint_32 kPngMaxSide = 1000000;
+// Largest ratio of a deflate stream's output to its input (zlib's documentation: 1032:1).
+constexpr std::size_t kDeflateMaxRatio = 1032;
 
 // What libpng's callbacks share with the code calling into libpng: plain C data, so that the
 // longjmp out of an error skips no destructor.
@@ -167,6 +169,15 @@ class PngRows final : public ImageRowReader {
     type_ = depth == 16 ? SampleType::u16 : SampleType::u8;
     if (width_ * height_ > kMaxImageSamples / channels_)
       throw std::runtime_error("cannot read " + path_.string() + ": image too large");
+    // Deflate expands at most 1032:1 (zlib's limit), so a file far too small for the size its
+    // header claims is refused before the caller allocates the image for it.
+    std::error_code ec;
+    const std::uintmax_t file_bytes = fs::file_size(path_, ec);
+    const std::size_t filtered = height_ * (1 + width_ * channels_ * (depth / 8));
+    if (!ec && filtered / kDeflateMaxRatio > file_bytes)
+      throw std::runtime_error("cannot read " + path_.string() + ": its " + std::to_string(file_bytes) +
+                               " bytes cannot hold the " + std::to_string(width_) + "x" +
+                               std::to_string(height_) + " image its header claims (truncated or corrupt)");
     // OpenImageIO's data window origin for a PNG; its channel names are the defaults (not kept).
     metadata_.x = png_get_x_offset_pixels(call_.png, call_.info);
     metadata_.y = png_get_y_offset_pixels(call_.png, call_.info);

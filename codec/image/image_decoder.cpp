@@ -209,11 +209,7 @@ Image decode_full_float(const ParsedStream& s, const Transform1D& t, const Execu
 // inverse transfer and non-finite samples of float images, channel names, windows, attributes.
 Image finish_decoded(Image image, const StreamHeader& h, int level) {
   if (!is_integer(h.type)) from_coded_domain(image, h, level == 0);
-  image.metadata = h.metadata;
-  if (level > 0) {  // windows are those of the full-size image
-    image.metadata.x = image.metadata.y = image.metadata.full_x = image.metadata.full_y = 0;
-    image.metadata.full_width = image.metadata.full_height = 0;
-  }
+  image.metadata = decoded_metadata(h, level);
   return image;
 }
 
@@ -274,6 +270,15 @@ double measure_psnr(const ImageView& image, std::span<const std::uint8_t> bytes,
     throw std::invalid_argument("measure_psnr: the stream does not hold an image of the reference's shape");
   if (const auto psnr = strip_psnr(image, s, ex)) return *psnr;
   return full_planes_psnr(image, s, ex);  // lc/pc blocks need whole parent bands: no strips
+}
+
+ImageMetadata decoded_metadata(const StreamHeader& h, int level) {
+  ImageMetadata m = h.metadata;
+  if (level > 0) {  // windows are those of the full-size image
+    m.x = m.y = m.full_x = m.full_y = 0;
+    m.full_width = m.full_height = 0;
+  }
+  return m;
 }
 
 }  // namespace pupwave

@@ -402,6 +402,7 @@ struct ImageStripDecoder::State {
   Transform1DPtr transform;
   const Executor* ex = nullptr;
   Extent size{};
+  int level = 0;
   double gain = 1.0;
   std::size_t next_row = 0;
   std::vector<std::vector<std::size_t>> by_band;              // block indices per (component, band)
@@ -426,6 +427,7 @@ std::unique_ptr<ImageStripDecoder> ImageStripDecoder::open(std::span<const std::
   if (reach == 0) return nullptr;
   st->ex = &ex;
   st->size = level_extent(h.dims, level);
+  st->level = level;
   if (!h.reversible) st->gain = coarse_gain(*st->transform, h.dims, level);
   st->by_band = blocks_by_band(s);
   const Columns all{0, st->size[0]};
@@ -443,6 +445,9 @@ std::size_t ImageStripDecoder::width() const { return state_->size[0]; }
 std::size_t ImageStripDecoder::height() const { return state_->size[1]; }
 std::size_t ImageStripDecoder::channels() const { return state_->stream.header.channels; }
 SampleType ImageStripDecoder::type() const { return state_->stream.header.type; }
+ImageMetadata ImageStripDecoder::metadata() const {
+  return decoded_metadata(state_->stream.header, state_->level);
+}
 
 namespace {
 

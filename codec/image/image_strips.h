@@ -25,6 +25,11 @@ namespace pupwave {
 template <class T>
 void decode_block_at(const ParsedStream& s, std::size_t i, T* first, std::size_t stride);
 
+// What an image decoded from a stream with header `h` at 1/2^level size keeps besides its
+// samples: channel names and attributes, and the windows at full size only (they are those of
+// the full-size image).
+ImageMetadata decoded_metadata(const StreamHeader& h, int level);
+
 // measure_psnr's figure (the PSNR of the stream's full-resolution decode against `reference`,
 // compared in the coded domain), decoded and compared strip by strip so that no component plane
 // is ever whole; nullopt where the stream cannot be decoded by strips (lc and pc blocks need
@@ -48,6 +53,8 @@ class ImageStripDecoder {
   std::size_t height() const;
   std::size_t channels() const;
   SampleType type() const;
+  // The decoded image's metadata (decoded_metadata).
+  ImageMetadata metadata() const;
 
   // The next rows of the decoded image (at most `rows`, at least 1 until the end) as an image
   // of width() columns, samples rounded and clamped as decode_image's; height 0 at the end.

@@ -121,7 +121,7 @@ TEST(StripDecode, ThinImages) {
   }
 }
 
-TEST(StripDecode, CliWritesPnmStripByStripWithTheSamePixels) {
+TEST(StripDecode, CliWritesPnmAndPngStripByStripWithTheSamePixels) {
   const fs::path dir = fs::temp_directory_path() / ("pupwave_strips_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const Image image = photo("coffee.png");
@@ -133,13 +133,14 @@ TEST(StripDecode, CliWritesPnmStripByStripWithTheSamePixels) {
     ASSERT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), f), bytes.size());
     std::fclose(f);
   }
-  for (int level : {0, 2}) {
-    const fs::path out = dir / ("c" + std::to_string(level) + ".ppm");
-    const std::string command = std::string(PUPWAVE_CLI) + " decompress -q --level " + std::to_string(level) +
-                                " " + pw.string() + " " + out.string();
-    ASSERT_EQ(std::system(command.c_str()), 0);
-    EXPECT_TRUE(cli::read_image(out).samples == decode_image(bytes, level).samples) << level;
-  }
+  for (const char* format : {".ppm", ".png"})
+    for (int level : {0, 2}) {
+      const fs::path out = dir / ("c" + std::to_string(level) + format);
+      const std::string command = std::string(PUPWAVE_CLI) + " decompress -q --level " +
+                                  std::to_string(level) + " " + pw.string() + " " + out.string();
+      ASSERT_EQ(std::system(command.c_str()), 0);
+      EXPECT_TRUE(cli::read_image(out).samples == decode_image(bytes, level).samples) << format << level;
+    }
   fs::remove_all(dir);
 }
 

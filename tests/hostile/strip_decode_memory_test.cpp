@@ -1,6 +1,6 @@
-// `pupwave decompress` to PGM decodes strip by strip: an 8192 x 8192 grey image (tiles of the
-// camera photograph) decodes under an address-space limit that the whole-image decoder, which
-// holds the image in float (256 MiB here), exceeds; the pixels are decode_image's.
+// `pupwave decompress` to PGM and to PNG decodes strip by strip: an 8192 x 8192 grey image
+// (tiles of the camera photograph) decodes under an address-space limit that the whole-image
+// decoder, which holds the image in float (256 MiB here), exceeds; the pixels are decode_image's.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -34,7 +34,7 @@ std::vector<std::uint8_t> tiled_camera() {
   return pixels;
 }
 
-TEST(StripDecodeMemory, LargeGreyImageDecodesToPgmUnderAnAddressSpaceLimit) {
+TEST(StripDecodeMemory, LargeGreyImageDecodesToPgmAndPngUnderAnAddressSpaceLimit) {
   const fs::path dir = fs::temp_directory_path() / ("pupwave_strip_memory_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::vector<std::uint8_t> bytes;
@@ -68,6 +68,12 @@ TEST(StripDecodeMemory, LargeGreyImageDecodesToPgmUnderAnAddressSpaceLimit) {
   std::size_t differing = 0;
   for (std::size_t i = 0; i < raster.size(); ++i) differing += float(raster[i]) != expected.samples[i];
   EXPECT_EQ(differing, 0u);
+
+  const fs::path png = dir / "tiled.png";
+  const auto png_strips =
+      testing::run_cli_bounded({"decompress", "-q", "--threads", "2", pw, png}, 60.0, kLimit);
+  EXPECT_EQ(png_strips.exit_code, 0) << png_strips.output;
+  EXPECT_TRUE(cli::read_image(png).samples == expected.samples);
   fs::remove_all(dir);
 }
 

@@ -281,6 +281,10 @@ TEST(PngIo, HostileHeadersAreRefused) {
   expect_read_error(dir / "huge.png", "too large");
   put_bytes(dir / "wide.png", png_file(0x7fffffff, 1, 8, 0, 0, raw_rows(1, 8, 0)));
   expect_read_error(dir / "wide.png", "wide.png");
+  // Within kMaxImageSamples but more than deflate could expand the file to: refused before the
+  // 1.6 GB of samples are allocated.
+  put_bytes(dir / "claims.png", png_file(20000, 20000, 8, 0, 0, raw_rows(1, 8, 0)));
+  expect_read_error(dir / "claims.png", "cannot hold the 20000x20000 image");
 }
 
 // --- the CLI ---
