@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "codec/image/encode_stats.h"
 #include "codec/image/image_codec.h"
-#include "codec/image/image_encoder_pc.h"
 #include "tools/image_io.h"
 #include "transforms/executor.h"
 
@@ -47,8 +47,8 @@ PC_CPU("camera.png", camera);
 PC_CPU("chelsea.png", chelsea);
 PC_CPU("coffee.png", coffee);
 
-// One line per photograph and target: passes, trims (pc_trims_of_last_encode), and the size as a fraction of
-// the budget (bpp) or the PSNR reached (dB).
+// One line per photograph and target: passes, trims, abandoned share (EncodeStats' pc figures), and the size
+// as a fraction of the budget (bpp) or the PSNR reached (dB).
 int print_passes(std::vector<std::string> names) {
   if (names.empty()) names.assign(std::begin(kPhotos), std::end(kPhotos));
   std::printf("photo target passes trims abandoned result\n");
@@ -64,10 +64,12 @@ int print_passes(std::vector<std::string> names) {
         o.target = target;
         o.entropy = pupwave::EntropyCoder::pc;
         o.measure_psnr = false;
+        pupwave::EncodeStats stats;
+        o.stats = &stats;
         const auto r = pupwave::encode_image(image, o);
-        const int passes = pupwave::pc_passes_of_last_encode();
-        const int trims = pupwave::pc_trims_of_last_encode();
-        const double abandoned = pupwave::pc_abandoned_share_of_last_encode();
+        const int passes = stats.pc_passes;
+        const int trims = stats.pc_trims;
+        const double abandoned = stats.pc_abandoned_share;
         const double budget = std::floor(target * double(image.plane_size()) / 8.0);
         std::printf("%s %g%s %d %d %.2f %.5f\n", name.c_str(), target, bpp ? "bpp" : "dB", passes, trims,
                     abandoned, bpp ? double(r.bytes.size()) / budget : r.psnr);

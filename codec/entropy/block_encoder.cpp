@@ -16,7 +16,7 @@ template <bool Track>
 class BitPlaneEncoder {
  public:
   BitPlaneEncoder(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
-                  const Extent& size, unsigned orientation, double delta)
+                  const Extent& size, unsigned orientation, double delta, ContextTally* tally)
       : m_(magnitude),
         negative_(negative),
         state_(size, orientation),
@@ -24,7 +24,7 @@ class BitPlaneEncoder {
         flag_row_(size[0] + 2),
         delta_(delta),
         q_(magnitude.size()),
-        tally_(active_block_tally()),
+        tally_(tally),
         prior_class_(prior_class_of(orientation)) {
     for (std::size_t i = 0; i < q_.size(); ++i) {
       if (!(m_[i] < float(1u << kMaxBitPlanes)))
@@ -50,7 +50,7 @@ class BitPlaneEncoder {
       cleanup_pass(p);
       finish_pass(out);
     }
-    if (tally_ != nullptr) add_to_tally();
+    if (tally_ != nullptr) tally_->add(prior_class_, starts_);
     if constexpr (!Track) {
       out.committed = rc_.finish();
       return out;
@@ -74,19 +74,10 @@ class BitPlaneEncoder {
     gain_ += (m - before) * (m - before) - (m - after) * (m - after);
   }
 
-  // Codes `bit` in context ctx (kept for prior training while a BlockTallyScope lives).
+  // Codes `bit` in context ctx (kept for prior training when the caller passed a tally).
   void code(RangeEncoder& rc, int bit, int ctx) {
-    if (tally_ != nullptr && seen_[std::size_t(ctx)] < kTallyWindow) {
-      start_[std::size_t(ctx)] |= std::uint32_t(bit) << seen_[std::size_t(ctx)];
-      ++seen_[std::size_t(ctx)];
-    }
+    if (tally_ != nullptr) starts_.record(ctx, bit);
     rc.encode(bit, state_.models[std::size_t(ctx)]);
-  }
-  void add_to_tally() {
-    const std::lock_guard lock(block_tally_mutex());
-    for (std::size_t k = 0; k < std::size_t(kBlockContexts); ++k)
-      if (seen_[k] != 0) ++tally_->starts[prior_class_][k][tally_key(start_[k], seen_[k])];
-    ++tally_->blocks;
   }
 
   void finish_pass(EncodedBlock& out) {
@@ -193,10 +184,9 @@ class BitPlaneEncoder {
   RangeEncoder rc_;
   double gain_ = 0.0;
   int passes_coded_ = 0;
-  ContextTally* tally_;                                // null unless prior training counts bits
-  std::size_t prior_class_;                            // band class of the block (ctx_priors.h)
-  std::array<std::uint8_t, kBlockContexts> seen_{};    // bits kept per context (<= kTallyWindow)
-  std::array<std::uint32_t, kBlockContexts> start_{};  // and the bits themselves
+  ContextTally* tally_;      // null unless prior training counts bits
+  std::size_t prior_class_;  // band class of the block (ctx_priors.h)
+  BlockStarts starts_;       // the bits kept for tally_
 };
 
 }  // namespace
@@ -207,17 +197,17 @@ std::vector<std::uint8_t> EncodedBlock::codeword(int n) const {
 }
 
 EncodedBlock encode_block(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
-                          const Extent& size, unsigned orientation, double delta) {
+                          const Extent& size, unsigned orientation, double delta, ContextTally* tally) {
   if (magnitude.size() != size[0] * size[1] * size[2] || negative.size() != magnitude.size())
     throw std::invalid_argument("encode_block: coefficient count does not match the block size");
-  return BitPlaneEncoder<true>(magnitude, negative, size, orientation, delta).run();
+  return BitPlaneEncoder<true>(magnitude, negative, size, orientation, delta, tally).run();
 }
 
 WholeBlock encode_block_whole(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
-                              const Extent& size, unsigned orientation, double delta) {
+                              const Extent& size, unsigned orientation, double delta, ContextTally* tally) {
   if (magnitude.size() != size[0] * size[1] * size[2] || negative.size() != magnitude.size())
     throw std::invalid_argument("encode_block: coefficient count does not match the block size");
-  BitPlaneEncoder<false> encoder(magnitude, negative, size, orientation, delta);
+  BitPlaneEncoder<false> encoder(magnitude, negative, size, orientation, delta, tally);
   EncodedBlock coded = encoder.run();
   return WholeBlock{coded.planes, encoder.passes_coded(), std::move(coded.committed)};
 }

@@ -13,6 +13,8 @@
 
 namespace pupwave {
 
+struct ContextTally;
+
 // A quantization index beyond the coder's 2^kMaxBitPlanes range: coefficients too large for the
 // step, as unstable filter banks produce after many levels. Callers may retry with fewer levels.
 class IndexRangeError : public std::invalid_argument {
@@ -39,10 +41,12 @@ struct EncodedBlock {
 // |coefficient| / step (its integer part is the quantization index), `negative[i]` the sign,
 // in block order (x fastest, then y, then z) over `size`. `orientation` is the subband's
 // (bit a = high-pass along axis a). `delta` (0..1) is the reconstruction offset inside a
-// quantization bin the decoder will use; the distortion estimates assume it.
+// quantization bin the decoder will use; the distortion estimates assume it. A non-null `tally`
+// (prior training, block_tally.h) gets the block's first bits per context added.
 // Throws IndexRangeError (a std::invalid_argument) if an index reaches 2^kMaxBitPlanes.
 EncodedBlock encode_block(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
-                          const Extent& size, unsigned orientation, double delta);
+                          const Extent& size, unsigned orientation, double delta,
+                          ContextTally* tally = nullptr);
 
 // A block coded with every pass as one codeword (no truncation points kept).
 struct WholeBlock {
@@ -54,6 +58,7 @@ struct WholeBlock {
 // The same codeword as encode_block's with every pass, without the truncation points and
 // distortion estimates (lossless, fixed-step and trial encodes need only the codeword).
 WholeBlock encode_block_whole(std::span<const float> magnitude, std::span<const std::uint8_t> negative,
-                              const Extent& size, unsigned orientation, double delta);
+                              const Extent& size, unsigned orientation, double delta,
+                              ContextTally* tally = nullptr);
 
 }  // namespace pupwave

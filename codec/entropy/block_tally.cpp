@@ -1,26 +1,12 @@
 #include "codec/entropy/block_tally.h"
 
-#include <atomic>
-#include <stdexcept>
-
 namespace pupwave {
-namespace {
-std::atomic<ContextTally*> g_tally{nullptr};
-}  // namespace
 
-BlockTallyScope::BlockTallyScope(ContextTally& tally) {
-  ContextTally* none = nullptr;
-  if (!g_tally.compare_exchange_strong(none, &tally))
-    throw std::logic_error("BlockTallyScope: one is already active");
-}
-
-BlockTallyScope::~BlockTallyScope() { g_tally.store(nullptr); }
-
-ContextTally* active_block_tally() { return g_tally.load(std::memory_order_acquire); }
-
-std::mutex& block_tally_mutex() {
-  static std::mutex m;
-  return m;
+void ContextTally::add(std::size_t band_class, const BlockStarts& block) {
+  const std::lock_guard lock(mutex_);
+  for (std::size_t k = 0; k < std::size_t(kBlockContexts); ++k)
+    if (block.seen[k] != 0) ++starts[band_class][k][tally_key(block.bits[k], block.seen[k])];
+  ++blocks;
 }
 
 }  // namespace pupwave

@@ -16,6 +16,8 @@
 
 namespace pupwave {
 
+struct EncodeStats;  // encode_stats.h
+
 enum class RateMode : std::uint8_t {
   psnr,      // smallest file whose PSNR (all channels, against the input) reaches target dB
   bpp,       // best quality within target bits per pixel (whole file, all channels)
@@ -56,6 +58,9 @@ struct EncodeOptions {
   // does not grow with the image; false holds each component whole instead. The bytes are
   // the same either way (tests compare the two).
   bool strip_encode = true;
+  // Where the encode adds its statistics (encode_stats.h); null: none are kept. The bytes never
+  // depend on it.
+  EncodeStats* stats = nullptr;
 };
 
 struct EncodeResult {

@@ -19,6 +19,7 @@
 #include "codec/entropy/block_encoder.h"
 #include "codec/error.h"
 #include "codec/image/budget_trim.h"
+#include "codec/image/encode_stats.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_encoder_ht.h"
 #include "codec/image/image_encoder_lc.h"
@@ -176,7 +177,8 @@ CodedImage code_blocks(ImagePlan& plan, bool keep = false, std::optional<double>
       plan, keep, [] { return false; },
       [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
         const CodeBlock& b = plan.blocks[i];
-        EncodedBlock coded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+        EncodedBlock coded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta,
+                                          context_tally(plan.stats));
         const int n = coded.pass_count();
         every[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(coded.size(n))};
         auto hull = rd_hull(coded);
@@ -258,8 +260,9 @@ bool lossless_clearly_over(ImagePlan& plan, std::size_t byte_limit) {
       plan, false, [&] { return total.load(std::memory_order_relaxed) > byte_limit; },
       [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
         const CodeBlock& b = plan.blocks[i];
-        const std::size_t size =
-            encode_block_whole(magnitude, negative, b.size, b.orientation, plan.header.delta).codeword.size();
+        const std::size_t size = encode_block_whole(magnitude, negative, b.size, b.orientation,
+                                                    plan.header.delta, context_tally(plan.stats))
+                                     .codeword.size();
         bytes_in[band_of(b)] += size;
         sampled_in[band_of(b)] += b.count();
         total += size;
@@ -289,7 +292,8 @@ std::optional<std::vector<std::uint8_t>> code_every_pass(
       plan, false, [&] { return over.load(std::memory_order_relaxed); },
       [&](std::size_t i, const std::vector<float>& magnitude, const std::vector<std::uint8_t>& negative) {
         const CodeBlock& b = plan.blocks[i];
-        WholeBlock coded = encode_block_whole(magnitude, negative, b.size, b.orientation, plan.header.delta);
+        WholeBlock coded = encode_block_whole(magnitude, negative, b.size, b.orientation, plan.header.delta,
+                                              context_tally(plan.stats));
         const int n = coded.passes;
         const std::size_t size = coded.codeword.size();
         entries[i] = {n > 0 ? coded.planes : 0, n, std::uint32_t(size)};
@@ -545,7 +549,8 @@ bool pull_isolated_coefficients(const ImagePlan& plan, CodedImage& coded, const 
     const CodeBlock& b = plan.blocks[i];
     if (pull_isolated(magnitude, b.size, plane, plan.header.delta, lambda * kIsolatedBytes / scale[i]) == 0)
       return;
-    EncodedBlock recoded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta);
+    EncodedBlock recoded = encode_block(magnitude, negative, b.size, b.orientation, plan.header.delta,
+                                        context_tally(plan.stats));
     coded.hulls[i] = scale_hull(rd_hull(recoded), scale[i]);
     coded.blocks[i] = KeptBlock(std::move(recoded));
     ++changed;

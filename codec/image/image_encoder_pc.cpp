@@ -26,6 +26,7 @@
 #include "codec/entropy/pc_priors.h"
 #include "codec/error.h"
 #include "codec/format/container.h"
+#include "codec/image/encode_stats.h"
 #include "codec/image/image_components.h"
 #include "codec/image/lc_parent.h"
 #include "codec/image/pc_decoder.h"
@@ -133,6 +134,11 @@ struct Coder {
   // projection set in the pass), which a search then takes as a calibration only. None for
   // --step and --psnr.
   std::function<bool(Pass&)> checkpoint;
+  // The search's cost so far (EncodeStats' pc figures; trims also decide when a search stops
+  // trying them): whole passes, trims, and the samples of abandoned passes in passes.
+  int passes = 0;
+  int trims = 0;
+  double abandoned_share = 0.0;
 };
 
 // The Cb block of Cr block i (same band, same place).
@@ -251,13 +257,9 @@ void by_resolution(const ImagePlan& plan, const F& f, const std::vector<std::siz
 // Every block coded at base step exp(t) into the coder's planes (the blocks tile them, so
 // nothing is cleared between passes). Throws IndexRangeError when an index leaves the coder's
 // range.
-thread_local int passes_coded = 0;
-thread_local int trims_coded = 0;
-thread_local double abandoned_share = 0.0;  // samples coded by abandoned passes, in passes
-
 Pass code_pass(Coder& coder, double t) {
   ImagePlan& plan = coder.plan;
-  ++passes_coded;
+  ++coder.passes;
   set_base_step(plan, std::exp(t));
   Pass p;
   p.t = t;
@@ -296,8 +298,8 @@ Pass code_pass(Coder& coder, double t) {
     for (const std::vector<std::size_t>& part : parts) {
       if (checked && coder.checkpoint(p)) {
         p.abandoned = true;
-        --passes_coded;
-        abandoned_share += double(coded) / double(plan.samples);
+        --coder.passes;
+        coder.abandoned_share += double(coded) / double(plan.samples);
         return p;
       }
       plan.executor->run(part.size(), [&](std::size_t k) {
@@ -522,7 +524,7 @@ std::optional<Pass> trim(Coder& coder, Pass p, double goal, double tolerance) {
           }
         },
         blocks);
-    ++trims_coded;
+    ++coder.trims;
     if (out_of_range) return std::nullopt;
     std::size_t data = 0;
     for (const auto& w : p.words) data += w.size();
@@ -562,7 +564,7 @@ std::optional<Pass> with_band_step(Coder& coder, const Pass& p, std::size_t band
       out_of_range = true;
     }
   });
-  ++trims_coded;
+  ++coder.trims;
   if (out_of_range) return std::nullopt;
   std::size_t data = 0;
   for (const auto& w : r.words) data += w.size();
@@ -671,9 +673,9 @@ std::optional<Pass> search(Coder& coder, double goal, double tolerance, bool bel
     if (fits && close(p->score)) return best;
     if (below && trims_left > 0 &&
         !p->abandoned) {  // a budget missed by a little: a trim of a few bands may land it
-      const int coded = trims_coded;
+      const int coded = coder.trims;
       if (std::optional<Pass> trimmed = trim(coder, *p, goal, tolerance)) return trimmed;
-      if (trims_coded > coded) --trims_left;  // tried and missed: bytes this jumpy (small images) stop trims
+      if (coder.trims > coded) --trims_left;  // tried and missed: bytes this jumpy (small images) stop trims
     }
     // The pass on the side it lies of the goal (the bracket narrows).
     Pass last;
@@ -729,20 +731,34 @@ EncodeResult result_of(Coder& coder, Pass& p, std::optional<double> psnr) {
                             psnr ? psnr : std::optional<double>(std::nan("")));
 }
 
+// Adds the coder's counts to the caller's stats however the encode ends (a PSNR target beyond
+// reach throws after its passes, and the caller may then code lossless).
+class StatsReport {
+ public:
+  StatsReport(const Coder& coder, EncodeStats* stats) : coder_(coder), stats_(stats) {}
+  ~StatsReport() {
+    if (stats_ == nullptr) return;
+    stats_->pc_passes += coder_.passes;
+    stats_->pc_trims += coder_.trims;
+    stats_->pc_abandoned_share += coder_.abandoned_share;
+  }
+  StatsReport(const StatsReport&) = delete;
+  StatsReport& operator=(const StatsReport&) = delete;
+
+ private:
+  const Coder& coder_;
+  EncodeStats* stats_;
+};
+
 }  // namespace
 
-int pc_passes_of_last_encode() { return passes_coded; }
-int pc_trims_of_last_encode() { return trims_coded; }
-double pc_abandoned_share_of_last_encode() { return abandoned_share; }
-
 EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
-  passes_coded = trims_coded = 0;
-  abandoned_share = 0.0;
   if (plan.header.reversible || options.mode == RateMode::lossless)
     throw std::invalid_argument("the pc coder codes lossy streams only (--bpp, --psnr or --step)");
   plan.header.delta = std::round(kPcDelta * 65536.0) / 65536.0;  // as the header stores it
   transform_all_components(plan);
   Coder coder{image, plan, {}, std::nan(""), {}, {}, {}};
+  const StatsReport report(coder, plan.stats);
   const double finest = std::log(plan.peak * kFinestStep), coarsest = std::log(plan.peak * kCoarsestStep);
   if (options.mode == RateMode::step) {
     Pass p = code_pass(coder, std::log(options.target));

@@ -161,6 +161,7 @@ ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
   check_precision(image, o, plan.peak);
   plan.executor = o.executor != nullptr ? o.executor : &default_executor();
   plan.measure_psnr = o.measure_psnr;
+  plan.stats = o.stats;
   plan.source = image;
   if (reversible)
     h.steps.assign(plan.bands.size() * h.channels, 1.0f);

@@ -58,6 +58,7 @@ struct ImagePlan {
   double peak = 1.0;                   // PSNR peak of the input
   const Executor* executor = nullptr;  // EncodeOptions::executor, resolved (never null)
   bool measure_psnr = true;            // EncodeOptions::measure_psnr
+  EncodeStats* stats = nullptr;        // EncodeOptions::stats (null: none kept)
   // Analysis reach of the transform when components are transformed by strips
   // (EncodeOptions::strip_encode, integer images, local analysis), else 0.
   std::size_t strip_reach = 0;

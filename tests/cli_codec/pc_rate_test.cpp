@@ -12,8 +12,8 @@
 #include "codec/entropy/pc_groups.h"
 #include "codec/entropy/pc_priors.h"
 #include "codec/format/container.h"
+#include "codec/image/encode_stats.h"
 #include "codec/image/image_codec.h"
-#include "codec/image/image_encoder_pc.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/image_view.h"
 #include "codec/image/lc_parent.h"
@@ -35,12 +35,20 @@ const char* const kPhotos[] = {"astronaut.png", "camera.png", "chelsea.png", "co
 // A pc encode's options (photo_crops.h).
 EncodeOptions pc(RateMode mode, double target) { return test::pc_options(mode, target); }
 
+// The same, adding the encode's statistics to `stats`.
+EncodeOptions pc(RateMode mode, double target, EncodeStats& stats) {
+  EncodeOptions o = pc(mode, target);
+  o.stats = &stats;
+  return o;
+}
+
 TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
   int passes = 0, searches = 0, trimmed = 0;
   for (const char* name : kPhotos) {
     const Image img = photo(name);
     for (double bpp : {0.125, 0.25, 0.5, 1.0, 2.0}) {
-      const EncodeResult r = encode_image(img, pc(RateMode::bpp, bpp));
+      EncodeStats stats;
+      const EncodeResult r = encode_image(img, pc(RateMode::bpp, bpp, stats));
       const double budget = std::floor(bpp * double(img.plane_size()) / 8.0);
       EXPECT_LE(double(r.bytes.size()), budget) << name << " at " << bpp;
       EXPECT_GE(double(r.bytes.size()), 0.995 * budget) << name << " at " << bpp;
@@ -49,9 +57,9 @@ TEST(PcRate, BudgetsAreMetWithinHalfAPercentInAFewPasses) {
           << name << " at " << bpp;
       // At 0.125 bpp the bytes jump by up to 1% between steps 0.1% apart (RDOQ choices flipping), so
       // landing in the window can take a search 6 passes (camera with RDOQ's neighbour term).
-      EXPECT_LE(pc_passes_of_last_encode(), 6) << name << " at " << bpp;
-      passes += pc_passes_of_last_encode();
-      trimmed += pc_trims_of_last_encode() > 0;
+      EXPECT_LE(stats.pc_passes, 6) << name << " at " << bpp;
+      passes += stats.pc_passes;
+      trimmed += stats.pc_trims > 0;
       ++searches;
     }
   }
@@ -73,11 +81,12 @@ TEST(PcRate, SearchesCostUnderOneAndSixTenthsPasses) {
   for (const char* name : kPhotos) {
     const Image img = photo(name);
     for (double bpp : {0.125, 0.25, 0.5, 1.0, 2.0}) {
-      encode_image(img, pc(RateMode::bpp, bpp));
-      passes += pc_passes_of_last_encode();
-      trims += pc_trims_of_last_encode();
-      abandoned += pc_abandoned_share_of_last_encode();
-      EXPECT_LT(pc_abandoned_share_of_last_encode(), 0.5)
+      EncodeStats stats;
+      encode_image(img, pc(RateMode::bpp, bpp, stats));
+      passes += stats.pc_passes;
+      trims += stats.pc_trims;
+      abandoned += stats.pc_abandoned_share;
+      EXPECT_LT(stats.pc_abandoned_share, 0.5)
           << name << " at " << bpp;  // at most two, each before a quarter of the samples
       ++searches;
     }
@@ -93,10 +102,11 @@ TEST(PcRate, PsnrTargetsTakeAboutTwoPasses) {
   for (const char* name : {"astronaut.png", "coffee.png"})
     for (double target : {32.0, 38.0}) {
       const Image img = photo(name);
-      const EncodeResult r = encode_image(img, pc(RateMode::psnr, target));
+      EncodeStats stats;
+      const EncodeResult r = encode_image(img, pc(RateMode::psnr, target, stats));
       EXPECT_GE(r.psnr, target) << name;
       EXPECT_LE(r.psnr, target + 0.05) << name;
-      passes += pc_passes_of_last_encode();
+      passes += stats.pc_passes;
     }
   EXPECT_LE(passes, 10);
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <random>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "codec/entropy/block_contexts.h"
@@ -163,19 +164,19 @@ TEST(BlockCoder, PriorModelsStartAtTheirPriorWithWeight) {
 }
 
 // Prior training (tools/train/train_priors.cpp) keeps, per block and context, the first
-// kTallyWindow bits coded, in the block's band class, only while a scope is alive: a block of
-// all-ones magnitudes codes one run bit, a 1 (the next columns have significant neighbours).
-TEST(BlockCoder, TallyKeepsTheFirstBitsOfEachContextWhileAScopeLives) {
+// kTallyWindow bits coded, in the block's band class, in the tally the caller passes (none by
+// default), from the tracked and the whole-codeword encoder alike, without changing the
+// codeword: a block of all-ones magnitudes codes one run bit, a 1 (the next columns have
+// significant neighbours).
+TEST(BlockCoder, TallyKeepsTheFirstBitsOfEachContextOfTheBlocksPassedIt) {
   const Extent size{64, 64, 1};
   const Coefficients c = make_coefficients(size, 6.0, 4);
   ContextTally tally;
-  {
-    const BlockTallyScope scope(tally);
-    EXPECT_THROW(BlockTallyScope{tally}, std::logic_error);
-    encode_block(c.magnitude, c.negative, size, 3, 0.5);  // high-pass in x and y: class 2
-    encode_block(c.magnitude, c.negative, size, 3, 0.5);
-  }
-  encode_block(c.magnitude, c.negative, size, 0, 0.5);  // no scope: not kept
+  const EncodedBlock plain = encode_block(c.magnitude, c.negative, size, 3, 0.5);         // not kept
+  const EncodedBlock kept = encode_block(c.magnitude, c.negative, size, 3, 0.5, &tally);  // class 2
+  const WholeBlock whole = encode_block_whole(c.magnitude, c.negative, size, 3, 0.5, &tally);
+  EXPECT_EQ(kept.committed, plain.committed);
+  EXPECT_EQ(whole.codeword, plain.codeword(plain.pass_count()));
   EXPECT_EQ(tally.blocks, 2u);
   std::size_t contexts_seen = 0;
   for (std::size_t k = 0; k < std::size_t(kBlockContexts); ++k) {
@@ -193,12 +194,30 @@ TEST(BlockCoder, TallyKeepsTheFirstBitsOfEachContextWhileAScopeLives) {
   ContextTally ones;
   const std::vector<float> one(64 * 64, 1.0f);
   const std::vector<std::uint8_t> positive(64 * 64, 0);
-  {
-    const BlockTallyScope scope(ones);
-    encode_block(one, positive, size, 0, 0.5);
-  }
+  encode_block(one, positive, size, 0, 0.5, &ones);
+  EXPECT_EQ(ones.blocks, 1u);
   ASSERT_EQ(ones.starts[0][kRunContext].size(), 1u);
   EXPECT_EQ(ones.starts[0][kRunContext].begin()->first, tally_key(1, 1));
+}
+
+// Blocks coded on several threads at once into one tally are each counted once: the tally of
+// 4 x 25 codings of one block holds each of its context starts 100 times.
+TEST(BlockCoder, TallyCountsBlocksCodedOnSeveralThreadsAtOnce) {
+  const Extent size{64, 64, 1};
+  const Coefficients c = make_coefficients(size, 6.0, 7);
+  ContextTally once, shared;
+  encode_block(c.magnitude, c.negative, size, 1, 0.5, &once);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&] {
+      for (int n = 0; n < 25; ++n) encode_block(c.magnitude, c.negative, size, 1, 0.5, &shared);
+    });
+  for (std::thread& t : threads) t.join();
+  EXPECT_EQ(shared.blocks, 100u);
+  for (std::size_t k = 0; k < std::size_t(kBlockContexts); ++k) {
+    ASSERT_EQ(shared.starts[1][k].size(), once.starts[1][k].size());
+    for (const auto& [key, blocks] : once.starts[1][k]) EXPECT_EQ(shared.starts[1][k][key], 100 * blocks);
+  }
 }
 
 TEST(BlockCoder, GarbageCodewordsDecodeWithoutFault) {

@@ -20,6 +20,7 @@
 
 #include "codec/entropy/block_tally.h"
 #include "codec/entropy/ctx_priors.h"
+#include "codec/image/encode_stats.h"
 #include "codec/image/image_codec.h"
 #include "image_list.h"
 #include "tools/image_io.h"
@@ -58,10 +59,10 @@ Args parse(int argc, char** argv) {
   return a;
 }
 
-// Codes every image at every rate with a tally alive.
-ContextTally tally_of(const std::vector<fs::path>& images, const Args& args) {
-  ContextTally tally;
-  const pupwave::BlockTallyScope scope(tally);
+// Codes every image at every rate, adding the blocks' context starts to `tally`.
+void add_tally(const std::vector<fs::path>& images, const Args& args, ContextTally& tally) {
+  pupwave::EncodeStats stats;
+  stats.tally = &tally;
   for (const auto& path : images) {
     const pupwave::Image image = pupwave::cli::read_image(path);
     for (const double bpp : args.bpps) {
@@ -70,11 +71,11 @@ ContextTally tally_of(const std::vector<fs::path>& images, const Args& args) {
       options.target = bpp;
       options.effort = args.effort;
       options.measure_psnr = false;
+      options.stats = &stats;
       pupwave::encode_image(image, options);
     }
     std::fprintf(stderr, "%s: %llu blocks so far\n", path.string().c_str(), (unsigned long long)tally.blocks);
   }
-  return tally;
 }
 
 using Starts = std::vector<std::pair<std::uint64_t, std::uint64_t>>;  // (tally key, blocks)
@@ -202,7 +203,8 @@ void print_table(const Table& fitted, const char* name) {
 int main(int argc, char** argv) {
   try {
     const Args args = parse(argc, argv);
-    const ContextTally train = tally_of(args.train, args);
+    ContextTally train;
+    add_tally(args.train, args, train);
     Tables t;
     for (std::size_t c = 0; c < 3; ++c)
       for (std::size_t k = 0; k < std::size_t(kBlockContexts); ++k) {
@@ -214,7 +216,11 @@ int main(int argc, char** argv) {
     print_table(t.fitted, "fitted to the least code length");
     print_table(t.mean16, "mean of the first 16 bits, worth 7");
     report("training images", train, t);
-    if (!args.check.empty()) report("check images", tally_of(args.check, args), t);
+    if (!args.check.empty()) {
+      ContextTally check;
+      add_tally(args.check, args, check);
+      report("check images", check, t);
+    }
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "train_priors: %s\n", e.what());
