@@ -130,7 +130,7 @@ VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const Deco
   h.levels = int(r.u8());
   h.brick_log2 = int(r.u8());
   h.block_log2 = int(r.u8());
-  h.coder = r.u8();
+  h.coder = std::uint8_t(r.u8());
   require_stream(reversible <= 1, "volume stream: reversible flag");
   h.reversible = reversible == 1;
   require_stream(h.coder <= 1 && !(h.coder == 1 && h.reversible), "volume stream: coefficient coder");

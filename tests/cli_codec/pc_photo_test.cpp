@@ -180,8 +180,8 @@ TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
   const Image img = crop(photo("chelsea.png"), 64, 48);
   auto bytes = encode_image(img, pc(RateMode::bpp, 1.0)).bytes;
   ASSERT_EQ(bytes[4], kStreamVersion);
-  for (const std::uint8_t version :
-       {4, 5}) {  // pc streams of version 4 had other contexts, of 5 no CfL and flat starts
+  // pc streams of version 4 had other contexts, of 5 no CfL and flat starts
+  for (const std::uint8_t version : {std::uint8_t(4), std::uint8_t(5)}) {
     bytes[4] = version;
     try {
       (void)decode_image(bytes);
@@ -198,7 +198,7 @@ TEST(PcPhotos, StreamsOfAnOlderVersionAreRefusedByName) {
   plain.target = 1.0;
   auto other = encode_image(img, plain).bytes;
   const auto current = decode_image(other).samples;
-  for (const std::uint8_t version : {4, 5}) {
+  for (const std::uint8_t version : {std::uint8_t(4), std::uint8_t(5)}) {
     other[4] = version;
     EXPECT_EQ(decode_image(other).samples, current);
   }

@@ -48,9 +48,9 @@ TEST_P(PsnrMonotone, HigherTargetNeverGivesASmallerFile) {
 INSTANTIATE_TEST_SUITE_P(SweepFailures, PsnrMonotone,
                          ::testing::Values(Step{"chelsea.png", 20.4}, Step{"chelsea.png", 21.5},
                                            Step{"chelsea.png", 26.2}, Step{"camera.png", 58.7}),
-                         [](const ::testing::TestParamInfo<Step>& info) {
-                           std::string name = std::string(info.param.image) + "_" +
-                                              std::to_string(int(info.param.target * 10.0 + 0.5));
+                         [](const ::testing::TestParamInfo<Step>& param) {
+                           std::string name = std::string(param.param.image) + "_" +
+                                              std::to_string(int(param.param.target * 10.0 + 0.5));
                            name.erase(name.find('.'), 4);  // chelsea.png_204 -> chelsea_204
                            return name;
                          });
