@@ -53,8 +53,11 @@ void validate_coding(const StreamHeader& h) {
   require_stream(h.colour != ColourTransform::ict || !h.reversible, "ICT in a reversible stream");
   require_stream(h.colour != ColourTransform::rct || h.reversible, "RCT in an irreversible stream");
   require_stream(!h.reversible || is_integer(h.type), "reversible coding of float samples");
-  require_stream(h.entropy != EntropyCoder::lc || h.reversible, "lc coder in an irreversible stream");
-  require_stream(h.entropy != EntropyCoder::pc || !h.reversible, "pc coder in a reversible stream");
+  const CoderTraits& coder = coder_traits(h.entropy);
+  require_stream(coder.lossy || h.reversible,
+                 [&] { return std::string(coder.name) + " coder in an irreversible stream"; });
+  require_stream(coder.lossless || !h.reversible,
+                 [&] { return std::string(coder.name) + " coder in a reversible stream"; });
   require_stream(h.transfer == Transfer::linear || !is_integer(h.type), "transfer on integer samples");
   require_stream(h.levels >= 0 && h.levels <= kMaxStreamLevels,
                  [&] { return "level count " + std::to_string(h.levels); });
@@ -79,11 +82,11 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
   h.channels = r.u8();
   validate_shape(h);
   const std::uint32_t type = r.u8(), colour = r.u8(), entropy = r.u8(), reversible = r.u8();
-  require_stream(type <= 3 && colour <= 2 && entropy <= 4 && reversible <= 1,
-                 "sample type, colour or coder field");
+  const auto coder = coder_from_byte(entropy);
+  require_stream(type <= 3 && colour <= 2 && coder && reversible <= 1, "sample type, colour or coder field");
   h.type = SampleType(type);
   h.colour = ColourTransform(colour);
-  h.entropy = EntropyCoder(entropy);
+  h.entropy = *coder;
   h.reversible = reversible != 0;
   h.levels = int(r.u8());
   for (auto& k : h.block_log2) k = r.u8();
@@ -150,17 +153,6 @@ void locate_codewords(ParsedStream& s) {
 }
 
 }  // namespace
-
-const char* to_string(EntropyCoder coder) {
-  switch (coder) {
-    case EntropyCoder::ebcot: return "ebcot";
-    case EntropyCoder::zstd: return "zstd";
-    case EntropyCoder::ht: return "ht";
-    case EntropyCoder::lc: return "lc";
-    case EntropyCoder::pc: return "pc";
-  }
-  return "unknown";
-}
 
 namespace {
 

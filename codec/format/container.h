@@ -13,6 +13,7 @@
 
 #include "codec/entropy/block_index.h"
 #include "codec/entropy/codeblocks.h"
+#include "codec/entropy/coder_traits.h"
 #include "codec/format/decode_limits.h"
 #include "codec/image/colour.h"
 #include "codec/image/image.h"
@@ -37,12 +38,6 @@ inline constexpr std::size_t kMaxAxisExtent = std::size_t(1) << 16;
 inline constexpr std::size_t kMaxTotalSamples = std::size_t(1) << 31;
 inline constexpr std::size_t kMaxSpecLength = 4096;
 inline constexpr std::uint32_t kMaxChannels = 64;
-
-// ebcot: bit-plane (block_encoder.h); zstd: zstd_blocks.h; ht: high-throughput (ht_blocks.h);
-// lc: lossless context coder (lc_blocks.h), reversible streams only; pc: parent-context
-// coefficient coder (pc_blocks.h), irreversible streams only.
-enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1, ht = 2, lc = 3, pc = 4 };
-const char* to_string(EntropyCoder coder);
 
 // Domain the samples are coded in (float images): see codec/image/transfer.h.
 enum class Transfer : std::uint8_t { linear = 0, log2 = 1 };

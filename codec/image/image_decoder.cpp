@@ -34,9 +34,9 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
   const StreamHeader& h = s.header;
   std::vector<T> values(b.count(), T(0));
   if (e.passes == 0) return values;
-  // lc blocks read their parent band: decode_lc_into decodes them, never one at a time here.
-  if (h.entropy == EntropyCoder::lc || h.entropy == EntropyCoder::pc)
-    throw std::logic_error("lc and pc blocks decode with their parent bands");
+  // lc and pc blocks read their parent band: their band decoders decode them, never one at a time here.
+  if (!coder_traits(h.entropy).blocks_alone)
+    throw std::logic_error(std::string(to_string(h.entropy)) + " blocks decode with their parent bands");
   if (h.entropy != EntropyCoder::ebcot) {
     std::vector<std::int32_t> q(b.count());
     if (h.entropy == EntropyCoder::zstd)

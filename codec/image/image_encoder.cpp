@@ -832,20 +832,29 @@ struct CodedDomain {
   std::vector<NonFiniteSample> nonfinite;
 };
 
+// A coder that is not embedded codes at one step; each runs its own search over the step for a
+// rate target (lc codes lossless only).
+EncodeResult encode_not_embedded(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
+  switch (options.entropy) {
+    case EntropyCoder::zstd: return encode_zstd(image, plan, options);
+    case EntropyCoder::ht: return encode_ht(image, plan, options);
+    case EntropyCoder::lc: return encode_lc(image, plan);
+    case EntropyCoder::pc: return encode_pc(image, plan, options);
+    case EntropyCoder::ebcot: break;
+  }
+  throw std::logic_error("the bit-plane coder's rate is set by truncation");
+}
+
 EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& options,
                                 const CodedDomain& domain) {
   EncodeOptions planned = options;
-  // lc and pc code every band of up to 1024 x 1024 as one block (their models learn over it).
-  if (options.entropy == EntropyCoder::lc || options.entropy == EntropyCoder::pc)
-    planned.block_size = kLcBlockSize;
+  if (coder_traits(options.entropy).whole_bands) planned.block_size = kLcBlockSize;
   ImagePlan plan = plan_image(image, planned);
   plan.header.transfer = domain.transfer;
   plan.header.nonnegative = domain.nonnegative;
   plan.header.nonfinite = domain.nonfinite;
-  if (options.entropy == EntropyCoder::zstd) return encode_zstd(image, plan, options);
-  if (options.entropy == EntropyCoder::ht) return encode_ht(image, plan, options);
-  if (options.entropy == EntropyCoder::lc) return encode_lc(image, plan);
-  if (options.entropy == EntropyCoder::pc) return encode_pc(image, plan, options);
+  if (!coder_traits(options.entropy).embedded) return encode_not_embedded(image, plan, options);
+  // The embedded bit-plane coder: every pass coded, then truncated to the target (PCRD).
   switch (options.mode) {
     case RateMode::lossless: {
       return make_encode_result(image, plan, *code_every_pass(plan), 1.0);
@@ -894,8 +903,8 @@ std::optional<EncodeResult> encode_exact(const ImageView& image, const EncodeOpt
   exact.transform = "cdf53";
   exact.target = 0.0;
   exact.measure_psnr = false;
-  // The pc coder is lossy only: its lossless alternative is the bit-plane coder's, as the default's.
-  if (exact.entropy == EntropyCoder::pc) exact.entropy = EntropyCoder::ebcot;
+  // A lossy-only coder's lossless alternative is the bit-plane coder's, as the default's.
+  if (!coder_traits(exact.entropy).lossless) exact.entropy = EntropyCoder::ebcot;
   ImagePlan plan = plan_image(image, exact);
   EncodeResult r;
   if (exact.entropy == EntropyCoder::zstd) {
@@ -967,10 +976,12 @@ EncodeResult encode_any(const ImageView& image, const EncodeOptions& options) {
   if (options.mode != RateMode::lossless && !(options.target > 0.0 && std::isfinite(options.target)))
     throw std::invalid_argument("rate target must be positive and finite");
   if (options.effort < 1 || options.effort > 2) throw std::invalid_argument("effort must be 1 or 2");
-  if (options.entropy == EntropyCoder::lc && options.mode != RateMode::lossless)
-    throw std::invalid_argument("the lc coder codes lossless only (--lossless)");
-  if (options.entropy == EntropyCoder::pc && options.mode == RateMode::lossless)
-    throw std::invalid_argument("the pc coder codes lossy only (--bpp, --psnr or --step)");
+  const CoderTraits& coder = coder_traits(options.entropy);
+  if (!coder.lossy && options.mode != RateMode::lossless)
+    throw std::invalid_argument(std::string("the ") + coder.name + " coder codes lossless only (--lossless)");
+  if (!coder.lossless && options.mode == RateMode::lossless)
+    throw std::invalid_argument(std::string("the ") + coder.name +
+                                " coder codes lossy only (--bpp, --psnr or --step)");
   if (is_integer(image.type)) {
     if (options.mode != RateMode::lossless) return encode_capped(image, options);
     return encode_in_domain(image, options, CodedDomain{});

@@ -320,10 +320,8 @@ std::vector<std::vector<std::size_t>> blocks_by_band(const ParsedStream& s) {
   return by_band;
 }
 
-// Whether each block decodes on its own: lc and pc blocks need their parent bands decoded first.
-bool blocks_decode_alone(const StreamHeader& h) {
-  return h.entropy != EntropyCoder::lc && h.entropy != EntropyCoder::pc;
-}
+// Whether each block decodes on its own (some coders' blocks need their parent bands first).
+bool blocks_decode_alone(const StreamHeader& h) { return coder_traits(h.entropy).blocks_alone; }
 
 // Columns the PSNR check synthesizes at a time: its memory (each level's window and its
 // bands' block rows, for every component) grows with this, not with the image's width. The
