@@ -119,6 +119,7 @@ def test_reduce_falls_back_to_pillow_where_no_level_matches():
     data = saved(png("camera"), bpp=2)
     with Image.open(io.BytesIO(data)) as im:
         im.load()
+        assert im.draft("L", (64, 64)) is None and im.size == (512, 512)  # too late once loaded
         loaded = im.copy()
         pillow = Image.Image.reduce(loaded, 2)
         assert np.array_equal(np.asarray(im.reduce(2)), np.asarray(pillow))  # loaded pixels may be edited
