@@ -21,8 +21,8 @@ packages=(
   # sqrt(3) meshes: OpenMesh for the subdivision cross-check test, Draco and the CGAL sample
   # meshes for bench/mesh_vs_draco.py
   libopenmesh-dev draco libcgal-demo
-  # the Python module and its tests (docs/api.md)
-  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
+  # the Python module, its Pillow plugin and their tests (docs/api.md)
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-pil
   # the HDF5 filter plugin, numcodecs codec and their MPI/Dask tests and bench (docs/hdf5.md)
   libhdf5-dev libhdf5-openmpi-dev hdf5-tools python3-h5py python3-h5py-mpi openmpi-bin python3-mpi4py
   python3-zarr python3-numcodecs python3-dask python3-distributed hdf5-filter-plugin-zfp-serial

@@ -8,6 +8,7 @@ decompress_volume(data, level=0) -> numpy.ndarray
 info(data) -> dict
 hdf5_filter(max_error=None, bpv=None, lossless=False) -> dict of h5py create_dataset keywords (docs/hdf5.md)
 pupwave.numcodecs.Pupwave: the numcodecs codec "pupwave" for Zarr (import pupwave.numcodecs registers it)
+pupwave.pillow: with Pillow installed, PIL.Image opens and saves .pw images (format "PUPWAVE")
 
 Arrays of any bool, integer or float dtype are taken (pupwave.dtypes says how those the codec
 does not store itself are coded) and decode to their own dtype. Bad arguments raise ValueError
@@ -20,6 +21,12 @@ import numpy as np
 from . import _pupwave, dtypes
 from ._pupwave import __version__
 from .hdf5 import hdf5_filter
+
+try:
+    from . import pillow  # registers the Pillow plugin
+except ImportError as e:  # Pillow absent (or broken): pupwave works without the plugin
+    if not (e.name or "").startswith("PIL"):
+        raise
 
 __all__ = ["compress", "decompress", "compress_volume", "decompress_volume", "info", "hdf5_filter", "__version__"]
 
