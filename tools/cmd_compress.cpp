@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "codec/api/api_coder.h"
 #include "codec/api/api_image_options.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "codec/volume/volume_codec.h"
+#include "pupwave/pupwave.hpp"
 #include "tools/atomic_file.h"
 #include "tools/cli_numbers.h"
 #include "tools/cli_stdio.h"
