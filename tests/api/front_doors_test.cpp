@@ -99,7 +99,7 @@ std::vector<std::uint8_t> c_stream(const Photo& p, const api::ImageOptions& o) {
     if (c == nullptr) c = pupwave_options_create();
     return c;
   };
-  // Each setter's status (gtest's EXPECT_* are not single statements, so no unbraced ifs).
+  // Setter statuses, checked after the calls (EXPECT_EQ under an unbraced if draws -Wdangling-else).
   std::vector<pupwave_status> statuses;
   if (o.rate != defaults.rate || o.target != defaults.target)
     statuses.push_back(pupwave_options_set_rate(set(), pupwave_rate(o.rate), o.target));
@@ -150,8 +150,8 @@ TEST_P(FrontDoors, CliCAndCppGiveTheSameBytes) {
 }
 
 // Settings whose stream the decoder would reject (band steps beyond the header's floats) are
-// refused by every door: the CLI writes no file, as the APIs return no stream.
-TEST_F(FrontDoorRefusals, ASettingTheDecoderRejectsIsRefusedByEveryDoor) {
+// refused by the CLI, which writes no file, as by the C++ API (which C and Python call).
+TEST_F(FrontDoorRefusals, ASettingTheDecoderRejectsIsRefusedByTheCliAsByTheApi) {
   const Photo photo = read_photo("camera.png");
   const fs::path out = dir_ / "step.pw";
   const std::string command = std::string(PUPWAVE_CLI) + " compress -q '" + photo.path + "' '" +
