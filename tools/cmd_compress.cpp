@@ -16,10 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "codec/api/api_coder.h"
+#include "codec/api/api_image_options.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "codec/volume/volume_codec.h"
+#include "pupwave/pupwave.hpp"
 #include "tools/atomic_file.h"
 #include "tools/cli_numbers.h"
 #include "tools/cli_stdio.h"
@@ -214,21 +215,25 @@ std::string lossless_reason(const CompressOptions& opt, const EncodeOptions& enc
   return text;
 }
 
-// Turns the mutually exclusive rate flags into the library's mode (default: --psnr 40).
-void set_rate(const CompressOptions& opt, EncodeOptions& enc) {
-  if (opt.lossless) {
-    enc.mode = RateMode::lossless;
-    if (opt.transform.empty()) enc.transform = "cdf53";
-  } else if (opt.bpp > 0.0) {
-    enc.mode = RateMode::bpp;
-    enc.target = opt.bpp;
-  } else if (opt.step > 0.0) {
-    enc.mode = RateMode::step;
-    enc.target = opt.step;
-  } else {
-    enc.mode = RateMode::psnr;
-    enc.target = opt.psnr > 0.0 ? opt.psnr : 40.0;
-  }
+// The flags that decide what is coded (rate, transform, levels, coder, effort) as the library's
+// image options, whose resolve_image_options supplies the defaults (--psnr 40; cdf97, or cdf53
+// for --lossless): the CLI codes what the APIs code for the same settings.
+pupwave::api::ImageOptions image_options(const CompressOptions& opt) {
+  using pupwave::api::ImageRate;
+  pupwave::api::ImageOptions o;
+  if (opt.lossless)
+    o.rate = ImageRate::lossless;
+  else if (opt.bpp > 0.0)
+    o.rate = ImageRate::bpp, o.target = opt.bpp;
+  else if (opt.step > 0.0)
+    o.rate = ImageRate::step, o.target = opt.step;
+  else if (opt.psnr > 0.0)
+    o.rate = ImageRate::psnr, o.target = opt.psnr;
+  o.transform = opt.transform;
+  o.levels = opt.levels;
+  o.coder = coder_of(opt);
+  if (opt.effort != 0) o.effort = opt.effort;
+  return o;
 }
 
 // ", PSNR x dB" when measured; for a float image coded in the log domain the metric the
@@ -267,31 +272,23 @@ void run_compress(const CompressOptions& opt) {
                  "float attributes are stored): %s\n",
                  image.metadata.not_kept.size(), opt.input.c_str(), names.c_str());
   }
-  EncodeOptions enc;
-  if (!opt.transform.empty()) enc.transform = opt.transform;
-  enc.levels = opt.levels;
-  // auto: the library's default coder choice (encode_image_default_coder: lc for lossless, pc or
-  // the bit-plane coder for rate targets).
-  if (const auto coder = pupwave::api::entropy_coder(coder_of(opt))) enc.entropy = *coder;
   // Only the bit-plane coder's byte-budget search has more than one effort; elsewhere the option
   // would be ignored.
   if (opt.effort != 0 && !(opt.bpp > 0.0))
     throw std::invalid_argument("--effort applies to --bpp targets only");
   if (opt.effort != 0 && coder_of(opt) != pupwave::api::Coder::ebcot)
     throw std::invalid_argument("--effort applies to the bit-plane coder: add --entropy ebcot");
-  enc.effort = opt.effort == 0 ? 1 : opt.effort;
+  EncodeOptions enc = pupwave::api::resolve_image_options(image_options(opt));
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
   enc.measure_psnr = opt.report_psnr;
   enc.keep_nonfinite = opt.keep_nonfinite;
   enc.transfer = opt.transfer == "linear" ? Transfer::linear : Transfer::log2;
-  set_rate(opt, enc);
+  if (!image.metadata.empty()) enc.metadata = &image.metadata;
   const auto start = std::chrono::steady_clock::now();
   const EncodeResult r = [&] {
     ElapsedLine line("pupwave: compressing " + opt.input, !opt.verbosity.quiet);
-    if (!image.metadata.empty()) enc.metadata = &image.metadata;
-    return coder_of(opt) == pupwave::api::Coder::automatic ? encode_image_default_coder(view, enc)
-                                                           : encode_image(view, enc);
+    return pupwave::api::encode_resolved(view, enc, coder_of(opt));
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   refuse_if_strict(opt.strict, image_target_miss(enc, r, view.width, view.height, "the stream"), opt.output);

@@ -1,5 +1,5 @@
 #pragma once
-// Internal to the library and the CLI: the public Coder (pupwave/pupwave.hpp) as the codec's
+// Internal to the library: the public Coder (pupwave/pupwave.hpp) as the codec's
 // EntropyCoder, from the one table of coders in api_coder.cpp.
 
 #include <optional>

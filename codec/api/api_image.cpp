@@ -8,9 +8,8 @@
 #include <memory>
 
 #include "codec/api/api_attributes.h"
-#include "codec/api/api_coder.h"
 #include "codec/api/api_errors.h"
-#include "codec/format/container.h"
+#include "codec/api/api_image_options.h"
 #include "codec/image/image_codec.h"
 #include "pupwave/pupwave.hpp"
 
@@ -72,44 +71,6 @@ void store_interleaved(const pupwave::Image& image, std::byte* out) {
   }
 }
 
-EncodeOptions encode_options(const ImageOptions& options) {
-  EncodeOptions enc;
-  enc.levels = options.levels;
-  enc.entropy = entropy_coder(options.coder).value_or(EntropyCoder::ebcot);
-  enc.effort = options.effort;
-  enc.measure_psnr = false;
-  enc.target = options.target;
-  switch (options.rate) {
-    case ImageRate::psnr: enc.mode = RateMode::psnr; break;
-    case ImageRate::bpp: enc.mode = RateMode::bpp; break;
-    case ImageRate::step: enc.mode = RateMode::step; break;
-    case ImageRate::lossless:
-      enc.mode = RateMode::lossless;
-      enc.target = 1.0;
-      break;
-    default: detail::fail("unknown rate mode " + std::to_string(int(options.rate)));
-  }
-  if (options.rate != ImageRate::lossless && !(options.target > 0.0 && std::isfinite(options.target)))
-    detail::fail("rate target must be a positive finite number, got " + std::to_string(options.target));
-  enc.transform = !options.transform.empty()            ? options.transform
-                  : options.rate == ImageRate::lossless ? "cdf53"
-                                                        : "cdf97";
-  if (options.levels < -1 || options.levels > 32)
-    detail::fail("levels must be -1 (default) or 0..32, got " + std::to_string(options.levels));
-  return enc;
-}
-
-// Never hand out a stream the decoder rejects: extreme targets (e.g. step 1e30, whose band
-// steps overflow the header's floats) made the encoder write one. Parsing costs a CRC pass.
-void check_decodable(std::span<const std::uint8_t> bytes) {
-  try {
-    parse_container(bytes, 0);
-  } catch (const DecodeError& e) {
-    throw Error(Status::unsupported, std::string("these settings give a stream the decoder rejects (") +
-                                         e.what() + "); use a less extreme target");
-  }
-}
-
 }  // namespace
 
 std::size_t bytes_per_sample(SampleType type) {
@@ -135,7 +96,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOpti
 std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOptions& options,
                                          TargetOutcome& outcome) {
   return detail::translate_errors([&] {
-    EncodeOptions enc = encode_options(options);
+    EncodeOptions enc = resolve_image_options(options);
     detail::check_attributes(options.attributes);
     const ImageMetadata metadata = detail::image_metadata(options.attributes);
     if (!metadata.empty()) enc.metadata = &metadata;  // no META chunk without attributes
@@ -151,10 +112,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, const ImageOpti
     view.channel_stride = image.channel_stride;
     view.pixel_stride = image.pixel_stride;
     view.row_stride = image.row_stride;
-    // No coder chosen: the default choice, as the CLI makes it (lc for lossless).
-    EncodeResult r =
-        options.coder == Coder::automatic ? encode_image_default_coder(view, enc) : encode_image(view, enc);
-    check_decodable(r.bytes);
+    EncodeResult r = encode_resolved(view, enc, options.coder);
     outcome.met = r.target_met;
     outcome.achieved = enc.mode == RateMode::bpp    ? r.bpp
                        : enc.mode == RateMode::psnr ? r.psnr

@@ -112,6 +112,28 @@ def test_chunk_payload_is_the_pupwave_volume_stream(wmag91):
     assert np.array_equal(pupwave.decompress_volume(stored[4:]), Pupwave(max_error=0.01).decode(stored).reshape(data.shape))
 
 
+@pytest.mark.parametrize("kwargs,dtype", [(dict(max_error=0.01), "f4"), (dict(bpv=2.0), "f4"), (dict(lossless=True), "u2")])
+def test_chunk_payload_is_the_library_stream_but_for_the_grid_name(wmag91, kwargs, dtype):
+    """The codec resolves max_error, bpv and lossless as the library's compress_volume does
+    (transform, levels, bricks, bound): its payload is that stream but for the grid's name, 'chunk'
+    (the library's is 'volume', one byte longer), so the coded grid has the same bytes count and
+    decodes to the same values."""
+    import re
+
+    import pupwave
+    data = wmag91[:40, :50, :60].copy()
+    data = data if dtype == "f4" else (data * 1000).astype(dtype)
+    payload = Pupwave(**kwargs).encode(data)[4:]
+    stream = pupwave.compress_volume(data, **kwargs)
+    assert len(stream) - len(payload) == len("volume") - len("chunk")
+    ours, theirs = pupwave.info(payload), pupwave.info(stream)
+    for key in ("transform", "levels", "lossless", "max_error", "shape", "dtype"):
+        assert ours[key] == theirs[key], key
+    grid_bytes = re.compile(r"; (\d+) bytes \(")  # the grid line's coded size, in `pupwave info`'s words
+    assert grid_bytes.findall(ours["description"]) == grid_bytes.findall(theirs["description"])
+    assert np.array_equal(pupwave.decompress_volume(payload), pupwave.decompress_volume(stream))
+
+
 def test_damaged_chunks_are_refused_not_crashing(wmag91):
     """Flipped bytes and truncations anywhere in a chunk: a clean ValueError naming the chunk,
     never a crash (the stream's checks catch nearly all; a flip of the kind byte to "raw" cannot

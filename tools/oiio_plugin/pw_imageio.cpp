@@ -2,19 +2,22 @@
 // (iinfo, oiiotool, ...) reads and writes Pupwave files. Reading with the config pupwave:mip = 1
 // exposes every resolution level as a MIP level (level k = 1/2^k size, decoded from only the
 // data it needs). Writing takes the rate from the attributes pupwave:bpp, pupwave:psnr,
-// pupwave:step, pupwave:lossless (or "compression" = "lossless"), pupwave:transform and
-// pupwave:levels; default PSNR 40 dB.
+// pupwave:step, pupwave:lossless (or "compression" = "lossless"), pupwave:transform,
+// pupwave:levels, pupwave:entropy and pupwave:effort (the CLI's flags of those names); default
+// PSNR 40 dB.
 // It is built on the public C++ API (pupwave/pupwave.hpp). Not to be confused with
 // tools/oiio/ (libpupwave_oiio.so), the CLI's own loader for PNG/TIFF/EXR input files.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,14 +41,30 @@ TypeDesc oiio_type(api::SampleType type) {
   return TypeDesc::FLOAT;
 }
 
-// A numeric attribute of any type (oiiotool --attrib stores "1" as int, "1.5" as float); 0 if absent.
-float number(const ImageSpec& spec, const char* name) {
+// A numeric attribute of any type (oiiotool --attrib stores "1" as int, "1.5" as float); 0 if
+// absent. A float attribute is read as the shortest decimal that gives it back (35.3f as 35.3,
+// not 35.2999992), the number that was written, so a target is the CLI's to the bit.
+double number(const ImageSpec& spec, const char* name) {
   const ParamValue* p = spec.find_attribute(name);
-  if (!p) return 0.0f;
-  if (p->type() == TypeInt) return float(*static_cast<const int*>(p->data()));
-  if (p->type() == TypeFloat) return *static_cast<const float*>(p->data());
-  if (p->type() == TypeString) return std::strtof(p->get_string().c_str(), nullptr);
-  return 0.0f;
+  if (!p) return 0.0;
+  if (p->type() == TypeInt) return *static_cast<const int*>(p->data());
+  if (p->type() == TypeFloat) {
+    char text[32];
+    const char* end = std::to_chars(text, text + sizeof text, *static_cast<const float*>(p->data())).ptr;
+    double value = 0.0;
+    std::from_chars(text, end, value);
+    return value;
+  }
+  if (p->type() == TypeString) return std::strtod(p->get_string().c_str(), nullptr);
+  return 0.0;
+}
+
+// The coder of a pupwave:entropy name (the CLI's --entropy names, any case).
+api::Coder coder(const std::string& name) {
+  const auto found = api::coder_from_name(name);
+  if (!found)
+    throw std::invalid_argument("unknown pupwave:entropy " + name + " (one of " + api::coder_names() + ")");
+  return *found;
 }
 
 bool has_signature(const std::string& path) {
@@ -69,7 +88,7 @@ class PwInput final : public ImageInput {
   // resolutions as MIP levels. Off by default: oiiotool copies every MIP level of an input
   // to its output, which scanline EXR and PNG cannot hold (`oiiotool x.pw -o y.exr` fails).
   bool open(const std::string& name, ImageSpec& newspec, const ImageSpec& config) override {
-    mip_ = number(config, "pupwave:mip") != 0.0f;
+    mip_ = number(config, "pupwave:mip") != 0.0;
     return open_stream(name, newspec);
   }
 
@@ -211,18 +230,20 @@ class PwOutput final : public ImageOutput {
   api::ImageOptions options() const {
     api::ImageOptions o;
     const std::string compression = m_spec.get_string_attribute("compression");
-    if (const float bpp = number(m_spec, "pupwave:bpp"); bpp != 0.0f) {
+    if (const double bpp = number(m_spec, "pupwave:bpp"); bpp != 0.0) {
       o.rate = api::ImageRate::bpp, o.target = bpp;
-    } else if (const float psnr = number(m_spec, "pupwave:psnr"); psnr != 0.0f) {
+    } else if (const double psnr = number(m_spec, "pupwave:psnr"); psnr != 0.0) {
       o.rate = api::ImageRate::psnr, o.target = psnr;
-    } else if (const float step = number(m_spec, "pupwave:step"); step != 0.0f) {
+    } else if (const double step = number(m_spec, "pupwave:step"); step != 0.0) {
       o.rate = api::ImageRate::step, o.target = step;
-    } else if (number(m_spec, "pupwave:lossless") != 0.0f || compression == "lossless" ||
+    } else if (number(m_spec, "pupwave:lossless") != 0.0 || compression == "lossless" ||
                compression == "pupwave:lossless") {
       o.rate = api::ImageRate::lossless;
     }
     o.transform = m_spec.get_string_attribute("pupwave:transform");
     o.levels = m_spec.find_attribute("pupwave:levels") ? int(number(m_spec, "pupwave:levels")) : -1;
+    o.coder = coder(m_spec.get_string_attribute("pupwave:entropy", "auto"));
+    if (m_spec.find_attribute("pupwave:effort")) o.effort = int(number(m_spec, "pupwave:effort"));
     return o;
   }
 

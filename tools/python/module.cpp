@@ -136,7 +136,7 @@ int count_set(std::initializer_list<bool> flags) {
 }
 
 py::bytes compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
-                   std::optional<double> step, bool lossless, const std::string& transform,
+                   std::optional<double> step, bool lossless, const std::optional<std::string>& transform,
                    std::optional<int> levels, int effort, const std::string& entropy,
                    const std::map<std::string, std::string>& attributes) {
   const py::array a = as_array(obj);
@@ -160,8 +160,7 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   if (psnr) options.rate = api::ImageRate::psnr, options.target = *psnr;
   if (step) options.rate = api::ImageRate::step, options.target = *step;
   if (lossless) options.rate = api::ImageRate::lossless;
-  // The default transform becomes the reversible cdf53 for lossless, as in the CLI.
-  options.transform = lossless && transform == "cdf97" ? "cdf53" : transform;
+  options.transform = transform.value_or("");  // none: the library's default (cdf53 for lossless)
   options.levels = levels.value_or(-1);
   options.effort = effort;
   options.attributes = to_attributes(attributes);
@@ -307,7 +306,7 @@ PYBIND11_MODULE(_pupwave, m) {
   });
   m.attr("__version__") = PUPWAVE_VERSION_STRING;
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
-        py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = "cdf97",
+        py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = py::none(),
         py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "auto",
         py::arg("attributes") = std::map<std::string, std::string>{},
         "pupwave.compress on a uint8/uint16/float16/float32 array; attributes (str -> str) are stored "

@@ -1,6 +1,6 @@
 """Pupwave wavelet codec for numpy arrays (docs/api.md).
 
-compress(array, bpp=None, psnr=None, step=None, lossless=False, transform="cdf97", levels=None, effort=1,
+compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, levels=None, effort=1,
          entropy="auto") -> bytes
 decompress(data, level=0) -> numpy.ndarray
 compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False) -> bytes
@@ -31,10 +31,11 @@ except ImportError as e:  # Pillow absent (or broken): pupwave works without the
 __all__ = ["compress", "decompress", "compress_volume", "decompress_volume", "info", "hdf5_filter", "__version__"]
 
 
-def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform="cdf97", levels=None, effort=1,
+def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, levels=None, effort=1,
              entropy="auto"):
     """Compress a 2-D (grey) or HxWxC (C 1..64) array to .pw bytes. At most one of bpp, psnr, step,
-    lossless (default psnr=40). entropy: auto (pc for rate targets on integer images up to
+    lossless (default psnr=40). transform: a spec as the CLI's --transform; None: cdf97, or cdf53 for
+    lossless (the library's default). entropy: auto (pc for rate targets on integer images up to
     4 Mpixel, else ebcot; lc for lossless), ebcot, pc, lc, ht or zstd (the CLI's --entropy names). effort=2 (with entropy='ebcot'):
     bpp targets search three base steps per band (about 1% smaller, up to 1.9x slower)."""
     stored, attributes = dtypes.to_stored(array, dtypes.IMAGE)
