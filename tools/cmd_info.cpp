@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
 #include "tools/cli_stdio.h"

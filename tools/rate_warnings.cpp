@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "tools/cli_numbers.h"
 #include "tools/cli_stdio.h"
 

@@ -12,18 +12,18 @@ namespace {
 
 struct CoderRow {
   Coder coder;
-  std::string_view name;
   std::optional<EntropyCoder> entropy;  // nullopt: the default choice
 };
 
-// One row per coder, in the order of enum Coder (and of the C API's PUPWAVE_CODER_*).
+// One row per coder, in the order of enum Coder (and of the C API's PUPWAVE_CODER_*); the names
+// are the stream's (codec/entropy/coder_traits.h), and "auto" for the default choice.
 constexpr std::array<CoderRow, 6> kCoders{{
-    {Coder::automatic, "auto", std::nullopt},
-    {Coder::ebcot, "ebcot", EntropyCoder::ebcot},
-    {Coder::pc, "pc", EntropyCoder::pc},
-    {Coder::lc, "lc", EntropyCoder::lc},
-    {Coder::ht, "ht", EntropyCoder::ht},
-    {Coder::zstd, "zstd", EntropyCoder::zstd},
+    {Coder::automatic, std::nullopt},
+    {Coder::ebcot, EntropyCoder::ebcot},
+    {Coder::pc, EntropyCoder::pc},
+    {Coder::lc, EntropyCoder::lc},
+    {Coder::ht, EntropyCoder::ht},
+    {Coder::zstd, EntropyCoder::zstd},
 }};
 
 const CoderRow& row(Coder coder) {
@@ -31,6 +31,8 @@ const CoderRow& row(Coder coder) {
   if (i >= kCoders.size()) detail::fail("unknown entropy coder " + std::to_string(i));
   return kCoders[i];
 }
+
+std::string_view name_of(const CoderRow& r) { return r.entropy ? to_string(*r.entropy) : "auto"; }
 
 bool same_name(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
@@ -40,17 +42,17 @@ bool same_name(std::string_view a, std::string_view b) {
 
 }  // namespace
 
-std::string_view coder_name(Coder coder) { return row(coder).name; }
+std::string_view coder_name(Coder coder) { return name_of(row(coder)); }
 
 std::optional<Coder> coder_from_name(std::string_view name) {
   for (const CoderRow& r : kCoders)
-    if (same_name(r.name, name)) return r.coder;
+    if (same_name(name_of(r), name)) return r.coder;
   return std::nullopt;
 }
 
 std::string coder_names() {
   std::string names;
-  for (const CoderRow& r : kCoders) names += (names.empty() ? "" : ", ") + std::string(r.name);
+  for (const CoderRow& r : kCoders) names += (names.empty() ? "" : ", ") + std::string(name_of(r));
   return names;
 }
 

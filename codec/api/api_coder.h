@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "pupwave/pupwave.hpp"
 
 namespace pupwave::api {

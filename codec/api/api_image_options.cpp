@@ -7,7 +7,7 @@
 
 #include "codec/api/api_coder.h"
 #include "codec/api/api_errors.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 
 namespace pupwave::api {
 namespace {

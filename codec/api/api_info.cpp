@@ -2,7 +2,7 @@
 // validation `pupwave info` does (every checksum verified).
 #include "codec/api/api_attributes.h"
 #include "codec/api/api_errors.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/volume/volume_codec.h"
 #include "codec/volume/volume_format.h"
 #include "pupwave/pupwave.hpp"

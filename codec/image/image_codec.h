@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image.h"
 #include "codec/image/image_view.h"
 #include "transforms/executor.h"

@@ -12,7 +12,7 @@
 #include "codec/entropy/lc_blocks.h"
 #include "codec/entropy/zstd_blocks.h"
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
 #include "codec/image/image_plan.h"

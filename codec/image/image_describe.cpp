@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 
 namespace pupwave {
 namespace {

@@ -25,7 +25,7 @@
 #include "codec/entropy/pc_groups.h"
 #include "codec/entropy/pc_priors.h"
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/encode_stats.h"
 #include "codec/image/image_components.h"
 #include "codec/image/lc_parent.h"

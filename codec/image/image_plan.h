@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "codec/entropy/codeblocks.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "transforms/spec.h"
 

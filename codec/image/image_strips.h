@@ -12,7 +12,7 @@
 #include <optional>
 #include <span>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image.h"
 #include "codec/image/image_view.h"
 #include "transforms/executor.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "codec/entropy/pc_blocks.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "transforms/executor.h"
 
 namespace pupwave {

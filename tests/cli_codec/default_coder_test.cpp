@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "tests/cli_codec/photo_crops.h"
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/format/crc32.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"

@@ -5,7 +5,7 @@
 
 #include <stdexcept>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "photo_crops.h"
 

@@ -11,7 +11,7 @@
 
 #include "codec/entropy/pc_blocks.h"
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
 #include "codec/image/pc_decoder.h"

@@ -12,7 +12,7 @@
 #include "codec/entropy/pc_groups.h"
 #include "codec/entropy/pc_priors.h"
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/lc_parent.h"
 #include "codec/rate/metrics.h"

@@ -11,7 +11,7 @@
 #include "codec/entropy/pc_cfl.h"
 #include "codec/entropy/pc_groups.h"
 #include "codec/entropy/pc_priors.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/encode_stats.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_plan.h"

@@ -8,7 +8,7 @@
 #include "codec/entropy/block_encoder.h"
 #include "codec/entropy/ht_blocks.h"
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "test_images.h"

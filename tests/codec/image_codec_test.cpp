@@ -6,7 +6,7 @@
 #include <tuple>
 
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"

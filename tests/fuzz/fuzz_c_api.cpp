@@ -12,7 +12,7 @@
 
 #include "codec/error.h"
 #include "codec/format/chunks.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/volume/volume_format.h"
 #include "fuzz_check.h"
 #include "pupwave/pupwave.h"

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "codec/error.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/mesh/mesh_codec.h"
 #include "codec/volume/volume_codec.h"
 #include "fuzz_check.h"

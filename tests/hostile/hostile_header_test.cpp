@@ -14,7 +14,7 @@
 #include "codec/entropy/codeblocks.h"
 #include "codec/format/byte_io.h"
 #include "codec/format/chunks.h"
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 #include "codec/volume/volume_codec.h"
 #include "codec/volume/volume_format.h"
 #include "tools/volume_io.h"

@@ -1,4 +1,4 @@
-#include "codec/format/container_extras.h"
+#include "codec/image/image_stream_extras.h"
 
 #include <cmath>
 #include <cstring>

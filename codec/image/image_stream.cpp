@@ -1,4 +1,4 @@
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 
 #include <cmath>
 #include <cstring>
@@ -8,7 +8,7 @@
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
 #include "codec/format/chunks.h"
-#include "codec/format/container_extras.h"
+#include "codec/image/image_stream_extras.h"
 #include "transforms/separable.h"
 #include "transforms/spec.h"
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "codec/format/container.h"
+#include "codec/image/image_stream.h"
 
 namespace pupwave {
 

@@ -1,7 +1,8 @@
 #pragma once
-// The .pw container (docs/bitstream.md): a signature, then chunks
+// The image stream (docs/bitstream.md): a signature, then chunks
 //   HEAD (image and coding parameters), INDX (code-block index), DATA x (levels + 1)
-// each framed as tag, length, payload, CRC-32. DATA chunk r holds the code-blocks of
+// each framed as tag, length, payload, CRC-32 by the chunk layer every stream kind shares
+// (codec/format/chunks.h). DATA chunk r holds the code-blocks of
 // resolution r, so a reduced-resolution decode reads (and checks) only a prefix.
 // The parser treats its input as hostile: every field and length is validated before use.
 

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "codec/error.h"
-#include "codec/format/container_extras.h"
+#include "codec/image/image_stream_extras.h"
 #include "codec/image/image_codec.h"
 
 namespace pupwave {
