@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "codec/api/api_errors.h"
-#include "codec/image/image_stream_extras.h"
 #include "codec/image/image.h"
+#include "codec/image/image_stream_extras.h"
 #include "codec/volume/volume.h"
 #include "pupwave/pupwave.hpp"
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "codec/entropy/codeblocks.h"
-#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_stream.h"
 #include "transforms/spec.h"
 
 namespace pupwave {

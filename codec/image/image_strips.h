@@ -12,8 +12,8 @@
 #include <optional>
 #include <span>
 
-#include "codec/image/image_stream.h"
 #include "codec/image/image.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_view.h"
 #include "transforms/executor.h"
 #include "transforms/transform1d.h"

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "codec/image/image_stream.h"
 #include "codec/image/image.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/image_view.h"
 
 namespace pupwave {

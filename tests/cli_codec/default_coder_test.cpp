@@ -7,8 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_stream.h"
 #include "tests/cli_codec/photo_crops.h"
 
 namespace pupwave::test {

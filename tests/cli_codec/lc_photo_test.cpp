@@ -5,8 +5,8 @@
 
 #include <stdexcept>
 
-#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_stream.h"
 #include "photo_crops.h"
 
 namespace pupwave {

@@ -11,9 +11,9 @@
 
 #include "codec/entropy/pc_blocks.h"
 #include "codec/error.h"
-#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/pc_decoder.h"
 #include "codec/rate/metrics.h"
 #include "photo_crops.h"

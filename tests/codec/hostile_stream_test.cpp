@@ -7,9 +7,9 @@
 
 #include "codec/error.h"
 #include "codec/format/byte_io.h"
-#include "codec/image/image_stream.h"
 #include "codec/format/crc32.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_stream.h"
 #include "test_images.h"
 
 namespace pupwave {

@@ -6,8 +6,8 @@
 #include <tuple>
 
 #include "codec/error.h"
-#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_stream.h"
 #include "codec/image/transfer.h"
 #include "codec/rate/metrics.h"
 #include "test_images.h"

@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "codec/error.h"
-#include "codec/image/image_stream_extras.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_stream_extras.h"
 
 namespace pupwave {
 namespace {

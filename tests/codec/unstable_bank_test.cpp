@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "codec/entropy/block_encoder.h"
-#include "codec/image/image_stream.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_stream.h"
 #include "codec/test_images.h"
 #include "transforms/separable.h"
 
