@@ -11,7 +11,7 @@ jobs=$(nproc)
 
 # The test programs that exercise the decoders and parsers, plus the fuzz targets' corpus
 # runners; tests/hostile is not built (ASan cannot run under an address-space limit).
-asan_tests="codec_tests volcodec_tests cli_tests fuzz_image fuzz_image_level fuzz_volume fuzz_info fuzz_pnm
+asan_tests="codec_tests volcodec_tests cli_tests fuzz_image fuzz_image_level fuzz_volume fuzz_info fuzz_pnm fuzz_png
   fuzz_spec fuzz_mesh fuzz_c_api fuzz_hdf5_chunk"
 # -O1: sanitizer builds compile about twice as fast as at -O3 and still run the tests quickly.
 # Ninja for a new build folder (better parallelism); an existing one keeps its generator.

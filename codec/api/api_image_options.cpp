@@ -23,7 +23,7 @@ RateMode rate_mode(ImageRate rate) {
 }
 
 // Never hand out a stream the decoder rejects: extreme targets (e.g. step 1e30, whose band
-// steps overflow the header's floats) made the encoder write one. Parsing costs a CRC pass.
+// steps overflow the header's floats) give one. Parsing costs a CRC pass.
 void check_decodable(std::span<const std::uint8_t> bytes) {
   try {
     parse_container(bytes, 0);

@@ -1,8 +1,8 @@
 // PNG read and written with libpng (tools/png_io.h) against OpenImageIO's reading of the same
-// files (the module's read, what read_image used for every PNG before): the same samples, type,
-// channels and metadata on the test photographs and on files of every colour type and depth;
-// the kinds left to OpenImageIO still go there; corrupt, truncated and hostile files are clear
-// errors; and the CLI's PNG commands no longer load the OpenImageIO module.
+// files (the module's read): the same samples, type, channels and metadata on the test
+// photographs and on files of every colour type and depth; the kinds left to OpenImageIO go
+// there; corrupt, truncated and hostile files are clear errors; and the CLI's PNG commands do
+// not load the OpenImageIO module.
 #include <gtest/gtest.h>
 #include <unistd.h>
 #include <zlib.h>
