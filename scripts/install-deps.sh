@@ -23,6 +23,8 @@ packages=(
   libopenmesh-dev draco libcgal-demo
   # the Python module, its Pillow plugin and their tests (docs/api.md)
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-pil
+  # pip install of the package (pyproject.toml, setup.py) into a venv, with no package index
+  python3-venv python3-pip python3-setuptools python3-wheel python3-build
   # the HDF5 filter plugin, numcodecs codec and their MPI/Dask tests and bench (docs/hdf5.md)
   libhdf5-dev libhdf5-openmpi-dev hdf5-tools python3-h5py python3-h5py-mpi openmpi-bin python3-mpi4py
   python3-zarr python3-numcodecs python3-dask python3-distributed hdf5-filter-plugin-zfp-serial
