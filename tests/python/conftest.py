@@ -1,9 +1,11 @@
 """Shared fixtures: the CLI (PUPWAVE_CLI), testimages/ and real images read through the CLI's
-PNM conversion (no imaging package needed in Python)."""
+PNM conversion (no imaging package needed in Python), the pip-installed distribution and new
+interpreters that see only it."""
 
 import os
 import pathlib
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -73,3 +75,35 @@ def real_image(cli, tmp_path_factory):
 def wmag():
     """testimages/wmag91.float: 91^3 float32 (x fastest) as a (z, y, x) array."""
     return np.fromfile(TESTIMAGES / "wmag91.float", dtype="<f4").reshape(91, 91, 91)
+
+
+def run_python(code, *args, env=None):
+    """Runs `code` in a new interpreter (this one's, so the venv of ctest's run), with no
+    PYTHONPATH: it sees the installed package only. Returns its stdout; fails on a non-zero exit."""
+    env = {k: v for k, v in (env or os.environ).items() if k != "PYTHONPATH"}
+    done = subprocess.run([sys.executable, "-c", code, *map(str, args)], capture_output=True, text=True, env=env)
+    assert done.returncode == 0, f"exit {done.returncode}\n{done.stdout}\n{done.stderr}"
+    return done.stdout
+
+
+@pytest.fixture(scope="session")
+def installed():
+    """The pip-installed distribution pupwave is imported from (entry points exist only in an
+    installed dist). ctest's python.pytest runs in the venv python.install made and sets
+    PUPWAVE_REQUIRE_INSTALLED, so there a missing install fails; elsewhere (PYTHONPATH=build/python)
+    the tests that need it are skipped."""
+    import importlib.metadata
+
+    import pupwave
+
+    try:
+        dist = importlib.metadata.distribution("pupwave")
+    except importlib.metadata.PackageNotFoundError:
+        dist = None
+    if dist is None or pathlib.Path(dist.locate_file("pupwave/__init__.py")).resolve() != pathlib.Path(
+            pupwave.__file__).resolve():
+        message = f"pupwave is imported from {pupwave.__file__}, not from a pip-installed distribution"
+        if os.environ.get("PUPWAVE_REQUIRE_INSTALLED"):
+            pytest.fail(message)
+        pytest.skip(message)
+    return dist
