@@ -77,10 +77,15 @@ def wmag():
     return np.fromfile(TESTIMAGES / "wmag91.float", dtype="<f4").reshape(91, 91, 91)
 
 
-def run_python(code, *args, env=None):
-    """Runs `code` in a new interpreter (this one's, so the venv of ctest's run), with no
-    PYTHONPATH: it sees the installed package only. Returns its stdout; fails on a non-zero exit."""
-    env = {k: v for k, v in (env or os.environ).items() if k != "PYTHONPATH"}
+# Variables that point Python or the codec into a build tree: unset where only the install may count.
+BUILD_TREE_VARIABLES = ("PYTHONPATH", "HDF5_PLUGIN_PATH", "PUPWAVE_HDF5_PLUGIN")
+
+
+def run_python(code, *args):
+    """Runs `code` in a new interpreter (this one's, so the venv of ctest's run) without
+    BUILD_TREE_VARIABLES: it sees the installed package only. Returns its stdout; fails on a
+    non-zero exit."""
+    env = {k: v for k, v in os.environ.items() if k not in BUILD_TREE_VARIABLES}
     done = subprocess.run([sys.executable, "-c", code, *map(str, args)], capture_output=True, text=True, env=env)
     assert done.returncode == 0, f"exit {done.returncode}\n{done.stdout}\n{done.stderr}"
     return done.stdout

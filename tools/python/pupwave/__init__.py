@@ -6,7 +6,8 @@ decompress(data, level=0) -> numpy.ndarray
 compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False) -> bytes
 decompress_volume(data, level=0) -> numpy.ndarray
 info(data) -> dict
-hdf5_filter(max_error=None, bpv=None, lossless=False) -> dict of h5py create_dataset keywords (docs/hdf5.md)
+hdf5_filter(max_error=None, bpv=None, lossless=False) -> dict of h5py create_dataset keywords (docs/hdf5.md);
+    a pip-installed pupwave ships the HDF5 filter plugin, and importing pupwave registers it with h5py
 pupwave.numcodecs.Pupwave: the numcodecs codec "pupwave" for Zarr (import pupwave.numcodecs registers it)
 pupwave.pillow: with Pillow installed, PIL.Image opens and saves .pw images (format "PUPWAVE")
 
@@ -20,7 +21,9 @@ import numpy as np
 
 from . import _pupwave, dtypes
 from ._pupwave import __version__
-from .hdf5 import hdf5_filter
+from .hdf5 import hdf5_filter, register_plugin
+
+register_plugin()  # h5py finds the packaged HDF5 filter (pip installs) with no HDF5_PLUGIN_PATH
 
 try:
     from . import pillow  # registers the Pillow plugin

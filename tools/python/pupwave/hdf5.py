@@ -1,18 +1,46 @@
 """Keyword arguments for h5py's ``create_dataset`` that select the Pupwave HDF5 filter.
 
-The filter itself is the plugin ``libh5pupwave.so`` (tools/hdf5/, docs/hdf5.md), found by HDF5
-through ``HDF5_PLUGIN_PATH`` (installed into ``P/lib/hdf5/plugins``)::
+The filter itself is the plugin ``libh5pupwave.so`` (tools/hdf5/, docs/hdf5.md). A pip install
+ships it in the package (``pupwave/hdf5_plugin/``), and ``import pupwave`` adds that folder to
+h5py's plugin search path (register_plugin); otherwise HDF5 finds it through ``HDF5_PLUGIN_PATH``
+(installed into ``P/lib/hdf5/plugins`` by CMake)::
 
     f.create_dataset("t", data=a, chunks=(64, 64, 64), **pupwave.hdf5.hdf5_filter(max_error=1e-3))
 """
 
+import importlib.util
 import math
+import os
 import struct
 
 FILTER_ID = 402  # HDF5 testing range 256-511; a registered id must be requested before a release
 MODE_MAX_ERROR = 1
 MODE_BPV = 2
 MODE_LOSSLESS = 3
+PLUGIN_NAME = "libh5pupwave.so"
+# The folder of the plugin in a pip-installed package (setup.py puts it there).
+PACKAGED_PLUGIN_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "hdf5_plugin")
+
+
+def packaged_plugin():
+    """The path of the plugin shipped in the package, or None (a CMake build or install)."""
+    path = os.path.join(PACKAGED_PLUGIN_DIR, PLUGIN_NAME)
+    return path if os.path.isfile(path) else None
+
+
+def register_plugin():
+    """Appends the packaged plugin's folder to h5py's plugin search path (h5py.h5pl), as hdf5plugin
+    does, so that h5py reads and writes filter 402 with no HDF5_PLUGIN_PATH. Returns the folder, or
+    None when there is no packaged plugin or h5py is not installed. Called by ``import pupwave``;
+    registering twice adds the folder once."""
+    if packaged_plugin() is None or importlib.util.find_spec("h5py") is None:
+        return None
+    from h5py import h5pl  # imported only here: pupwave needs no h5py
+
+    folder = os.fsencode(PACKAGED_PLUGIN_DIR)
+    if folder not in (h5pl.get(i) for i in range(h5pl.size())):
+        h5pl.append(folder)
+    return PACKAGED_PLUGIN_DIR
 
 
 def filter_mode(max_error=None, bpv=None, lossless=False):

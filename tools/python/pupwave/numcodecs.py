@@ -3,8 +3,9 @@ the HDF5 filter does (docs/hdf5.md, "Chunk format"), through the plugin library'
 ``pupwave_chunk_encode`` / ``pupwave_chunk_decode`` (ctypes). Registered as ``"pupwave"`` on import.
 
 The library is looked up in ``PUPWAVE_HDF5_PLUGIN`` (a file), then in each directory of
-``HDF5_PLUGIN_PATH``, then in the install prefix (``P/lib/hdf5/plugins`` beside
-``P/lib/python3/dist-packages/pupwave``), then in the build tree (``build/lib/hdf5/plugins``).
+``HDF5_PLUGIN_PATH``, then in the package (``pupwave/hdf5_plugin/``, a pip install), then in the
+install prefix (``P/lib/hdf5/plugins`` beside ``P/lib/python3/dist-packages/pupwave``), then in
+the build tree (``build/lib/hdf5/plugins``).
 """
 
 import ctypes
@@ -16,9 +17,9 @@ from numcodecs.abc import Codec
 from numcodecs.compat import ensure_contiguous_ndarray, ndarray_copy
 from numcodecs.registry import register_codec
 
-from pupwave.hdf5 import filter_mode
+from pupwave.hdf5 import PLUGIN_NAME as _LIBRARY_NAME
+from pupwave.hdf5 import filter_mode, packaged_plugin
 
-_LIBRARY_NAME = "libh5pupwave.so"
 _TYPE_CODES = {"u1": 1, "i1": 2, "u2": 3, "i2": 4, "f4": 5, "f8": 6}
 _CODE_TYPES = {code: np.dtype(name) for name, code in _TYPE_CODES.items()}
 _lib = None
@@ -30,6 +31,8 @@ def _candidates():
     for folder in os.environ.get("HDF5_PLUGIN_PATH", "").split(":"):
         if folder:
             yield os.path.join(folder, _LIBRARY_NAME)
+    if packaged_plugin():
+        yield packaged_plugin()
     here = os.path.dirname(os.path.abspath(__file__))
     yield os.path.normpath(os.path.join(here, "..", "..", "..", "hdf5", "plugins", _LIBRARY_NAME))  # P/lib/python3/dist-packages
     yield os.path.normpath(os.path.join(here, "..", "..", "lib", "hdf5", "plugins", _LIBRARY_NAME))  # build/python
