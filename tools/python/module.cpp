@@ -71,12 +71,19 @@ api::VoxelType voxel_type(const py::array& a) {
                        "; expected float32, float64, uint8 or uint16");
 }
 
-// Element stride of axis `axis` (numpy strides are bytes).
+// `a` itself when the codec can read it in place through its strides (whole elements, none zero
+// along an axis longer than 1), else its C-contiguous copy, made once: record fields (strides
+// that are not whole elements) and broadcast views (stride 0), which the library refuses.
+py::array readable_in_place(const py::array& a) {
+  for (int d = 0; d < a.ndim(); ++d)
+    if (a.strides(d) % a.itemsize() != 0 || (a.strides(d) == 0 && a.shape(d) > 1))
+      return py::module_::import("numpy").attr("ascontiguousarray")(a).cast<py::array>();
+  return a;
+}
+
+// Element stride of axis `axis` (numpy strides are bytes; readable_in_place made them whole).
 std::ptrdiff_t element_stride(const py::array& a, int axis) {
-  const std::ptrdiff_t s = a.strides(axis);
-  if (s % std::ptrdiff_t(a.itemsize()) != 0)
-    throw py::value_error("array strides must be multiples of the item size");
-  return s / std::ptrdiff_t(a.itemsize());
+  return a.strides(axis) / std::ptrdiff_t(a.itemsize());
 }
 
 py::dtype numpy_dtype(const std::string& name) { return py::dtype(name); }
@@ -139,8 +146,10 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
                    std::optional<double> step, bool lossless, const std::optional<std::string>& transform,
                    std::optional<int> levels, int effort, const std::string& entropy,
                    const std::map<std::string, std::string>& attributes) {
-  const py::array a = as_array(obj);
-  const api::SampleType type = image_type(a);
+  const py::array given = as_array(obj);
+  // The dtype first: readable_in_place divides by its (then nonzero) item size.
+  const api::SampleType type = image_type(given);
+  const py::array a = readable_in_place(given);
   if (a.ndim() != 2 && a.ndim() != 3)
     throw py::value_error("expected a 2-D (height, width) or 3-D (height, width, channels) array, got " +
                           std::to_string(a.ndim()) + "-D");
@@ -199,16 +208,12 @@ py::tuple decompress(const py::object& data, int level) {
 py::bytes compress_volume(const py::object& obj, std::optional<double> max_error,
                           std::optional<double> max_error_rel, std::optional<double> bpv, bool lossless,
                           const std::map<std::string, std::string>& attributes) {
-  py::array a = as_array(obj);
-  const api::VoxelType type = voxel_type(a);
+  const py::array given = as_array(obj);
+  // The dtype first: readable_in_place divides by its (then nonzero) item size.
+  const api::VoxelType type = voxel_type(given);
+  const py::array a = readable_in_place(given);
   if (a.ndim() != 3)
     throw py::value_error("expected a 3-D (z, y, x) array, got " + std::to_string(a.ndim()) + "-D");
-  // The codec reads the voxels in place through their strides (in elements); only an array
-  // whose strides are not whole elements, or a broadcast one (stride 0), is copied once.
-  bool whole = true;
-  for (int d = 0; d < 3; ++d)
-    whole = whole && a.strides(d) % a.itemsize() == 0 && (a.strides(d) != 0 || a.shape(d) == 1);
-  if (!whole) a = py::module_::import("numpy").attr("ascontiguousarray")(a).cast<py::array>();
   if (count_set({max_error.has_value(), max_error_rel.has_value(), bpv.has_value(), lossless}) > 1)
     throw py::value_error("give at most one of max_error, max_error_rel, bpv and lossless");
   api::VolumeOptions options;
@@ -224,7 +229,7 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
   options.attributes = to_attributes(attributes);
   api::VolumeView view{
       a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
-  for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = a.strides(d) / a.itemsize();  // (z, y, x)
+  for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = element_stride(a, d);  // (z, y, x)
   std::vector<std::uint8_t> out;
   api::TargetOutcome outcome;
   {
