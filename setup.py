@@ -43,6 +43,8 @@ def cmake_version():
 
 
 def run(command):
+    if shutil.which(command[0]) is None:
+        sys.exit(f"setup.py: {command[0]} not found in PATH (Debian: apt-get install {command[0]})")
     print(" ".join(str(c) for c in command), flush=True)
     subprocess.run([str(c) for c in command], check=True)
 
