@@ -113,6 +113,7 @@ def test_dask_processes_write_and_read_zarr_through_the_entry_point(installed, w
         "import sys, json, numpy as np, numcodecs, dask.array as da\n"
         "from distributed import Client, LocalCluster\n"
         "if __name__ == '__main__':\n"
+        "    assert 'pupwave' not in sys.modules\n"
         "    data, store, config = np.load(sys.argv[1]), sys.argv[2], json.loads(sys.argv[3])\n"
         "    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \\\n"
         "            Client(cluster) as client:\n"
