@@ -368,10 +368,10 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option(
          "--entropy", opt->entropy,
          "entropy coder: auto (the default: lc for --lossless, else pc or ebcot as below), pc (lossy only, "
-         "the default for rate targets on integer images of up to 4 "
+         "the default for rate targets on images of up to 4 "
          "Mpixel: one pass per band with parent contexts, chroma from luma and rate-distortion optimised "
          "quantization; about 10% fewer bits than ebcot at equal PSNR on photographs; holds the "
-         "transformed image), ebcot (bit-plane, the default for larger and float images: encodes 8-bit "
+         "transformed image), ebcot (bit-plane, the default for larger images: encodes 8-bit "
          "PGM/PPM by strips in bounded memory), ht (high-throughput, no arithmetic coding), zstd, or lc "
          "(lossless only, the default with --lossless: weighted prediction and context modelling, the "
          "smallest lossless files)")

@@ -97,8 +97,8 @@ inline EncodeResult encode_image(const Image& image, const EncodeOptions& option
   return encode_image(view_of(image), with_metadata);
 }
 
-// Integer images of up to this many pixels take the pc coder for rate targets by default; larger
-// ones (and float images) the bit-plane coder, whose strip-wise encoder keeps memory bounded
+// Images of up to this many pixels (any sample type) take the pc coder for rate targets by
+// default; larger ones the bit-plane coder, whose strip-wise encoder keeps memory bounded
 // however large the image (pc holds every transformed component and its indices, about 8 bytes
 // a sample: 100 MiB at this size in RGB). bench/results/image-speed-memory.md has the figures.
 inline constexpr std::size_t kPcDefaultPixels = std::size_t(1) << 22;

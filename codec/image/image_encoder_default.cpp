@@ -9,7 +9,7 @@
 namespace pupwave {
 
 bool pc_is_default_for(const ImageView& image) {
-  return is_integer(image.type) && image.plane_size() <= kPcDefaultPixels;
+  return image.plane_size() <= kPcDefaultPixels;
 }
 
 EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions options) {

@@ -74,8 +74,8 @@ pupwave_status pupwave_options_set_threads(pupwave_options* options, unsigned th
 /* Volumes: brick edge (power of two, 8..256). */
 pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick);
 /* Images: the entropy coder, with the names of the CLI's --entropy and Python's entropy=
- * (pupwave_coder_name): AUTO (the default: LC for lossless; for rate targets PC on integer images
- * of up to 4 Mpixel, EBCOT on larger or float ones), EBCOT (bit-plane coder: embedded, bounded
+ * (pupwave_coder_name): AUTO (the default: LC for lossless; for rate targets PC on images of up
+ * to 4 Mpixel, EBCOT on larger ones), EBCOT (bit-plane coder: embedded, bounded
  * memory from 8-bit PGM/PPM files), PC (parent-context coder: the smallest lossy files; lossy
  * only), LC (lossless context coder; lossless only), HT (high-throughput block coder: no
  * arithmetic coding, faster, larger files), ZSTD. */

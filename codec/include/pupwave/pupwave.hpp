@@ -83,8 +83,8 @@ enum class ImageRate : std::uint8_t {
 
 // The image entropy coders. One set of names for every front door: the CLI's --entropy NAME,
 // Python's entropy="NAME" and the C API's PUPWAVE_CODER_* (same order):
-//   auto   lc for lossless; for rate targets pc on integer images of up to 4 Mpixel, ebcot on
-//          larger or float ones
+//   auto   lc for lossless; for rate targets pc on images of up to 4 Mpixel, ebcot on larger
+//          ones
 //   ebcot  bit-plane coder: embedded, bounded memory from 8-bit PGM/PPM; effort 2 applies to it
 //   pc     parent-context coder: the smallest lossy files; lossy only, holds the transformed image
 //   lc     lossless context coder: the smallest lossless files; lossless only

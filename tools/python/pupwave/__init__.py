@@ -38,8 +38,8 @@ def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=No
              entropy="auto"):
     """Compress a 2-D (grey) or HxWxC (C 1..64) array to .pw bytes. At most one of bpp, psnr, step,
     lossless (default psnr=40). transform: a spec as the CLI's --transform; None: cdf97, or cdf53 for
-    lossless (the library's default). entropy: auto (pc for rate targets on integer images up to
-    4 Mpixel, else ebcot; lc for lossless), ebcot, pc, lc, ht or zstd (the CLI's --entropy names). effort=2 (with entropy='ebcot'):
+    lossless (the library's default). entropy: auto (pc for rate targets on images up to 4 Mpixel,
+    else ebcot; lc for lossless), ebcot, pc, lc, ht or zstd (the CLI's --entropy names). effort=2 (with entropy='ebcot'):
     bpp targets search three base steps per band (about 1% smaller, up to 1.9x slower)."""
     stored, attributes = dtypes.to_stored(array, dtypes.IMAGE)
     return _pupwave.compress(stored, bpp, psnr, step, lossless, transform, levels, effort, entropy, attributes)
