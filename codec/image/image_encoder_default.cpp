@@ -8,9 +8,7 @@
 
 namespace pupwave {
 
-bool pc_is_default_for(const ImageView& image) {
-  return image.plane_size() <= kPcDefaultPixels;
-}
+bool pc_is_default_for(const ImageView& image) { return image.plane_size() <= kPcDefaultPixels; }
 
 EncodeResult encode_image_default_coder(const ImageView& image, EncodeOptions options) {
   if (options.mode == RateMode::lossless) {
