@@ -107,8 +107,9 @@ class Pupwave(Codec):
     bound taken from each chunk's own range would promise something different in every chunk.
     ``max_error_rel`` and ``psnr`` are coded as the absolute bound they imply (for ``psnr``,
     (hi - lo) * 10^(-psnr/20), which guarantees the PSNR; the PSNR reached is typically about
-    7 dB above it, at a rate a PSNR-targeting coder would spend on that higher PSNR), so chunks are stored exactly as with ``max_error`` (docs/hdf5.md, "Chunk
-    format"). The config (``get_config``) holds the options given; it is JSON."""
+    7 dB above it, at a rate a PSNR-targeting coder would spend on that higher PSNR), so chunks
+    are stored exactly as with ``max_error`` (docs/hdf5.md, "Chunk format"). The config
+    (``get_config``) holds the options given; it is JSON."""
 
     codec_id = "pupwave"
 
