@@ -149,6 +149,8 @@ class Pupwave(Codec):
                 **self._relative}
 
     def encode(self, buf):
+        """One chunk (any array-like of the codec's dtypes) to its stored bytes; ValueError or
+        TypeError with the reason when the chunk or the options cannot be coded."""
         arr = np.ascontiguousarray(buf)
         if arr.dtype.byteorder == ">":
             raise ValueError(f"pupwave: big-endian arrays are not supported ({arr.dtype})")
@@ -165,6 +167,8 @@ class Pupwave(Codec):
         return _take(lib, out, size).tobytes()
 
     def decode(self, buf, out=None):
+        """Stored bytes to the chunk as a flat array of its dtype (copied into ``out`` when given);
+        ValueError with the reason for bytes that are not a Pupwave chunk."""
         data = ensure_contiguous_ndarray(buf).view(np.uint8)
         lib, res, size, code = _library(), ctypes.c_void_p(), ctypes.c_size_t(), ctypes.c_uint()
         err = ctypes.create_string_buffer(512)
