@@ -1,4 +1,4 @@
-"""Builds the pupwave Python package with CMake (docs/api.md, "Installing with pip").
+"""Builds the pupwave Python package with CMake (docs/python.md, "Install with pip").
 
 The package is tools/python/pupwave/ (pure Python), the extension pupwave._pupwave and the HDF5
 filter plugin, shipped as pupwave/hdf5_plugin/libh5pupwave.so. build_ext builds the two CMake
