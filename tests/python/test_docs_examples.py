@@ -4,7 +4,6 @@ testimages/... as from the repository root and write beside it). The examples as
 promise (bounds, shapes, bytes), so a broken promise fails here."""
 
 import os
-import pathlib
 import re
 import subprocess
 import sys

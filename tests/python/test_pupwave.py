@@ -3,7 +3,6 @@ real volume, bytes identical to the CLI's, levels, info, threads, and bad input.
 
 import subprocess
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -234,25 +233,6 @@ def test_corrupted_bytes_raise(real_image, wmag):
     with pytest.raises(TypeError):
         pupwave.decompress(12345)
     assert np.array_equal(pupwave.decompress(memoryview(bytearray(image))), pupwave.decompress(image))
-
-
-def test_gil_is_released_while_coding(real_image):
-    """While one thread encodes, the main thread keeps running Python code: the longest pause
-    it sees is far shorter than the encode (it would be the whole encode with the GIL held)."""
-    a = np.tile(real_image("chelsea", "ppm"), (3, 2, 1))  # 900 x 902 RGB
-    start = time.perf_counter()
-    expected = pupwave.compress(a, lossless=True)
-    serial = time.perf_counter() - start
-    result = []
-    worker = threading.Thread(target=lambda: result.append(pupwave.compress(a, lossless=True)))
-    worker.start()
-    longest, last = 0.0, time.perf_counter()
-    while worker.is_alive():
-        now = time.perf_counter()
-        longest, last = max(longest, now - last), now
-    worker.join()
-    assert result == [expected]
-    assert longest < 0.5 * serial, (longest, serial)
 
 
 def test_absurd_parameters_give_a_stream_or_value_error(wmag):
