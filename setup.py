@@ -1,4 +1,4 @@
-"""Builds the pupwave Python package with CMake (docs/api.md, "Installing with pip").
+"""Builds the pupwave Python package with CMake (docs/python.md, "Install with pip").
 
 The package is tools/python/pupwave/ (pure Python), the extension pupwave._pupwave and the HDF5
 filter plugin, shipped as pupwave/hdf5_plugin/libh5pupwave.so. build_ext builds the two CMake
@@ -114,6 +114,8 @@ setup(
     version=cmake_version(),
     packages=["pupwave"],
     package_dir={"pupwave": "tools/python/pupwave"},
+    # The extension's type stub and the marker that the package is typed (PEP 561).
+    package_data={"pupwave": ["_pupwave.pyi", "py.typed"]},
     # No sources: CMakeBuild builds the extension (setuptools needs one listed to call build_ext
     # and to tag the wheel for this platform).
     ext_modules=[Extension("pupwave._pupwave", sources=[])],

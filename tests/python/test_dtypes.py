@@ -156,6 +156,6 @@ def test_streams_without_the_record_and_the_cli(cli, real_image, tmp_path):
     subprocess.run([cli, "decompress", str(src), str(out)], check=True, capture_output=True)
     assert np.array_equal(read_pnm(out), a)  # the CLI decodes the stored uint8 samples
     # A record this module does not write (here: float64 for uint8 samples) is refused.
-    odd = pupwave._pupwave.compress(a, lossless=True, attributes={"pupwave:dtype": "<f8"})
+    odd, _ = pupwave._pupwave.compress(a, lossless=True, attributes={"pupwave:dtype": "<f8"})
     with pytest.raises(ValueError, match="pupwave:dtype"):
         pupwave.decompress(odd)

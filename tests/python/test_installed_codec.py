@@ -126,3 +126,90 @@ def test_dask_processes_write_and_read_zarr_through_the_entry_point(installed, w
     assert float(error) <= MAX_ERROR
     assert loaded.strip() == "[True, True]"
     assert zarr.open(str(tmp_path / "d.zarr"), mode="r").nbytes_stored < wmag91.nbytes / 2
+
+
+def value_range(data):
+    return [float(data.min()), float(data.max())]
+
+
+def relative_configs(data):
+    """The codec's max_error_rel and psnr configs for `data` (its whole range as value_range)."""
+    base = {"id": "pupwave", "max_error": None, "bpv": None, "lossless": False, "value_range": value_range(data)}
+    return {"max_error_rel": {**base, "max_error_rel": 1e-3}, "psnr": {**base, "psnr": 60.0}}
+
+
+def chunk_slices(shape, chunks):
+    """The slices of every chunk of an array of `shape` cut in `chunks`."""
+    import itertools
+
+    starts = itertools.product(*(range(0, n, c) for n, c in zip(shape, chunks)))
+    return [tuple(slice(s, min(s + c, n)) for s, c, n in zip(start, chunks, shape)) for start in starts]
+
+
+def psnr(reference, test, peak):
+    mse = np.mean((test.astype(np.float64) - reference) ** 2)
+    return np.inf if mse == 0 else 10 * np.log10(peak**2 / mse)
+
+
+def check_relative(option, config, data, back, chunks):
+    """max_error_rel: every value within max_error_rel * (hi - lo); psnr: every chunk at or above it."""
+    lo, hi = config["value_range"]
+    for part in chunk_slices(data.shape, chunks):
+        if option == "max_error_rel":
+            assert np.abs(back[part].astype(np.float64) - data[part]).max() <= config["max_error_rel"] * (hi - lo)
+        else:
+            assert psnr(data[part], back[part], hi - lo) >= config["psnr"]
+    if option == "psnr":  # the bound is guaranteed, not a waste: the array lands within 10 dB of it
+        assert psnr(data, back, hi - lo) < config["psnr"] + 10
+
+
+@pytest.fixture(scope="module")
+def camera_float(real_image):
+    """testimages/camera.png (a photograph, 512x512 grey) as float32 in 0..1: an image for the codec."""
+    return real_image("camera", "pgm").astype(np.float32) / 255
+
+
+@pytest.mark.parametrize("option", ["max_error_rel", "psnr"])
+@pytest.mark.parametrize("kind", ["volume", "image"])
+def test_range_options_hold_on_every_chunk_read_in_a_new_process(installed, option, kind, wmag91, camera_float,
+                                                                 tmp_path):
+    data, chunks = (wmag91, CHUNKS) if kind == "volume" else (camera_float, (200, 200))
+    config = relative_configs(data)[option]
+    store = tmp_path / "r.zarr"
+    z = zarr.open(str(store), mode="w", shape=data.shape, chunks=chunks, dtype=data.dtype,
+                  compressor=numcodecs.get_codec(config))
+    z[...] = data
+    out = run_python("import sys, json, numpy as np, zarr\n"
+                     "assert 'pupwave' not in sys.modules\n"
+                     "z = zarr.open(sys.argv[1], mode='r')\n"
+                     "np.save(sys.argv[2], z[...])\n"
+                     "print(json.dumps(z.compressor.get_config()))", store, tmp_path / "back.npy")
+    assert json.loads(out) == config  # the stored config, JSON, as given
+    back = np.load(tmp_path / "back.npy")
+    assert back.dtype == data.dtype and back.shape == data.shape
+    check_relative(option, config, data, back, chunks)
+    assert z.nbytes_stored < data.nbytes / 2
+
+
+def test_range_options_need_a_value_range_and_one_rate(installed):
+    from pupwave.numcodecs import Pupwave
+
+    for kwargs, message in [({"max_error_rel": 1e-3}, "max_error_rel needs value_range"),
+                            ({"psnr": 50}, "psnr needs value_range"),
+                            ({"psnr": 50, "value_range": (1, 1)}, "lo < hi"),
+                            ({"psnr": 50, "value_range": (0, float("nan"))}, "lo < hi"),
+                            ({"max_error_rel": -1, "value_range": (0, 1)}, "finite positive"),
+                            ({"psnr": 50, "max_error_rel": 1e-3, "value_range": (0, 1)}, "exactly one"),
+                            ({"psnr": 50, "max_error": 0.1, "value_range": (0, 1)}, "exactly one"),
+                            ({"max_error": 0.1, "value_range": (0, 1)}, "value_range goes with")]:
+        with pytest.raises(ValueError, match=message):
+            Pupwave(**kwargs)
+
+
+def test_range_configs_round_trip_and_old_configs_stay(installed, wmag91):
+    from pupwave.numcodecs import Pupwave
+
+    for config in relative_configs(wmag91).values():
+        codec = numcodecs.get_codec(json.loads(json.dumps(config)))
+        assert isinstance(codec, Pupwave) and codec.get_config() == config
+    assert Pupwave(max_error=0.5).get_config() == {"id": "pupwave", "max_error": 0.5, "bpv": None, "lossless": False}

@@ -154,7 +154,7 @@ def test_save_rate_keywords():
 
 def test_missed_target_warns_and_writes():
     tiny = png("chelsea").crop((200, 100, 202, 102))  # 2x2: the header alone exceeds 1 bpp
-    with pytest.warns(RuntimeWarning, match="bpp=1 not met"):
+    with pytest.warns(pupwave.PupwaveTargetWarning, match="--bpp 1 not met"):
         data = saved(tiny, bpp=1)
     assert pupwave.decompress(data).shape == (2, 2, 3)
 

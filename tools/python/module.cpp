@@ -3,7 +3,9 @@
 // coding; the library's errors become ValueError, other dtypes and non-arrays TypeError. The
 // package (pupwave/__init__.py) converts other dtypes (pupwave/dtypes.py) and passes the text
 // attributes that record them: compress* take `attributes` (dict), decompress* return
-// (array, attributes).
+// (array, attributes). Every call takes `threads` (None or 0: all cores, 1: the calling thread);
+// compress* return (bytes, miss), miss the CLI's text for a missed rate target ('' when met),
+// which the package turns into a warning or, with strict=True, an error.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -17,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "codec/image/image_stream.h"
+#include "codec/image/transfer.h"
 #include "pupwave/pupwave.hpp"
 
 namespace py = pybind11;
@@ -121,19 +125,49 @@ py::dict to_dict(const std::vector<api::Attribute>& attributes) {
   return d;
 }
 
-// A missed rate target (`target` as given, e.g. "bpp=1"; `reached` what the stream reached)
-// becomes a RuntimeWarning; raised as an exception where the warnings filter makes it an error.
-void warn_missed(const api::TargetOutcome& outcome, const std::string& target, const std::string& reached) {
-  if (outcome.met) return;
-  const std::string text = target + " not met: " + reached;
-  if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) != 0) throw py::error_already_set();
-}
-
-// A number for messages (%.6g).
+// A number for messages (%.6g, as the CLI's).
 std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", value);
   return text;
+}
+
+// The `threads` argument as the API's (None or 0: all cores, 1: the calling thread).
+unsigned thread_count(std::optional<int> threads) {
+  if (threads && *threads < 0)
+    throw py::value_error("threads must be None or an integer >= 0, got " + std::to_string(*threads));
+  return unsigned(threads.value_or(0));
+}
+
+// How an image stream misses its rate target, in the words of the CLI's `warning:` line
+// (tools/rate_warnings.cpp, image_target_miss, subject "the stream"); "" when it is met.
+std::string image_target_miss(const api::ImageOptions& options, const api::TargetOutcome& outcome,
+                              const std::vector<std::uint8_t>& stream, std::size_t width,
+                              std::size_t height) {
+  if (outcome.met) return "";
+  const pupwave::StreamHeader header = pupwave::parse_container(stream).header;
+  if (options.rate == api::ImageRate::psnr)
+    return "--psnr " + number(options.target) + " not met: the stream reaches " +
+           pupwave::metric_name(header.transfer) + " " + number(outcome.achieved) + " dB";
+  std::string text = "--bpp " + number(options.target) + " not met: the stream is " +
+                     std::to_string(stream.size()) + " bytes (" + number(outcome.achieved) +
+                     " bpp) for this " + std::to_string(width) + "x" + std::to_string(height) + " image";
+  // Why a tiny image cannot meet the budget: what the stream holds before any coded data.
+  const std::size_t framing = pupwave::container_size(header, 0, 0);
+  if (8.0 * double(framing) > options.target * double(width * height))
+    text += "; its header and chunk framing alone take " + std::to_string(framing) + " bytes";
+  return text;
+}
+
+// The same for a volume stream (tools/rate_warnings.cpp, volume_target_miss).
+std::string volume_target_miss(const api::VolumeOptions& options, const api::TargetOutcome& outcome,
+                               std::size_t stream_bytes) {
+  if (outcome.met) return "";
+  if (options.rate == api::VolumeRate::bpv)
+    return "--bpv " + number(options.target) + " not met: the stream is " + std::to_string(stream_bytes) +
+           " bytes (" + number(outcome.achieved) + " bpv)";
+  return "error bound " + number(options.target) + " not met: the stream has a largest error of " +
+         number(outcome.achieved);
 }
 
 int count_set(std::initializer_list<bool> flags) {
@@ -142,10 +176,10 @@ int count_set(std::initializer_list<bool> flags) {
   return n;
 }
 
-py::bytes compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
+py::tuple compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
                    std::optional<double> step, bool lossless, const std::optional<std::string>& transform,
                    std::optional<int> levels, int effort, const std::string& entropy,
-                   const std::map<std::string, std::string>& attributes) {
+                   const std::map<std::string, std::string>& attributes, std::optional<int> threads) {
   const py::array given = as_array(obj);
   // The dtype first: readable_in_place divides by its (then nonzero) item size.
   const api::SampleType type = image_type(given);
@@ -176,28 +210,23 @@ py::bytes compress(const py::object& obj, std::optional<double> bpp, std::option
   const auto coder = api::coder_from_name(entropy);
   if (!coder) throw py::value_error("entropy must be one of " + api::coder_names() + ", got " + entropy);
   options.coder = *coder;
+  options.threads = thread_count(threads);
   std::vector<std::uint8_t> out;
   api::TargetOutcome outcome;
   {
     py::gil_scoped_release release;
     out = api::compress_image(view, options, outcome);
   }
-  if (bpp)
-    warn_missed(
-        outcome, "bpp=" + number(*bpp),
-        "the stream is " + std::to_string(out.size()) + " bytes (" + number(outcome.achieved) + " bpp)");
-  else if (options.rate == api::ImageRate::psnr)
-    warn_missed(outcome, "psnr=" + number(options.target),
-                "the stream reaches " + number(outcome.achieved) + " dB");
-  return to_bytes(out);
+  return py::make_tuple(to_bytes(out), image_target_miss(options, outcome, out, view.width, view.height));
 }
 
-py::tuple decompress(const py::object& data, int level) {
+py::tuple decompress(const py::object& data, int level, std::optional<int> threads) {
+  const unsigned workers = thread_count(threads);
   api::Image image;
   {
     const ByteView bytes(data);
     py::gil_scoped_release release;
-    image = api::decompress_image(bytes.bytes(), level);
+    image = api::decompress_image(bytes.bytes(), level, workers);
   }
   std::vector<py::ssize_t> shape{py::ssize_t(image.height), py::ssize_t(image.width)};
   if (image.channels > 1) shape.push_back(py::ssize_t(image.channels));
@@ -205,9 +234,9 @@ py::tuple decompress(const py::object& data, int level) {
                         to_dict(image.attributes));
 }
 
-py::bytes compress_volume(const py::object& obj, std::optional<double> max_error,
+py::tuple compress_volume(const py::object& obj, std::optional<double> max_error,
                           std::optional<double> max_error_rel, std::optional<double> bpv, bool lossless,
-                          const std::map<std::string, std::string>& attributes) {
+                          const std::map<std::string, std::string>& attributes, std::optional<int> threads) {
   const py::array given = as_array(obj);
   // The dtype first: readable_in_place divides by its (then nonzero) item size.
   const api::VoxelType type = voxel_type(given);
@@ -227,6 +256,7 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
   else
     options.rate = api::VolumeRate::max_error_rel, options.target = max_error_rel.value_or(1e-3);
   options.attributes = to_attributes(attributes);
+  options.threads = thread_count(threads);
   api::VolumeView view{
       a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
   for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = element_stride(a, d);  // (z, y, x)
@@ -236,22 +266,16 @@ py::bytes compress_volume(const py::object& obj, std::optional<double> max_error
     py::gil_scoped_release release;
     out = api::compress_volume(view, options, outcome);
   }
-  if (bpv)
-    warn_missed(
-        outcome, "bpv=" + number(*bpv),
-        "the stream is " + std::to_string(out.size()) + " bytes (" + number(outcome.achieved) + " bpv)");
-  else if (options.rate != api::VolumeRate::lossless)  // the error bounds, guaranteed: said if ever missed
-    warn_missed(outcome, (max_error ? "max_error=" : "max_error_rel=") + number(options.target),
-                "its largest error is " + number(outcome.achieved));
-  return to_bytes(out);
+  return py::make_tuple(to_bytes(out), volume_target_miss(options, outcome, out.size()));
 }
 
-py::tuple decompress_volume(const py::object& data, int level) {
+py::tuple decompress_volume(const py::object& data, int level, std::optional<int> threads) {
+  const unsigned workers = thread_count(threads);
   std::vector<api::Volume> grids;
   {
     const ByteView bytes(data);
     py::gil_scoped_release release;
-    grids = api::decompress_volume(bytes.bytes(), level);
+    grids = api::decompress_volume(bytes.bytes(), level, workers);
   }
   if (grids.size() != 1)
     throw py::value_error("the stream holds " + std::to_string(grids.size()) +
@@ -310,20 +334,23 @@ PYBIND11_MODULE(_pupwave, m) {
     }
   });
   m.attr("__version__") = PUPWAVE_VERSION_STRING;
+  // Docstrings are the package's (pupwave/__init__.py); these say what differs from it.
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = py::none(),
         py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "auto",
-        py::arg("attributes") = std::map<std::string, std::string>{},
+        py::arg("attributes") = std::map<std::string, std::string>{}, py::arg("threads") = py::none(),
         "pupwave.compress on a uint8/uint16/float16/float32 array; attributes (str -> str) are stored "
-        "in the stream; a missed bpp or psnr target gives a RuntimeWarning saying what the stream reached.");
-  m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0,
+        "in the stream. Returns (bytes, miss): miss is the CLI's warning text for a missed bpp or psnr "
+        "target, '' when it is met.");
+  m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0, py::arg("threads") = py::none(),
         "(array of the stored dtype, the stream's text attributes as a dict).");
   m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),
         py::arg("max_error_rel") = py::none(), py::arg("bpv") = py::none(), py::arg("lossless") = false,
-        py::arg("attributes") = std::map<std::string, std::string>{},
+        py::arg("attributes") = std::map<std::string, std::string>{}, py::arg("threads") = py::none(),
         "pupwave.compress_volume on a uint8/uint16/float32/float64 array; attributes (str -> str) are "
-        "stored as the grid's metadata; a missed bpv target gives a RuntimeWarning.");
+        "stored as the grid's metadata. Returns (bytes, miss) as compress does.");
   m.def("decompress_volume", &decompress_volume, py::arg("data"), py::arg("level") = 0,
+        py::arg("threads") = py::none(),
         "(array of the stored dtype, the grid's text attributes as a dict).");
   m.def("info", &info, py::arg("data"), "Describe .pw bytes (every checksum verified) as a dict.");
 }

@@ -1,21 +1,26 @@
-"""Pupwave wavelet codec for numpy arrays (docs/api.md).
+"""Pupwave wavelet codec for numpy arrays (docs/python.md).
 
 compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, levels=None, effort=1,
-         entropy="auto") -> bytes
-decompress(data, level=0) -> numpy.ndarray
-compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False) -> bytes
-decompress_volume(data, level=0) -> numpy.ndarray
+         entropy="auto", threads=None, strict=False) -> bytes
+decompress(data, level=0, threads=None) -> numpy.ndarray
+compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False, threads=None,
+                strict=False) -> bytes
+decompress_volume(data, level=0, threads=None) -> numpy.ndarray
 info(data) -> dict
 hdf5_filter(max_error=None, bpv=None, lossless=False) -> dict of h5py create_dataset keywords (docs/hdf5.md);
     a pip-installed pupwave ships the HDF5 filter plugin, and importing pupwave registers it with h5py
+PupwaveTargetWarning, PupwaveTargetError: a rate target the stream misses (warned, or raised with strict=True)
 pupwave.numcodecs.Pupwave: the numcodecs codec "pupwave" for Zarr (import pupwave.numcodecs registers it)
 pupwave.pillow: with Pillow installed, PIL.Image opens and saves .pw images (format "PUPWAVE")
 
 Arrays of any bool, integer or float dtype are taken (pupwave.dtypes says how those the codec
 does not store itself are coded) and decode to their own dtype. Bad arguments raise ValueError
 or TypeError with the library's message. The GIL is released while coding, and independent calls
-on different threads are safe.
+on different threads are safe. threads=None or 0 codes on all cores, 1 on the calling thread
+only, n on at most n; the bytes never depend on it.
 """
+
+import warnings
 
 import numpy as np
 
@@ -31,48 +36,119 @@ except ImportError as e:  # Pillow absent (or broken): pupwave works without the
     if not (e.name or "").startswith("PIL"):
         raise
 
-__all__ = ["compress", "decompress", "compress_volume", "decompress_volume", "info", "hdf5_filter", "__version__"]
+__all__ = ["compress", "decompress", "compress_volume", "decompress_volume", "info", "hdf5_filter",
+           "PupwaveTargetWarning", "PupwaveTargetError", "__version__"]
+
+
+class PupwaveTargetWarning(UserWarning):
+    """A stream misses the rate target asked for (a bpp budget below a tiny image's header, a
+    PSNR beyond what lossless reaches); the stream is complete. The text is that of the CLI's
+    `warning:` line for the same input."""
+
+
+class PupwaveTargetError(ValueError):
+    """Raised by compress and compress_volume with strict=True where they would warn
+    PupwaveTargetWarning (no bytes are returned); the message is the warning's text."""
+
+
+def _checked(coded, strict):
+    """The stream of (stream, miss) from _pupwave, after warning (or raising, with strict) for a miss."""
+    stream, miss = coded
+    if miss and strict:
+        raise PupwaveTargetError(miss)
+    if miss:
+        warnings.warn(miss, PupwaveTargetWarning, stacklevel=3)
+    return stream
 
 
 def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, levels=None, effort=1,
-             entropy="auto"):
-    """Compress a 2-D (grey) or HxWxC (C 1..64) array to .pw bytes. At most one of bpp, psnr, step,
-    lossless (default psnr=40). transform: a spec as the CLI's --transform; None: cdf97, or cdf53 for
-    lossless (the library's default). entropy: auto (pc for rate targets on images up to 4 Mpixel,
-    else ebcot; lc for lossless), ebcot, pc, lc, ht or zstd (the CLI's --entropy names). effort=2 (with entropy='ebcot'):
-    bpp targets search three base steps per band (about 1% smaller, up to 1.9x slower)."""
+             entropy="auto", threads=None, strict=False):
+    """Compress an image to .pw bytes.
+
+    array: 2-D (height, width) grey or 3-D (height, width, channels), 1..64 channels, of any
+        bool, integer or float dtype (uint8, uint16, float16, float32 stored as they are).
+    bpp, psnr, step, lossless: the rate; at most one (default psnr=40). bpp: bits per pixel;
+        psnr: dB (log-PSNR for float images); step: the quantizer base step; lossless: bit exact.
+    transform: a spec as the CLI's --transform; None: cdf97, or cdf53 for lossless.
+    levels: decomposition levels; None: from the image size.
+    effort: 2 (with entropy="ebcot") makes bpp targets search three base steps per band (about
+        1% smaller, up to 1.9x slower).
+    entropy: auto (pc for rate targets on images up to 4 Mpixel, else ebcot; lc for lossless), ebcot, pc, lc, ht or zstd (the CLI's --entropy names).
+    threads: None or 0 all cores, 1 the calling thread, n at most n (the bytes do not depend on it).
+    strict: raise PupwaveTargetError instead of warning when the bpp or psnr target is missed.
+
+    Returns the stream (bytes). Warns PupwaveTargetWarning (the CLI's `warning:` text) when the
+    stream misses its bpp or psnr target. Raises ValueError (bad arguments, the library's message),
+    TypeError (not an array, unsupported dtype), PupwaveTargetError (strict=True and a miss).
+    """
     stored, attributes = dtypes.to_stored(array, dtypes.IMAGE)
-    return _pupwave.compress(stored, bpp, psnr, step, lossless, transform, levels, effort, entropy, attributes)
+    return _checked(_pupwave.compress(stored, bpp, psnr, step, lossless, transform, levels, effort, entropy,
+                                      attributes, threads), strict)
 
 
-def decompress(data, level=0):
-    """Decode .pw image bytes to an array of the original dtype and shape (halved per level)."""
-    array, attributes = _pupwave.decompress(data, level)
+def decompress(data, level=0, threads=None):
+    """Decode .pw image bytes (any bytes-like object).
+
+    level: 0 full size, n 1/2^n of it (rounded up per halving), reading only that data.
+    threads: None or 0 all cores, 1 the calling thread, n at most n.
+
+    Returns a numpy array of the original dtype and shape (halved per level). Raises ValueError
+    for bytes that are not a Pupwave image stream (the reason), TypeError for a non-bytes-like.
+    """
+    array, attributes = _pupwave.decompress(data, level, threads)
     return dtypes.from_stored(array, attributes, dtypes.IMAGE)
 
 
-def compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False):
-    """Compress a (z, y, x) array to .pw volume bytes. Default: lossless for integers,
-    max_error_rel=1e-3 for floats. A float16 volume is coded to half the bound (its decoded
-    values, rounded back to float16, keep within the bound asked for)."""
+def compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False, threads=None,
+                    strict=False):
+    """Compress a volume to .pw bytes.
+
+    array3d: 3-D (z, y, x) array of any bool, integer or float dtype (uint8, uint16, float32,
+        float64 stored as they are).
+    max_error, max_error_rel, bpv, lossless: the rate; at most one. max_error: every value within
+        this of its original; max_error_rel: the same with bound max_error_rel * (max - min) of the
+        array; bpv: bits per value; lossless: bit exact (integers). Default: lossless for integers,
+        max_error_rel=1e-3 for floats. A float16 volume is coded to half the bound (its decoded
+        values, rounded back to float16, keep within the bound asked for).
+    threads: None or 0 all cores, 1 the calling thread, n at most n (the bytes do not depend on it).
+    strict: raise PupwaveTargetError instead of warning when the target is missed.
+
+    Returns the stream (bytes). Warns PupwaveTargetWarning (the CLI's `warning:` text) when the
+    stream misses its bpv budget or error bound. Raises ValueError, TypeError or
+    PupwaveTargetError as compress does.
+    """
     stored, attributes = dtypes.to_stored(array3d, dtypes.VOLUME)
     if dtypes.halves_bound(array3d):
         if max_error is None and max_error_rel is None and bpv is None and not lossless:
             max_error_rel = 1e-3  # the floats' default, made explicit to be halved
         max_error = max_error / 2 if max_error is not None else None
         max_error_rel = max_error_rel / 2 if max_error_rel is not None else None
-    return _pupwave.compress_volume(stored, max_error, max_error_rel, bpv, lossless, attributes)
+    return _checked(_pupwave.compress_volume(stored, max_error, max_error_rel, bpv, lossless, attributes, threads),
+                    strict)
 
 
-def decompress_volume(data, level=0):
-    """Decode .pw volume bytes to a (z, y, x) array of the original dtype (halved per level)."""
-    array, attributes = _pupwave.decompress_volume(data, level)
+def decompress_volume(data, level=0, threads=None):
+    """Decode .pw volume bytes (any bytes-like object) holding one grid.
+
+    level: 0 full size, n 1/2^n of it per axis.
+    threads: None or 0 all cores, 1 the calling thread, n at most n.
+
+    Returns a (z, y, x) numpy array of the original dtype. Raises ValueError for bytes that are
+    not a single-grid Pupwave volume stream (the reason), TypeError for a non-bytes-like.
+    """
+    array, attributes = _pupwave.decompress_volume(data, level, threads)
     return dtypes.from_stored(array, attributes, dtypes.VOLUME)
 
 
 def info(data):
-    """Describe .pw bytes (every checksum verified) as a dict. "dtype" is what decompress gives,
-    "stored_dtype" what the stream holds, "attributes" the stream's text attributes."""
+    """Describe .pw bytes (every checksum verified).
+
+    Returns a dict: "kind" ("image" or "volume"), "shape", "dtype" (what decompress gives),
+    "stored_dtype" (what the stream holds), "levels", "transform", "lossless", "bytes",
+    "description" (the CLI's `pupwave info` text), "attributes" (the stream's text attributes),
+    and for images "width", "height", "channels", for volumes "grids", "max_error", "sparse".
+    Raises ValueError for bytes that are not a Pupwave stream.
+    """
     d = _pupwave.info(data)
     d["stored_dtype"] = d["dtype"]
     storage = dtypes.VOLUME if d["kind"] == "volume" else dtypes.IMAGE

@@ -93,6 +93,9 @@ def raw_bytes(array, mode):
 
 
 class PupwaveImageFile(ImageFile.ImageFile):
+    """A .pw image opened by PIL.Image.open (format "PUPWAVE"); draft() and reduce() decode only
+    the stored resolution level they need."""
+
     format = FORMAT
     format_description = "Pupwave wavelet image"
 
@@ -158,9 +161,12 @@ def decode(data, level, name):
 
 
 class PupwaveDecoder(ImageFile.PyDecoder):
+    """Pillow's decoder "PUPWAVE": decodes the whole stream at the tile's level."""
+
     _pulls_fd = True  # the codec decodes the whole stream at once
 
     def decode(self, buffer):
+        """Reads the whole file (``buffer`` is unused: the decoder pulls the file) and sets the pixels."""
         level, name = self.args
         data, rawmode = raw_bytes(decode(self.fd.read(), level, name), self.mode)
         self.set_as_raw(data, rawmode)
