@@ -49,8 +49,8 @@ const char* default_transform(VolumeRateMode mode) {
   }
 }
 
-}  // namespace
-
+// The largest value range (max - min of the active voxels, active tiles included) over the grids;
+// 0 when every grid is constant or has no active voxel.
 double largest_range(const std::vector<VolumeGrid>& grids, std::span<const pupwave::VolumeView> views) {
   double range = 0.0;
   for (std::size_t i = 0; i < grids.size(); ++i) {
@@ -67,6 +67,8 @@ double largest_range(const std::vector<VolumeGrid>& grids, std::span<const pupwa
   }
   return range;
 }
+
+}  // namespace
 
 ResolvedVolumeOptions resolve_volume_options(const VolumeOptions& options,
                                              const std::vector<VolumeGrid>& grids,

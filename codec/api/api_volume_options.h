@@ -33,8 +33,4 @@ ResolvedVolumeOptions resolve_volume_options(const VolumeOptions& options,
                                              const std::vector<VolumeGrid>& grids,
                                              std::span<const pupwave::VolumeView> views);
 
-// The largest value range (max - min of the active voxels, active tiles included) over the grids;
-// 0 when every grid is constant or has no active voxel.
-double largest_range(const std::vector<VolumeGrid>& grids, std::span<const pupwave::VolumeView> views);
-
 }  // namespace pupwave::api
