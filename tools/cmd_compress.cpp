@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "codec/api/api_image_options.h"
+#include "codec/api/api_volume_options.h"
 #include "codec/image/image_codec.h"
 #include "codec/rate/metrics.h"
 #include "codec/volume/volume_codec.h"
@@ -102,60 +102,29 @@ VolumeInput read_volume_input(const CompressOptions& opt) {
   return in;
 }
 
-// Widens [lo, hi] by the active voxels of a box (one typed pass, summarize_values).
-void widen(const VolumeView& v, double& lo, double& hi) {
-  const ValueSummary s = summarize_values(v);
-  lo = std::min(lo, s.lo), hi = std::max(hi, s.hi);
-}
-
-// Largest value range (max - min of the active voxels, active tiles included) of the grids, for
-// --max-error-rel.
-double largest_range(const VolumeInput& in) {
-  double range = 0.0;
-  for (std::size_t i = 0; i < in.grids.size(); ++i) {
-    const VolumeGrid& g = in.grids[i];
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    if (!in.views.empty() && in.views[i].data != nullptr)
-      widen(in.views[i], lo, hi);
-    else if (!g.is_blocked() && !g.is_opaque())
-      widen(view_of(g.volume), lo, hi);
-    for (const VolumeBlock& b : g.blocks) widen(view_of(b.volume), lo, hi);
-    for (const VolumeTile& t : g.tiles)
-      if (t.active) lo = std::min(lo, t.value), hi = std::max(hi, t.value);
-    if (hi > lo) range = std::max(range, hi - lo);
-  }
-  return range;
-}
-
-// Volume rate flags to the library's mode. Default: lossless for integer volumes, otherwise
-// a point-wise bound of 1e-3 of the value range. The max-error mode's default transform is
-// kMaxErrorVolumeTransform.
-void set_volume_rate(const CompressOptions& opt, const VolumeInput& in, VolumeEncodeOptions& enc) {
-  const std::vector<VolumeGrid>& grids = in.grids;
+// The flags that decide what is coded (rate, transform, levels, brick) as the library's volume
+// options, whose resolve_volume_options supplies the defaults (no rate flag: automatic): the CLI
+// codes what the APIs code for the same settings.
+pupwave::api::VolumeOptions volume_options(const CompressOptions& opt) {
+  using pupwave::api::VolumeRate;
   if (opt.bpp > 0.0) throw std::invalid_argument("use --bpv (bits per voxel) for volumes, not --bpp");
-  bool all_integer = true;
-  for (const VolumeGrid& g : grids) all_integer = all_integer && is_integer(g.volume.type);
-  const bool none = !opt.lossless && opt.bpv <= 0.0 && opt.psnr <= 0.0 && opt.step <= 0.0 &&
-                    opt.max_error <= 0.0 && opt.max_error_rel <= 0.0;
-  if (opt.lossless || (none && all_integer)) {
-    enc.mode = VolumeRateMode::lossless;
-    if (opt.transform.empty()) enc.transform = "cdf53";
-  } else if (opt.bpv > 0.0) {
-    enc.mode = VolumeRateMode::bpv;
-    enc.target = opt.bpv;
-  } else if (opt.psnr > 0.0) {
-    enc.mode = VolumeRateMode::psnr;
-    enc.target = opt.psnr;
-  } else if (opt.step > 0.0) {
-    enc.mode = VolumeRateMode::step;
-    enc.target = opt.step;
-  } else {
-    enc.mode = VolumeRateMode::max_error;
-    if (opt.transform.empty()) enc.transform = kMaxErrorVolumeTransform;
-    const double range = largest_range(in);
-    const double rel = opt.max_error_rel > 0.0 ? opt.max_error_rel : 1e-3;
-    enc.target = opt.max_error > 0.0 ? opt.max_error : rel * (range > 0.0 ? range : 1.0);
-  }
+  pupwave::api::VolumeOptions o;
+  if (opt.lossless)
+    o.rate = VolumeRate::lossless;
+  else if (opt.bpv > 0.0)
+    o.rate = VolumeRate::bpv, o.target = opt.bpv;
+  else if (opt.psnr > 0.0)
+    o.rate = VolumeRate::psnr, o.target = opt.psnr;
+  else if (opt.step > 0.0)
+    o.rate = VolumeRate::step, o.target = opt.step;
+  else if (opt.max_error > 0.0)
+    o.rate = VolumeRate::max_error, o.target = opt.max_error;
+  else if (opt.max_error_rel > 0.0)
+    o.rate = VolumeRate::max_error_rel, o.target = opt.max_error_rel;
+  o.transform = opt.transform;
+  o.levels = opt.levels;
+  o.brick = opt.brick;
+  return o;
 }
 
 void run_compress_volume(const CompressOptions& opt) {
@@ -164,13 +133,9 @@ void run_compress_volume(const CompressOptions& opt) {
   if (opt.effort != 0) throw std::invalid_argument("--effort applies to image --bpp targets only");
   const VolumeInput in = read_volume_input(opt);
   const std::vector<VolumeGrid>& grids = in.grids;
-  VolumeEncodeOptions enc;
-  if (!opt.transform.empty()) enc.transform = opt.transform;
-  enc.levels = opt.levels;
-  enc.brick = opt.brick;
+  VolumeEncodeOptions enc = pupwave::api::resolve_volume_options(volume_options(opt), grids, in.views).encode;
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
-  set_volume_rate(opt, in, enc);
   const auto start = std::chrono::steady_clock::now();
   VolumeEncodeResult r;
   {

@@ -14,7 +14,7 @@
 struct pupwave_options {
   pupwave_rate rate = PUPWAVE_RATE_PSNR;
   double target = 40.0;
-  bool rate_set = false;  // unset: each kind's default (images psnr 40, volumes rel 1e-3)
+  bool rate_set = false;  // unset: each kind's default (ImageOptions, VolumeOptions: automatic)
   std::string transform;
   int levels = -1;
   unsigned threads = 0;

@@ -1,6 +1,6 @@
 // The public volume API (pupwave/pupwave.hpp) over codec/volume/volume_codec.h: dense arrays
-// and sparse grids given as bricks become the codec's VolumeGrid; the rate flags map as in
-// the CLI (tools/cmd_compress.cpp), so equal settings give equal bytes.
+// and sparse grids given as bricks become the codec's VolumeGrid; the options are resolved by
+// resolve_volume_options (api_volume_options.h), as the CLI's, so equal settings give equal bytes.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,6 +9,7 @@
 
 #include "codec/api/api_attributes.h"
 #include "codec/api/api_errors.h"
+#include "codec/api/api_volume_options.h"
 #include "codec/volume/volume_codec.h"
 #include "pupwave/pupwave.hpp"
 
@@ -43,58 +44,13 @@ std::size_t checked_count(const std::array<std::size_t, 3>& dims) {
   return n;
 }
 
-// Largest active value range over the grid (for max_error_rel), as the CLI computes it.
-double value_range(const pupwave::VolumeView& v) {
-  double lo = 0.0, hi = 0.0;
-  bool any = false;
-  for_each_voxel(v, [&](double value, bool active) {
-    if (!active) return;
-    lo = any ? std::min(lo, value) : value;
-    hi = any ? std::max(hi, value) : value;
-    any = true;
-  });
-  return hi - lo;
-}
-
-VolumeEncodeOptions encode_options(const VolumeOptions& options, const pupwave::VolumeView& view) {
-  VolumeEncodeOptions enc;
-  enc.levels = options.levels;
-  enc.brick = options.brick;
-  enc.target = options.target;
-  if (options.rate != VolumeRate::lossless && !(options.target > 0.0 && std::isfinite(options.target)))
-    detail::fail("rate target must be a positive finite number, got " + std::to_string(options.target));
-  if (options.levels < -1 || options.levels > 32)
-    detail::fail("levels must be -1 (default) or 0..32, got " + std::to_string(options.levels));
-  switch (options.rate) {
-    case VolumeRate::max_error: enc.mode = VolumeRateMode::max_error; break;
-    case VolumeRate::max_error_rel: {
-      enc.mode = VolumeRateMode::max_error;
-      const double range = value_range(view);
-      enc.target = options.target * (range > 0.0 ? range : 1.0);
-      break;
-    }
-    case VolumeRate::bpv: enc.mode = VolumeRateMode::bpv; break;
-    case VolumeRate::psnr: enc.mode = VolumeRateMode::psnr; break;
-    case VolumeRate::step: enc.mode = VolumeRateMode::step; break;
-    case VolumeRate::lossless: enc.mode = VolumeRateMode::lossless; break;
-    default: detail::fail("unknown volume rate mode " + std::to_string(int(options.rate)));
-  }
-  const bool max_error = options.rate == VolumeRate::max_error || options.rate == VolumeRate::max_error_rel;
-  enc.transform = !options.transform.empty()             ? options.transform
-                  : options.rate == VolumeRate::lossless ? "cdf53"
-                  : max_error                            ? kMaxErrorVolumeTransform  // as the CLI
-                                                         : "cdf97";
-  return enc;
-}
-
-// What a result reached, in the unit of the caller's target (TargetOutcome::achieved); `enc`
-// holds the bound in sample units, so for max_error_rel the error is scaled back by it.
-double achieved(const VolumeEncodeResult& r, const VolumeOptions& options, const VolumeEncodeOptions& enc) {
-  switch (options.rate) {
-    case VolumeRate::bpv: return r.bpv;
-    case VolumeRate::psnr: return r.psnr;
-    case VolumeRate::max_error: return r.max_error;
-    case VolumeRate::max_error_rel: return r.max_error * options.target / enc.target;
+// What a result reached, in the unit of the caller's target (TargetOutcome::achieved): a
+// relative bound's error is scaled back by the range it was scaled by.
+double achieved(const VolumeEncodeResult& r, const ResolvedVolumeOptions& resolved) {
+  switch (resolved.encode.mode) {
+    case VolumeRateMode::bpv: return r.bpv;
+    case VolumeRateMode::psnr: return r.psnr;
+    case VolumeRateMode::max_error: return r.max_error / resolved.error_unit;
     default: return std::numeric_limits<double>::quiet_NaN();
   }
 }
@@ -103,17 +59,19 @@ double achieved(const VolumeEncodeResult& r, const VolumeOptions& options, const
 std::vector<std::uint8_t> encode_grid(const pupwave::VolumeView& view,
                                       const std::array<std::int64_t, 3>& origin, const VolumeOptions& options,
                                       TargetOutcome& outcome) {
-  VolumeEncodeOptions enc = encode_options(options, view);
   detail::check_attributes(options.attributes);
-  const std::unique_ptr<Executor> executor = make_pool_executor(options.threads);
-  enc.executor = executor.get();
   VolumeGrid grid = describe_view(view, "volume");
   grid.origin = origin;
   grid.metadata = detail::grid_metadata(options.attributes);
+  const std::vector<VolumeGrid> grids{std::move(grid)};
   const pupwave::VolumeView views[] = {view};
-  VolumeEncodeResult r = encode_volumes({grid}, views, enc);
+  const ResolvedVolumeOptions resolved = resolve_volume_options(options, grids, views);
+  VolumeEncodeOptions enc = resolved.encode;
+  const std::unique_ptr<Executor> executor = make_pool_executor(options.threads);
+  enc.executor = executor.get();
+  VolumeEncodeResult r = encode_volumes(grids, views, enc);
   outcome.met = r.target_met;
-  outcome.achieved = achieved(r, options, enc);
+  outcome.achieved = achieved(r, resolved);
   return std::move(r.bytes);
 }
 

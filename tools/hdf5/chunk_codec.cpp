@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "codec/api/api_volume_options.h"
 #include "codec/error.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/hdf5/chunk_format.h"
@@ -64,33 +65,37 @@ std::vector<std::uint8_t> gather_box(const ChunkParams& p, std::span<const std::
   return out;
 }
 
+// Encodes a grid with the options every front door resolves (api_volume_options.h).
+VolumeEncodeResult encode_resolved(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
+                                   const api::VolumeOptions& options, const Executor* executor) {
+  VolumeEncodeOptions enc = api::resolve_volume_options(options, grids, views).encode;
+  enc.executor = executor;
+  return encode_volumes(grids, views, enc);
+}
+
 // Codes the box [0, box) of the chunk (the whole chunk when box == p.dims).
 VolumeEncodeResult encode_box(const ChunkParams& p, std::span<const std::uint8_t> raw, const Extent& box,
-                              const VolumeEncodeOptions& options) {
+                              const api::VolumeOptions& options, const Executor* executor) {
   if (!codes_in_place(p, raw)) {
-    if (box == p.dims) return encode_volumes({to_grid(p, box, raw)}, options);
-    return encode_volumes({to_grid(p, box, gather_box(p, raw, box))}, options);
+    if (box == p.dims) return encode_resolved({to_grid(p, box, raw)}, {}, options, executor);
+    return encode_resolved({to_grid(p, box, gather_box(p, raw, box))}, {}, options, executor);
   }
   const VolumeView view =
       sub_view(contiguous_view(raw.data(), p.dims, stored_voxel_type(p.type)), {0, 0, 0}, box);
   const VolumeView views[] = {view};
-  return encode_volumes({describe_view(view, "chunk")}, views, options);
+  return encode_resolved({describe_view(view, "chunk")}, views, options, executor);
 }
 
-VolumeEncodeOptions volume_options(const ChunkParams& p) {
-  VolumeEncodeOptions o;
+// The filter's mode as the library's volume options (whose resolution gives the transform and
+// the rest, as for the CLI and the APIs).
+api::VolumeOptions volume_options(const ChunkParams& p) {
+  api::VolumeOptions o;
   switch (p.mode) {
-    case Mode::max_error:
-      o.mode = VolumeRateMode::max_error;
-      o.transform = kMaxErrorVolumeTransform;  // as the CLI and the APIs (docs/volumes.md)
-      break;
-    case Mode::bpv: o.mode = VolumeRateMode::bpv; break;
-    case Mode::lossless:
-      o.mode = VolumeRateMode::lossless;
-      o.transform = "cdf53";  // the reversible integer transform
-      break;
+    case Mode::max_error: o.rate = api::VolumeRate::max_error; break;
+    case Mode::bpv: o.rate = api::VolumeRate::bpv; break;
+    case Mode::lossless: o.rate = api::VolumeRate::lossless; break;
   }
-  o.target = p.mode == Mode::lossless ? 0.0 : p.bound;
+  o.target = p.bound;
   return o;
 }
 
@@ -135,7 +140,8 @@ Extent untrimmed_box(const ChunkParams& p, std::span<const std::uint8_t> raw) {
 // Kind 2: the head (extents and c), then the box's stream unless the box is empty. In bpv mode the
 // box gets the whole chunk's budget (bpv counts bits per value of the chunk, docs/hdf5.md).
 std::vector<std::uint8_t> encode_trimmed(const ChunkParams& p, std::span<const std::uint8_t> raw,
-                                         const Extent& box, VolumeEncodeOptions options) {
+                                         const Extent& box, api::VolumeOptions options,
+                                         const Executor* executor) {
   std::vector<std::uint8_t> payload;
   for (const std::size_t d : p.dims) put_u32(payload, d);
   for (const std::size_t d : box) put_u32(payload, d);
@@ -146,7 +152,7 @@ std::vector<std::uint8_t> encode_trimmed(const ChunkParams& p, std::span<const s
     if (p.mode == Mode::bpv) options.target = p.bound * double(p.count()) / double(box_count);
     VolumeEncodeResult coded;
     try {
-      coded = encode_box(p, raw, box, options);
+      coded = encode_box(p, raw, box, options, executor);
     } catch (const EncodeError&) {
       return stored_raw(p.type, raw);  // as encode_chunk: data the codec cannot hold stays raw
     }
@@ -218,14 +224,13 @@ std::vector<std::uint8_t> encode_chunk(const ChunkParams& params, std::span<cons
     throw std::invalid_argument(why);
   VolumeEncodeResult coded;
   const auto executor = make_pool_executor(params.threads);
-  VolumeEncodeOptions options = volume_options(params);
-  options.executor = executor.get();
+  const api::VolumeOptions options = volume_options(params);
   // Trimmed only when its decode stays within the default limit, as a volume chunk's must.
   if (const Extent box = untrimmed_box(params, raw);
       box != params.dims && params.count() <= kDefaultMaxDecodePixels)
-    return encode_trimmed(params, raw, box, options);
+    return encode_trimmed(params, raw, box, options, executor.get());
   try {
-    coded = encode_box(params, raw, params.dims, options);
+    coded = encode_box(params, raw, params.dims, options, executor.get());
   } catch (const EncodeError&) {
     // Data the codec cannot hold (NaN, Inf, a bound below the type's precision): keep it raw.
     return stored_raw(params.type, raw);

@@ -245,16 +245,15 @@ py::tuple compress_volume(const py::object& obj, std::optional<double> max_error
     throw py::value_error("expected a 3-D (z, y, x) array, got " + std::to_string(a.ndim()) + "-D");
   if (count_set({max_error.has_value(), max_error_rel.has_value(), bpv.has_value(), lossless}) > 1)
     throw py::value_error("give at most one of max_error, max_error_rel, bpv and lossless");
-  api::VolumeOptions options;
-  const bool integer = type == api::VoxelType::u8 || type == api::VoxelType::u16;
-  if (lossless || (integer && !max_error && !max_error_rel && !bpv))
-    options.rate = api::VolumeRate::lossless;  // the CLI's default for integer volumes
+  api::VolumeOptions options;  // no rate given: the library's default (VolumeRate::automatic), as the CLI's
+  if (lossless)
+    options.rate = api::VolumeRate::lossless;
   else if (max_error)
     options.rate = api::VolumeRate::max_error, options.target = *max_error;
   else if (bpv)
     options.rate = api::VolumeRate::bpv, options.target = *bpv;
-  else
-    options.rate = api::VolumeRate::max_error_rel, options.target = max_error_rel.value_or(1e-3);
+  else if (max_error_rel)
+    options.rate = api::VolumeRate::max_error_rel, options.target = *max_error_rel;
   options.attributes = to_attributes(attributes);
   options.threads = thread_count(threads);
   api::VolumeView view{

@@ -56,8 +56,9 @@ typedef enum pupwave_rate {
   PUPWAVE_RATE_BPV = 6            /* volumes: target bits per voxel */
 } pupwave_rate;
 
-/* Encoding parameters. Defaults: images PSNR 40 dB, volumes MAX_ERROR_REL 1e-3 (the mode is
- * checked against the data kind when compressing); transform "" (cdf97, cdf53 for lossless,
+/* Encoding parameters. Defaults: images PSNR 40 dB, volumes LOSSLESS for U8/U16 data and
+ * MAX_ERROR_REL 1e-3 for float data, as the CLI (the mode is checked against the data kind when
+ * compressing); transform "" (cdf97, cdf53 for lossless,
  * pups:cinpact-interp-vm4 for volumes in a max-error mode);
  * levels -1 (from the size); 64^3 bricks; coder AUTO; all cores. */
 typedef struct pupwave_options pupwave_options;

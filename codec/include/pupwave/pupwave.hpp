@@ -164,7 +164,8 @@ struct BrickView {
   const std::uint8_t* active = nullptr;
 };
 
-// The CLI's volume rate modes (pupwave compress --max-error/--max-error-rel/--bpv/--psnr/--step/--lossless).
+// The CLI's volume rate modes (pupwave compress --max-error/--max-error-rel/--bpv/--psnr/--step/--lossless;
+// automatic is what the CLI codes when none is given).
 enum class VolumeRate : std::uint8_t {
   max_error,      // every voxel within target (absolute) of its original, guaranteed
   max_error_rel,  // the same with bound target * (max - min) of the data
@@ -172,11 +173,12 @@ enum class VolumeRate : std::uint8_t {
   psnr,           // smallest stream reaching target dB (peak = value range), estimated
   step,           // fixed quantizer base step target
   lossless,       // bit exact (u8/u16 only)
+  automatic,      // lossless for u8/u16 data, else max_error_rel 1e-3 (target ignored)
 };
 
 struct VolumeOptions {
-  VolumeRate rate = VolumeRate::max_error_rel;
-  double target = 1e-3;
+  VolumeRate rate = VolumeRate::automatic;
+  double target = 1e-3;    // by rate: absolute error, fraction of the range, bpv, dB or step
   std::string transform;   // "": pups:cinpact-interp-vm4 for max error, cdf53 lossless, else cdf97
   int levels = -1;         // per brick, -1: default
   std::size_t brick = 64;  // brick edge (power of two, 8..256)
