@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""The image coders on real HDR photographs: Blender's eight studio-light environment maps
-(Debian's blender-data, studiolights/world/*.exr, stored by Blender with DWAB), each resized to
-512x256 half as testimages/forest_hdr.exr was made (testimages/README.md). For each map, the
-default coder and `--entropy ebcot` code --bpp 0.5, 1, 2 and 4; the table gives each point's
-log-PSNR (the domain pupwave codes float images in) and PSNR in linear light, and the
-Bjontegaard rate difference in log-PSNR of the default against ebcot (cubic fit of log rate,
-as bench/bd_vs.py). Fetches blender-data's .deb with `apt-get download` (no install).
+"""The default coder against the bit-plane coder on real HDR photographs and their 16-bit
+conversions: Blender's eight studio-light environment maps (Debian's blender-data,
+studiolights/world/*.exr, stored by Blender with DWAB), each resized to 512x256 half as
+testimages/forest_hdr.exr was made, and each tone-mapped to 16-bit RGB as
+testimages/courtyard16.png was (testimages/README.md: exposure to a mean of 0.18, clipped at 1,
+gamma 1/2.2). For each image the default coder and `--entropy ebcot` code --bpp 0.5, 1, 2 and 4;
+the tables give each point's quality and the Bjontegaard rate difference of the default against
+ebcot (cubic fit of log rate, as bench/bd_vs.py): in log-PSNR for the float maps (the domain
+pupwave codes float images in; PSNR in linear light is listed beside it), in PSNR for the 16-bit
+ones. Fetches blender-data's .deb with `apt-get download` (no install).
 
     python3 bench/hdr_coders.py [path/to/pupwave] > /tmp/hdr_coders.md
 """
@@ -32,7 +35,13 @@ def maps(tmp):
         dst = os.path.join(tmp, os.path.basename(src).replace(".exr", "_hdr.exr"))
         subprocess.run(["oiiotool", src, "--resize", "512x256", "--clamp:min=0", "-d", "half",
                         "--compression", "zip", "-o", dst], check=True)
+        mean = subprocess.run(["oiiotool", "--stats", dst], check=True, capture_output=True, text=True).stdout
+        avg = [float(v) for v in re.search(r"Stats Avg: ([0-9.e+-]+) ([0-9.e+-]+) ([0-9.e+-]+)", mean).groups()]
+        tone = dst.replace("_hdr.exr", "16.png")
+        subprocess.run(["oiiotool", dst, "--mulc", str(0.18 / (sum(avg) / 3.0)), "--clamp:min=0:max=1",
+                        "--powc", "0.4545", "-d", "uint16", "-o", tone], check=True)
         out.append(dst)
+        out.append(tone)
     return out
 
 
@@ -42,7 +51,10 @@ def point(image, coder, bpp, tmp):
         args += ["--entropy", coder]
     line = subprocess.run(args, check=True, capture_output=True, text=True).stdout
     m = re.search(r"([0-9.]+) bpp, log-PSNR ([0-9.-]+) dB \(PSNR ([0-9.]+) dB\)", line)
-    return float(m.group(1)), float(m.group(2)), float(m.group(3))
+    if m:
+        return float(m.group(1)), float(m.group(2)), float(m.group(3))
+    m = re.search(r"([0-9.]+) bpp, PSNR ([0-9.]+) dB", line)  # an integer image: PSNR only
+    return float(m.group(1)), float(m.group(2)), float(m.group(2))
 
 
 def bd_rate(anchor, test):
@@ -58,7 +70,7 @@ def bd_rate(anchor, test):
 
 def main():
     with tempfile.TemporaryDirectory() as tmp:
-        print("| map | bpp | default: log-PSNR / PSNR (dB) | ebcot: log-PSNR / PSNR (dB) |")
+        print("| image | bpp | default: log-PSNR / PSNR (dB) | ebcot: log-PSNR / PSNR (dB) |")
         print("|---|---|---|---|")
         gains = {}
         for image in maps(tmp):
@@ -69,11 +81,13 @@ def main():
                 print(f"| {name} | {b} | {d[1]:.2f} / {d[2]:.2f} | {e[1]:.2f} / {e[2]:.2f} |")
             gains[name] = bd_rate([(r, q) for r, q, _ in curves["ebcot"]], [(r, q) for r, q, _ in curves["default"]])
         print()
-        print("| map | BD-rate of the default against ebcot (log-PSNR) |")
+        print("| image | BD-rate of the default against ebcot (log-PSNR for the EXR maps, PSNR for 16-bit) |")
         print("|---|---|")
         for name, g in gains.items():
             print(f"| {name} | {g:+.1f}% |")
-        print(f"| mean | {np.mean(list(gains.values())):+.1f}% |")
+        for kind, suffix in (("float", ".exr"), ("16-bit", ".png")):
+            mean = np.mean([g for n, g in gains.items() if n.endswith(suffix)])
+            print(f"| mean, {kind} | {mean:+.1f}% |")
 
 
 if __name__ == "__main__":

@@ -43,10 +43,11 @@ TEST(DefaultCoder, PcUpToFourMegapixels) {
   EXPECT_FALSE(pc_is_default_for(v));
 }
 
-// On the test photographs (the HDR one in half floats too) every rate mode's default stream is the
-// pc coder's, byte for byte.
+// On the test photographs (8-bit, 16-bit and the HDR one in half floats) every rate mode's default
+// stream is the pc coder's, byte for byte.
 TEST(DefaultCoder, PhotographsTakeThePcCoder) {
-  for (const char* name : {"camera.png", "coffee.png", "forest_hdr.exr"}) {
+  for (const char* name :
+       {"camera.png", "coffee.png", "courtyard16.png", "interior16.png", "forest_hdr.exr"}) {
     const Image image = photo(name);
     for (const auto& [mode, target] :
          {std::pair{RateMode::bpp, 0.5}, {RateMode::psnr, 36.0}, {RateMode::step, 8.0}}) {
