@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tools/atomic_file.h"
+#include "tools/exr_io.h"
 #include "tools/oiio_module.h"
 #include "tools/png_io.h"
 #include "tools/pnm_io.h"
@@ -29,10 +30,12 @@ std::vector<SampleType> format_types(const std::string& format) {
   return {};
 }
 
-// OpenImageIO's name for the format a path's extension picks; PNM and PNG without loading it.
+// OpenImageIO's name for the format a path's extension picks; the natively written formats
+// without loading it.
 std::string image_format_name(const fs::path& path) {
   if (has_pnm_extension(path)) return "pnm";
   if (has_png_extension(path)) return "png";
+  if (has_exr_extension(path)) return "openexr";
   return oiio_module().format_name(path);
 }
 
@@ -92,12 +95,14 @@ std::unique_ptr<ImageRowReader> open_image_rows(const fs::path& path) {
   if (auto mapped = MappedPnm::open(path)) return std::make_unique<ViewRows>(std::move(mapped));
   if (auto pnm = read_binary_pnm(path)) return std::make_unique<ViewRows>(std::move(*pnm));
   if (auto png = open_png_rows(path)) return png;
+  if (auto exr = open_exr_rows(path)) return exr;
   return oiio_module().open_rows(path);
 }
 
 Image read_image(const fs::path& path) {
   if (auto pnm = read_binary_pnm(path)) return std::move(*pnm);
   if (auto png = read_png(path)) return std::move(*png);
+  if (auto exr = read_exr(path)) return std::move(*exr);
   return oiio_module().read(path);
 }
 
@@ -131,7 +136,7 @@ fs::path format_name_path(const fs::path& path, const std::string& format) {
 fs::path stdout_image_format(SampleType type) { return is_integer(type) ? "-.png" : "-.exr"; }
 
 void check_image_format(const fs::path& path, const fs::path& format_as) {
-  if (has_pnm_extension(format_as) || has_png_extension(format_as)) return;
+  if (has_pnm_extension(format_as) || has_png_extension(format_as) || has_exr_extension(format_as)) return;
   try {
     (void)oiio_module().format_name(format_as);
   } catch (const std::exception&) {
@@ -160,6 +165,8 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
       write_binary_pnm(stored, tmp);
     else if (png_writable(format, stored.channels, stored.type, stored.metadata))
       write_png(stored, tmp);
+    else if (exr_writable(format, stored.type, stored.metadata))
+      write_exr(stored, tmp);
     else
       oiio_module().write(stored, format, tmp);
   });
@@ -177,6 +184,8 @@ SampleType write_image_rows(ImageRowReader& rows, const fs::path& path, const fs
       write_binary_pnm_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
     else if (png_writable(format, rows.channels(), target, rows.metadata()))
       write_png_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
+    else if (exr_writable(format, target, rows.metadata()))
+      write_exr_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
     else
       oiio_module().write_rows(ImageShape{rows.width(), rows.height(), rows.channels(), target},
                                rows.metadata(), format, tmp, next);

@@ -13,6 +13,7 @@
 
 #include "tools/image_io.h"
 #include "tools/oiio_module.h"
+#include "tools/strip_io.h"
 
 namespace pupwave::cli {
 namespace fs = std::filesystem;
@@ -88,22 +89,6 @@ void deinterleave(const T* src, Image& strip) {
     float* dst = strip.plane(ch);
     for (std::size_t i = 0; i < n; ++i) dst[i] = static_cast<float>(src[i * c + ch]);
   }
-}
-
-// Channel names a file of this many channels gets when none are given (and which need not be stored).
-std::vector<std::string> default_channel_names(std::size_t channels) {
-  static const char* grey[] = {"Y", "A"};
-  static const char* rgba[] = {"R", "G", "B", "A"};
-  std::vector<std::string> names;
-  for (std::size_t c = 0; c < channels; ++c)
-    names.emplace_back(channels <= 2 ? grey[c] : c < 4 ? rgba[c] : "channel" + std::to_string(c));
-  return names;
-}
-
-// Attributes that describe the file's encoding or OpenImageIO's reading of it, not the image.
-bool is_encoding_attribute(const std::string& name) {
-  return name.rfind("oiio:", 0) == 0 || name.rfind("openexr:", 0) == 0 || name == "compression" ||
-         name == "planarconfig";
 }
 
 // Channel names, windows and (for EXR files) scalar string/int/float attributes.
