@@ -12,6 +12,7 @@
 #include "tools/oiio_module.h"
 #include "tools/png_io.h"
 #include "tools/pnm_io.h"
+#include "tools/tiff_io.h"
 
 namespace pupwave::cli {
 namespace fs = std::filesystem;
@@ -36,6 +37,7 @@ std::string image_format_name(const fs::path& path) {
   if (has_pnm_extension(path)) return "pnm";
   if (has_png_extension(path)) return "png";
   if (has_exr_extension(path)) return "openexr";
+  if (has_tiff_extension(path)) return "tiff";
   return oiio_module().format_name(path);
 }
 
@@ -96,6 +98,7 @@ std::unique_ptr<ImageRowReader> open_image_rows(const fs::path& path) {
   if (auto pnm = read_binary_pnm(path)) return std::make_unique<ViewRows>(std::move(*pnm));
   if (auto png = open_png_rows(path)) return png;
   if (auto exr = open_exr_rows(path)) return exr;
+  if (auto tiff = open_tiff_rows(path)) return tiff;
   return oiio_module().open_rows(path);
 }
 
@@ -103,6 +106,7 @@ Image read_image(const fs::path& path) {
   if (auto pnm = read_binary_pnm(path)) return std::move(*pnm);
   if (auto png = read_png(path)) return std::move(*png);
   if (auto exr = read_exr(path)) return std::move(*exr);
+  if (auto tiff = read_tiff(path)) return std::move(*tiff);
   return oiio_module().read(path);
 }
 
@@ -136,7 +140,9 @@ fs::path format_name_path(const fs::path& path, const std::string& format) {
 fs::path stdout_image_format(SampleType type) { return is_integer(type) ? "-.png" : "-.exr"; }
 
 void check_image_format(const fs::path& path, const fs::path& format_as) {
-  if (has_pnm_extension(format_as) || has_png_extension(format_as) || has_exr_extension(format_as)) return;
+  if (has_pnm_extension(format_as) || has_png_extension(format_as) || has_exr_extension(format_as) ||
+      has_tiff_extension(format_as))
+    return;
   try {
     (void)oiio_module().format_name(format_as);
   } catch (const std::exception&) {
@@ -167,6 +173,8 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
       write_png(stored, tmp);
     else if (exr_writable(format, stored.type, stored.metadata))
       write_exr(stored, tmp);
+    else if (tiff_writable(format, stored.channels, stored.type, stored.metadata))
+      write_tiff(stored, tmp);
     else
       oiio_module().write(stored, format, tmp);
   });
@@ -186,6 +194,8 @@ SampleType write_image_rows(ImageRowReader& rows, const fs::path& path, const fs
       write_png_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
     else if (exr_writable(format, target, rows.metadata()))
       write_exr_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
+    else if (tiff_writable(format, rows.channels(), target, rows.metadata()))
+      write_tiff_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
     else
       oiio_module().write_rows(ImageShape{rows.width(), rows.height(), rows.channels(), target},
                                rows.metadata(), format, tmp, next);
