@@ -9,6 +9,7 @@
 
 #include "tools/atomic_file.h"
 #include "tools/exr_io.h"
+#include "tools/jpeg_io.h"
 #include "tools/oiio_module.h"
 #include "tools/png_io.h"
 #include "tools/pnm_io.h"
@@ -38,6 +39,7 @@ std::string image_format_name(const fs::path& path) {
   if (has_png_extension(path)) return "png";
   if (has_exr_extension(path)) return "openexr";
   if (has_tiff_extension(path)) return "tiff";
+  if (has_jpeg_extension(path)) return "jpeg";
   return oiio_module().format_name(path);
 }
 
@@ -99,6 +101,7 @@ std::unique_ptr<ImageRowReader> open_image_rows(const fs::path& path) {
   if (auto png = open_png_rows(path)) return png;
   if (auto exr = open_exr_rows(path)) return exr;
   if (auto tiff = open_tiff_rows(path)) return tiff;
+  if (auto jpeg = open_jpeg_rows(path)) return jpeg;
   return oiio_module().open_rows(path);
 }
 
@@ -107,6 +110,7 @@ Image read_image(const fs::path& path) {
   if (auto png = read_png(path)) return std::move(*png);
   if (auto exr = read_exr(path)) return std::move(*exr);
   if (auto tiff = read_tiff(path)) return std::move(*tiff);
+  if (auto jpeg = read_jpeg(path)) return std::move(*jpeg);
   return oiio_module().read(path);
 }
 
@@ -141,7 +145,7 @@ fs::path stdout_image_format(SampleType type) { return is_integer(type) ? "-.png
 
 void check_image_format(const fs::path& path, const fs::path& format_as) {
   if (has_pnm_extension(format_as) || has_png_extension(format_as) || has_exr_extension(format_as) ||
-      has_tiff_extension(format_as))
+      has_tiff_extension(format_as) || has_jpeg_extension(format_as))
     return;
   try {
     (void)oiio_module().format_name(format_as);
@@ -175,6 +179,8 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
       write_exr(stored, tmp);
     else if (tiff_writable(format, stored.channels, stored.type, stored.metadata))
       write_tiff(stored, tmp);
+    else if (jpeg_writable(format, stored.channels, stored.type, stored.metadata))
+      write_jpeg(stored, tmp);
     else
       oiio_module().write(stored, format, tmp);
   });
@@ -196,6 +202,8 @@ SampleType write_image_rows(ImageRowReader& rows, const fs::path& path, const fs
       write_exr_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
     else if (tiff_writable(format, rows.channels(), target, rows.metadata()))
       write_tiff_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
+    else if (jpeg_writable(format, rows.channels(), target, rows.metadata()))
+      write_jpeg_rows(tmp, rows.width(), rows.height(), rows.channels(), next);
     else
       oiio_module().write_rows(ImageShape{rows.width(), rows.height(), rows.channels(), target},
                                rows.metadata(), format, tmp, next);
