@@ -13,6 +13,7 @@
 #include "tools/oiio_module.h"
 #include "tools/png_io.h"
 #include "tools/pnm_io.h"
+#include "tools/strip_io.h"
 #include "tools/tiff_io.h"
 
 namespace pupwave::cli {
@@ -93,15 +94,34 @@ SampleType stored_type(const fs::path& format, std::size_t channels, SampleType 
   return storable_type(format, type);
 }
 
+// The rows of a file one of the native readers takes, and OpenImageIO's name of its format; null
+// for a file left to OpenImageIO.
+std::unique_ptr<ImageRowReader> open_native_rows(const fs::path& path, std::string& format) {
+  std::unique_ptr<ImageRowReader> rows;
+  if (auto mapped = MappedPnm::open(path))
+    rows = std::make_unique<ViewRows>(std::move(mapped));
+  else if (auto pnm = read_binary_pnm(path))
+    rows = std::make_unique<ViewRows>(std::move(*pnm));
+  if (rows) {
+    format = "pnm";
+    return rows;
+  }
+  const std::pair<const char*, std::unique_ptr<ImageRowReader> (*)(const fs::path&)> readers[] = {
+      {"png", open_png_rows}, {"openexr", open_exr_rows}, {"tiff", open_tiff_rows}, {"jpeg", open_jpeg_rows}};
+  for (const auto& [name, open] : readers) {
+    if ((rows = open(path))) {
+      format = name;
+      return rows;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::unique_ptr<ImageRowReader> open_image_rows(const fs::path& path) {
-  if (auto mapped = MappedPnm::open(path)) return std::make_unique<ViewRows>(std::move(mapped));
-  if (auto pnm = read_binary_pnm(path)) return std::make_unique<ViewRows>(std::move(*pnm));
-  if (auto png = open_png_rows(path)) return png;
-  if (auto exr = open_exr_rows(path)) return exr;
-  if (auto tiff = open_tiff_rows(path)) return tiff;
-  if (auto jpeg = open_jpeg_rows(path)) return jpeg;
+  std::string format;
+  if (auto rows = open_native_rows(path, format)) return rows;
   return oiio_module().open_rows(path);
 }
 
@@ -114,7 +134,15 @@ Image read_image(const fs::path& path) {
   return oiio_module().read(path);
 }
 
-std::string describe_image_file(const fs::path& path) { return oiio_module().describe(path); }
+std::string describe_image_file(const fs::path& path) {
+  std::string format;
+  const auto rows = open_native_rows(path, format);
+  if (!rows) return oiio_module().describe(path);
+  const auto& given = rows->metadata().channel_names;
+  const auto names = given.empty() ? default_channel_names(rows->channels()) : given;
+  return describe_image(path, format, rows->width(), rows->height(), names, to_string(rows->type()),
+                        alpha_channel_of(names), rows->metadata());
+}
 
 SampleType storable_type(const fs::path& path, SampleType type) {
   return closest_type(type, format_types(image_format_name(path)));

@@ -1,9 +1,11 @@
 #include "tools/strip_io.h"
 
+#include <strings.h>
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace pupwave::cli {
@@ -52,6 +54,35 @@ std::vector<std::string> default_channel_names(std::size_t channels) {
 std::vector<std::string> kept_channel_names(std::vector<std::string> names) {
   if (names == default_channel_names(names.size())) names.clear();
   return names;
+}
+
+int alpha_channel_of(const std::vector<std::string>& channel_names) {
+  for (std::size_t c = 0; c < channel_names.size(); ++c) {
+    const std::string& name = channel_names[c];
+    const std::size_t dot = name.find_last_of('.');
+    const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
+    if (strcasecmp(suffix.c_str(), "A") == 0 || strcasecmp(suffix.c_str(), "Alpha") == 0) return int(c);
+  }
+  return -1;
+}
+
+std::string describe_image(const fs::path& path, const std::string& format, std::size_t width,
+                           std::size_t height, const std::vector<std::string>& channel_names,
+                           const std::string& type, int alpha_channel, const ImageMetadata& m, int depth) {
+  std::ostringstream s;
+  const std::size_t n = channel_names.size();
+  s << path.string() << ": " << format << " image, " << width << " x " << height << ", " << n << " channel"
+    << (n == 1 ? "" : "s") << " (";
+  for (std::size_t c = 0; c < n; ++c) s << (c ? "," : "") << channel_names[c];
+  s << "), " << type;
+  if (depth > 1) s << ", depth " << depth;
+  if (alpha_channel >= 0) s << ", alpha in channel " << alpha_channel;
+  if (m.x != 0 || m.y != 0) s << ", data window origin " << m.x << "," << m.y;
+  if (m.full_width > 0)
+    s << ", display window " << m.full_width << "x" << m.full_height << " at " << m.full_x << "," << m.full_y;
+  if (!m.attributes.empty()) s << "\n  " << m.attributes.size() << " attribute(s) kept by compress:";
+  for (std::size_t k = 0; k < m.attributes.size(); ++k) s << (k ? ", " : " ") << m.attributes[k].name;
+  return s.str();
 }
 
 Image StripReader::next(std::size_t rows) {

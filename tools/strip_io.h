@@ -46,6 +46,18 @@ std::vector<std::string> default_channel_names(std::size_t channels);
 // The channel names to store for a file's names: none when they are the defaults.
 std::vector<std::string> kept_channel_names(std::vector<std::string> names);
 
+// The index of the alpha channel where OpenImageIO's readers put it: the first channel named A or
+// Alpha (after any layer prefix, in any case); -1 when there is none.
+int alpha_channel_of(const std::vector<std::string>& channel_names);
+
+// The description `pupwave info` prints for an image file: format (OpenImageIO's name), size,
+// channel names, sample type, depth (above 1), alpha channel (if >= 0), then what compress keeps
+// besides the pixels (windows, attributes).
+std::string describe_image(const std::filesystem::path& path, const std::string& format, std::size_t width,
+                           std::size_t height, const std::vector<std::string>& channel_names,
+                           const std::string& type, int alpha_channel, const ImageMetadata& kept,
+                           int depth = 1);
+
 // A row reader whose subclass decodes rows [y0, y0 + strip.height) into a strip's planes; the
 // shape, metadata and the position in the file are kept here.
 class StripReader : public ImageRowReader {
