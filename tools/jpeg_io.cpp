@@ -209,17 +209,11 @@ class JpegWriter {
   void finish() {
     errno = 0;
     if (!jpeg_step_finish(call_, info_)) fail();
-    std::FILE* f = call_.file;
-    call_.file = nullptr;
-    if (std::fclose(f) != 0) throw_write_error(file_);
+    close_written_file(call_.file, file_);
   }
 
  private:
-  // A failed stdio write (errno, cleared before each step, says why) or libjpeg's refusal.
-  [[noreturn]] void fail() const {
-    if (errno != 0) throw_write_error(file_);
-    throw_write_refusal(file_, call_.message);
-  }
+  [[noreturn]] void fail() const { throw_write_failure(file_, call_.message); }
 
   fs::path file_;
   JpegCall call_;

@@ -3,10 +3,13 @@
 #include <strings.h>
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "tools/atomic_file.h"
 
 namespace pupwave::cli {
 namespace fs = std::filesystem;
@@ -29,6 +32,17 @@ void throw_read_error(const fs::path& path, const std::string& why) {
 
 void throw_write_refusal(const fs::path& path, const std::string& why) {
   throw std::runtime_error("cannot write " + path.string() + ": " + why);
+}
+
+void throw_write_failure(const fs::path& path, const char* library_message) {
+  if (errno != 0) throw_write_error(path);
+  throw_write_refusal(path, library_message);
+}
+
+void close_written_file(std::FILE*& file, const fs::path& path) {
+  std::FILE* f = file;
+  file = nullptr;
+  if (std::fclose(f) != 0) throw_write_error(path);
 }
 
 bool is_encoding_attribute(const std::string& name) {

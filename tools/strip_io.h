@@ -4,6 +4,7 @@
 // allocated for the pixels, and the strip plumbing of a row reader and a row writer.
 
 #include <cstddef>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
@@ -29,6 +30,14 @@ bool is_readable_file(const std::filesystem::path& path);
 // std::runtime_error "cannot write PATH: WHY", for a library's refusal (stdio failures: atomic_file.h's
 // throw_write_error, which reads errno).
 [[noreturn]] void throw_write_refusal(const std::filesystem::path& path, const std::string& why);
+
+// A failed write through a C library: errno (cleared before the library call) says why when a
+// system call failed, else the library's message.
+[[noreturn]] void throw_write_failure(const std::filesystem::path& path, const char* library_message);
+
+// Closes a stdio file being written (nulling the pointer first, so it is closed once); throws
+// naming `path` if its data could not be written.
+void close_written_file(std::FILE*& file, const std::filesystem::path& path);
 
 // Attributes that describe a file's encoding or OpenImageIO's reading of it, not the image: not
 // kept in Image::metadata.

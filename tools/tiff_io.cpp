@@ -250,10 +250,8 @@ class TiffWriter {
     TIFFSetField(tif_, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
   }
 
-  // A failed write (errno, cleared before each step, says why) or libtiff's refusal.
   [[noreturn]] void fail() const {
-    if (errno != 0) throw_write_error(file_);
-    throw_write_refusal(file_, message_.text[0] ? message_.text : "libtiff refused the image");
+    throw_write_failure(file_, message_.text[0] ? message_.text : "libtiff refused the image");
   }
 
   fs::path file_;
