@@ -484,11 +484,7 @@ bool has_exr_extension(const fs::path& path) { return has_extension(path, {".exr
 
 std::unique_ptr<ImageRowReader> open_exr_rows(const fs::path& path) { return ExrRows::open(path); }
 
-std::optional<Image> read_exr(const fs::path& path) {
-  const auto rows = ExrRows::open(path);
-  if (!rows) return std::nullopt;
-  return read_all_rows(*rows);
-}
+std::optional<Image> read_exr(const fs::path& path) { return read_whole(ExrRows::open(path)); }
 
 bool exr_writable(const fs::path& path, SampleType type, const ImageMetadata& metadata) {
   return has_exr_extension(path) && !is_integer(type) && exr_attributes_writable(metadata.attributes);
@@ -504,10 +500,7 @@ void write_exr_rows(const fs::path& file, std::size_t width, std::size_t height,
                     SampleType type, const ImageMetadata& metadata,
                     const std::function<Image()>& next_strip) {
   ExrWriter writer(file, width, height, channels, type, metadata);
-  for_each_strip(
-      width, height, channels, type, next_strip, [&](const Image& strip) { writer.put(strip); },
-      "write_exr_rows");
-  writer.finish();
+  write_strips(writer, width, height, channels, type, next_strip, "write_exr_rows");
 }
 
 }  // namespace pupwave::cli

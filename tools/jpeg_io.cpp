@@ -228,11 +228,7 @@ bool has_jpeg_extension(const fs::path& path) { return has_extension(path, {".jp
 
 std::unique_ptr<ImageRowReader> open_jpeg_rows(const fs::path& path) { return JpegRows::open(path); }
 
-std::optional<Image> read_jpeg(const fs::path& path) {
-  const auto rows = JpegRows::open(path);
-  if (!rows) return std::nullopt;
-  return read_all_rows(*rows);
-}
+std::optional<Image> read_jpeg(const fs::path& path) { return read_whole(JpegRows::open(path)); }
 
 bool jpeg_writable(const fs::path& path, std::size_t channels, SampleType type,
                    const ImageMetadata& metadata) {
@@ -250,10 +246,7 @@ void write_jpeg(const Image& image, const fs::path& file) {
 void write_jpeg_rows(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
                      const std::function<Image()>& next_strip) {
   JpegWriter writer(file, width, height, channels);
-  for_each_strip(
-      width, height, channels, SampleType::u8, next_strip, [&](const Image& strip) { writer.put(strip); },
-      "write_jpeg_rows");
-  writer.finish();
+  write_strips(writer, width, height, channels, SampleType::u8, next_strip, "write_jpeg_rows");
 }
 
 }  // namespace pupwave::cli

@@ -261,11 +261,7 @@ bool has_png_extension(const fs::path& path) { return has_extension(path, {".png
 
 std::unique_ptr<ImageRowReader> open_png_rows(const fs::path& path) { return PngRows::open(path); }
 
-std::optional<Image> read_png(const fs::path& path) {
-  const auto rows = PngRows::open(path);
-  if (!rows) return std::nullopt;
-  return read_all_rows(*rows);
-}
+std::optional<Image> read_png(const fs::path& path) { return read_whole(PngRows::open(path)); }
 
 bool png_writable(const fs::path& path, std::size_t channels, SampleType type,
                   const ImageMetadata& metadata) {
@@ -287,10 +283,7 @@ void write_png_rows(const fs::path& file, std::size_t width, std::size_t height,
     throw std::invalid_argument(
         "write_png_rows: needs 1 to 4 channels of 8- or 16-bit samples and no attributes");
   PngWriter writer(file, width, height, channels, type, metadata);
-  for_each_strip(
-      width, height, channels, type, next_strip, [&](const Image& strip) { writer.put(strip); },
-      "write_png_rows");
-  writer.finish();
+  write_strips(writer, width, height, channels, type, next_strip, "write_png_rows");
 }
 
 }  // namespace pupwave::cli

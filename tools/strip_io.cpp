@@ -107,9 +107,10 @@ Image StripReader::next(std::size_t rows) {
   return strip;
 }
 
-Image read_all_rows(ImageRowReader& rows) {
-  Image image = rows.next(rows.height());
-  image.metadata = rows.metadata();
+std::optional<Image> read_whole(std::unique_ptr<ImageRowReader> rows) {
+  if (!rows) return std::nullopt;
+  Image image = rows->next(rows->height());
+  image.metadata = rows->metadata();
   return image;
 }
 

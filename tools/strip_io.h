@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -90,14 +92,25 @@ class StripReader : public ImageRowReader {
   std::size_t next_row_ = 0;
 };
 
-// The whole image of a row reader (one strip, read into place), with its metadata.
-Image read_all_rows(ImageRowReader& rows);
+// The whole image of a row reader (one strip, read into place), with its metadata; nullopt for
+// none (a native reader leaving the file to OpenImageIO).
+std::optional<Image> read_whole(std::unique_ptr<ImageRowReader> rows);
 
 // Passes the strips of next_strip to `put` until `height` rows have come; throws
 // std::runtime_error ("<who>: a strip does not fit the image") for a strip of another shape.
 void for_each_strip(std::size_t width, std::size_t height, std::size_t channels, SampleType type,
                     const std::function<Image()>& next_strip, const std::function<void(const Image&)>& put,
                     const char* who);
+
+// Writes the strips of next_strip through a format's writer (put(strip), then finish()), checking
+// each as for_each_strip does.
+template <class Writer>
+void write_strips(Writer& writer, std::size_t width, std::size_t height, std::size_t channels,
+                  SampleType type, const std::function<Image()>& next_strip, const char* who) {
+  for_each_strip(
+      width, height, channels, type, next_strip, [&](const Image& strip) { writer.put(strip); }, who);
+  writer.finish();
+}
 
 // Interleaves row y of a strip's planes into `out` as samples of type T, rounded and clamped to
 // [0, T's maximum] for integer T, copied for float T.

@@ -268,11 +268,7 @@ bool has_tiff_extension(const fs::path& path) { return has_extension(path, {".ti
 
 std::unique_ptr<ImageRowReader> open_tiff_rows(const fs::path& path) { return TiffRows::open(path); }
 
-std::optional<Image> read_tiff(const fs::path& path) {
-  const auto rows = TiffRows::open(path);
-  if (!rows) return std::nullopt;
-  return read_all_rows(*rows);
-}
+std::optional<Image> read_tiff(const fs::path& path) { return read_whole(TiffRows::open(path)); }
 
 bool tiff_writable(const fs::path& path, std::size_t channels, SampleType type,
                    const ImageMetadata& metadata) {
@@ -291,10 +287,7 @@ void write_tiff(const Image& image, const fs::path& file) {
 void write_tiff_rows(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
                      SampleType type, const std::function<Image()>& next_strip) {
   TiffWriter writer(file, width, height, channels, type);
-  for_each_strip(
-      width, height, channels, type, next_strip, [&](const Image& strip) { writer.put(strip); },
-      "write_tiff_rows");
-  writer.finish();
+  write_strips(writer, width, height, channels, type, next_strip, "write_tiff_rows");
 }
 
 }  // namespace pupwave::cli
