@@ -35,7 +35,7 @@ class InputFile {
   bool put(const std::uint8_t* data, std::size_t size) const {
     std::FILE* f = std::fopen(path_.c_str(), "wb");
     if (f == nullptr) return false;
-    std::fwrite(data, 1, size, f);
+    if (size > 0) std::fwrite(data, 1, size, f);  // an empty input may come with a null pointer
     return std::fclose(f) == 0;
   }
   const std::filesystem::path& path() const { return path_; }
