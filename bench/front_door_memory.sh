@@ -3,10 +3,11 @@
 # photograph, against their limits:
 #   `pupwave compress --report-psnr` at most 1.5x the same encode without it (bit-plane coder
 #   and the default coder, --bpp 1, from PPM);
-#   `pupwave convert` PNG -> PPM and PPM -> PNG at most 2x the image's raw bytes plus the
-#   output's size (both read and written with libpng and the PNM code, without OpenImageIO).
-#   The fixed cost of loading the OpenImageIO plugin, which other formats still pay, is measured
-#   apart: a 16 x 16 TIFF converted to PPM.
+#   `pupwave convert` between PPM and PNG, EXR (half, as oiiotool writes it), TIFF (8-bit) and
+#   JPEG at most 2x the image's raw bytes (its samples in the input's type) plus the output's
+#   size (all read and written natively, without OpenImageIO). The fixed cost of loading the
+#   OpenImageIO plugin, which other formats still pay, is measured apart: a 16 x 16 BMP
+#   converted to PPM.
 # Usage: bench/front_door_memory.sh [build-dir] [image] [work-dir]. Without an image, a
 # 2560 x 1600 mosaic of the testimages/ photographs is made with oiiotool (astronaut, coffee and
 # chelsea scaled to 512 rows and cropped to 512 x 512, camera as grey RGB; 5 x 4 tiles, cropped).
@@ -35,7 +36,11 @@ if [[ -z $image ]]; then
 fi
 "$pw" convert -q "$image" "$work/in.ppm"
 "$pw" convert -q "$work/in.ppm" "$work/in.png"
-oiiotool --nosoftwareattrib --pattern checker:width=4:height=4 16x16 3 -d uint8 -o "$work/tiny.tif"
+# The other inputs written by OpenImageIO, so that builds before and after a change read the same files.
+oiiotool --nosoftwareattrib "$work/in.ppm" -d half -o "$work/in.exr"
+oiiotool --nosoftwareattrib "$work/in.ppm" -o "$work/in.tif"
+oiiotool --nosoftwareattrib "$work/in.ppm" -o "$work/in.jpg"
+oiiotool --nosoftwareattrib --pattern checker:width=4:height=4 16x16 3 -d uint8 -o "$work/tiny.bmp"
 raw=$(($(stat -c %s "$work/in.ppm") - $(head -c 64 "$work/in.ppm" | head -n 3 | wc -c)))
 
 # Max RSS of a command in KiB (its output discarded); exits on failure.
@@ -61,11 +66,14 @@ for coder in ebcot default; do
   echo "| compress --bpp 1 ($coder coder) | $(mib "$plain") | | |"
   echo "| compress --bpp 1 ($coder coder) --report-psnr | $(mib "$psnr") ($(ratio "$psnr" "$plain")x plain) | $(mib $((plain * 3 / 2))) (1.5x plain) | $(ratio "$psnr" $((plain * 3 / 2))) |"
 done
-base=$(rss "$pw" convert -q "$work/tiny.tif" "$work/tiny.ppm")
-for pair in "png ppm" "ppm png"; do
+base=$(rss "$pw" convert -q "$work/tiny.bmp" "$work/tiny.ppm")
+for pair in "png ppm" "ppm png" "exr ppm" "ppm exr" "exr exr" "tif ppm" "ppm tif" "jpg ppm" "ppm jpg"; do
   read -r from to <<<"$pair"
+  rm -f "$work/out.$to"
   used=$(rss "$pw" convert -q "$work/in.$from" "$work/out.$to")
-  limit=$(((2 * raw + $(stat -c %s "$work/out.$to")) / 1024))
+  samples=$raw
+  [[ $from == exr ]] && samples=$((2 * raw)) # half samples: 2 bytes each
+  limit=$(((2 * samples + $(stat -c %s "$work/out.$to")) / 1024))
   echo "| convert ${from^^} -> ${to^^} | $(mib "$used") | $(mib "$limit") (2x raw + output) | $(ratio "$used" "$limit") |"
 done
-echo "| convert 16 x 16 TIFF -> PPM (the OpenImageIO plugin's fixed cost) | $(mib "$base") | | |"
+echo "| convert 16 x 16 BMP -> PPM (the OpenImageIO plugin's fixed cost) | $(mib "$base") | | |"

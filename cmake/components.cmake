@@ -116,9 +116,13 @@ if(PUPWAVE_BUILD_TOOLS)
   pupwave_require(PUPWAVE_BUILD_TOOLS libcli11-dev "CLI11" "${CLI11_FOUND}")
   find_package(PNG QUIET)
   pupwave_require(PUPWAVE_BUILD_TOOLS libpng-dev "libpng" "${PNG_FOUND}")
+  find_package(TIFF QUIET)
+  pupwave_require(PUPWAVE_BUILD_TOOLS libtiff-dev "libtiff" "${TIFF_FOUND}")
+  find_package(JPEG QUIET)
+  pupwave_require(PUPWAVE_BUILD_TOOLS libjpeg-dev "libjpeg" "${JPEG_FOUND}")
 endif()
 pupwave_component(cli PUPWAVE_BUILD_TOOLS "the pupwave CLI"
-                  "OpenImageIO ${OpenImageIO_VERSION}, OpenEXR ${OpenEXR_VERSION}, libpng ${PNG_VERSION_STRING}, CLI11 ${CLI11_VERSION}, nlohmann_json ${nlohmann_json_VERSION}")
+                  "OpenImageIO ${OpenImageIO_VERSION}, OpenEXR ${OpenEXR_VERSION}, libpng ${PNG_VERSION_STRING}, libtiff ${TIFF_VERSION}, libjpeg ${JPEG_VERSION}, CLI11 ${CLI11_VERSION}, nlohmann_json ${nlohmann_json_VERSION}")
 
 # --- vdb: the CLI's OpenVDB module ------------------------------------------------------------
 if(PUPWAVE_BUILD_VDB)

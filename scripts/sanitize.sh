@@ -12,7 +12,7 @@ jobs=$(nproc)
 # The test programs that exercise the decoders and parsers, plus the fuzz targets' corpus
 # runners; tests/hostile is not built (ASan cannot run under an address-space limit).
 asan_tests="codec_tests volcodec_tests cli_tests fuzz_image fuzz_image_level fuzz_volume fuzz_info fuzz_pnm fuzz_png
-  fuzz_spec fuzz_mesh fuzz_c_api fuzz_hdf5_chunk"
+  fuzz_exr fuzz_tiff fuzz_jpeg fuzz_spec fuzz_mesh fuzz_c_api fuzz_hdf5_chunk"
 # -O1: sanitizer builds compile about twice as fast as at -O3 and still run the tests quickly.
 # Ninja for a new build folder (better parallelism); an existing one keeps its generator.
 generator() { [ -f "$1/CMakeCache.txt" ] || echo "-G Ninja"; }
@@ -34,7 +34,7 @@ ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 \
 # shellcheck disable=SC2046
 cmake -S . -B build-fuzz $(generator build-fuzz) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPUPWAVE_BUILD_FUZZERS=ON -DPUPWAVE_BUILD_TESTS=OFF -DPUPWAVE_BUILD_BENCH=OFF > /dev/null
-targets="image image_level volume info pnm png spec mesh c_api hdf5_chunk"
+targets="image image_level volume info pnm png exr tiff jpeg spec mesh c_api hdf5_chunk"
 cmake --build build-fuzz -j"$jobs" --target $(printf 'fuzz_%s ' $targets)
 dict_for() {
   case $1 in

@@ -8,9 +8,13 @@
 #include <vector>
 
 #include "tools/atomic_file.h"
+#include "tools/exr_io.h"
+#include "tools/jpeg_io.h"
 #include "tools/oiio_module.h"
 #include "tools/png_io.h"
 #include "tools/pnm_io.h"
+#include "tools/strip_io.h"
+#include "tools/tiff_io.h"
 
 namespace pupwave::cli {
 namespace fs = std::filesystem;
@@ -29,10 +33,14 @@ std::vector<SampleType> format_types(const std::string& format) {
   return {};
 }
 
-// OpenImageIO's name for the format a path's extension picks; PNM and PNG without loading it.
+// OpenImageIO's name for the format a path's extension picks; the natively written formats
+// without loading it.
 std::string image_format_name(const fs::path& path) {
   if (has_pnm_extension(path)) return "pnm";
   if (has_png_extension(path)) return "png";
+  if (has_exr_extension(path)) return "openexr";
+  if (has_tiff_extension(path)) return "tiff";
+  if (has_jpeg_extension(path)) return "jpeg";
   return oiio_module().format_name(path);
 }
 
@@ -86,22 +94,55 @@ SampleType stored_type(const fs::path& format, std::size_t channels, SampleType 
   return storable_type(format, type);
 }
 
+// The rows of a file one of the native readers takes, and OpenImageIO's name of its format; null
+// for a file left to OpenImageIO.
+std::unique_ptr<ImageRowReader> open_native_rows(const fs::path& path, std::string& format) {
+  std::unique_ptr<ImageRowReader> rows;
+  if (auto mapped = MappedPnm::open(path))
+    rows = std::make_unique<ViewRows>(std::move(mapped));
+  else if (auto pnm = read_binary_pnm(path))
+    rows = std::make_unique<ViewRows>(std::move(*pnm));
+  if (rows) {
+    format = "pnm";
+    return rows;
+  }
+  const std::pair<const char*, std::unique_ptr<ImageRowReader> (*)(const fs::path&)> readers[] = {
+      {"png", open_png_rows}, {"openexr", open_exr_rows}, {"tiff", open_tiff_rows}, {"jpeg", open_jpeg_rows}};
+  for (const auto& [name, open] : readers) {
+    if ((rows = open(path))) {
+      format = name;
+      return rows;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::unique_ptr<ImageRowReader> open_image_rows(const fs::path& path) {
-  if (auto mapped = MappedPnm::open(path)) return std::make_unique<ViewRows>(std::move(mapped));
-  if (auto pnm = read_binary_pnm(path)) return std::make_unique<ViewRows>(std::move(*pnm));
-  if (auto png = open_png_rows(path)) return png;
+  std::string format;
+  if (auto rows = open_native_rows(path, format)) return rows;
   return oiio_module().open_rows(path);
 }
 
 Image read_image(const fs::path& path) {
   if (auto pnm = read_binary_pnm(path)) return std::move(*pnm);
   if (auto png = read_png(path)) return std::move(*png);
+  if (auto exr = read_exr(path)) return std::move(*exr);
+  if (auto tiff = read_tiff(path)) return std::move(*tiff);
+  if (auto jpeg = read_jpeg(path)) return std::move(*jpeg);
   return oiio_module().read(path);
 }
 
-std::string describe_image_file(const fs::path& path) { return oiio_module().describe(path); }
+std::string describe_image_file(const fs::path& path) {
+  std::string format;
+  const auto rows = open_native_rows(path, format);
+  if (!rows) return oiio_module().describe(path);
+  const auto& given = rows->metadata().channel_names;
+  const auto names = given.empty() ? default_channel_names(rows->channels()) : given;
+  return describe_image(path, format, rows->width(), rows->height(), names, to_string(rows->type()),
+                        alpha_channel_of(names), rows->metadata());
+}
 
 SampleType storable_type(const fs::path& path, SampleType type) {
   return closest_type(type, format_types(image_format_name(path)));
@@ -131,7 +172,9 @@ fs::path format_name_path(const fs::path& path, const std::string& format) {
 fs::path stdout_image_format(SampleType type) { return is_integer(type) ? "-.png" : "-.exr"; }
 
 void check_image_format(const fs::path& path, const fs::path& format_as) {
-  if (has_pnm_extension(format_as) || has_png_extension(format_as)) return;
+  if (has_pnm_extension(format_as) || has_png_extension(format_as) || has_exr_extension(format_as) ||
+      has_tiff_extension(format_as) || has_jpeg_extension(format_as))
+    return;
   try {
     (void)oiio_module().format_name(format_as);
   } catch (const std::exception&) {
@@ -160,6 +203,12 @@ void write_image(const Image& image, const fs::path& path, SampleType* stored_as
       write_binary_pnm(stored, tmp);
     else if (png_writable(format, stored.channels, stored.type, stored.metadata))
       write_png(stored, tmp);
+    else if (exr_writable(format, stored.type, stored.metadata))
+      write_exr(stored, tmp);
+    else if (tiff_writable(format, stored.channels, stored.type, stored.metadata))
+      write_tiff(stored, tmp);
+    else if (jpeg_writable(format, stored.channels, stored.type, stored.metadata))
+      write_jpeg(stored, tmp);
     else
       oiio_module().write(stored, format, tmp);
   });
@@ -177,6 +226,12 @@ SampleType write_image_rows(ImageRowReader& rows, const fs::path& path, const fs
       write_binary_pnm_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
     else if (png_writable(format, rows.channels(), target, rows.metadata()))
       write_png_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
+    else if (exr_writable(format, target, rows.metadata()))
+      write_exr_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
+    else if (tiff_writable(format, rows.channels(), target, rows.metadata()))
+      write_tiff_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
+    else if (jpeg_writable(format, rows.channels(), target, rows.metadata()))
+      write_jpeg_rows(tmp, rows.width(), rows.height(), rows.channels(), next);
     else
       oiio_module().write_rows(ImageShape{rows.width(), rows.height(), rows.channels(), target},
                                rows.metadata(), format, tmp, next);

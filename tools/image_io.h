@@ -1,8 +1,8 @@
 #pragma once
-// Image files <-> the library's planar Image: binary PGM/PPM (pnm_io.h) and PNG (png_io.h: all
-// but palette, 1/2/4-bit, tRNS and interlaced files on read) directly, every other file through
-// OpenImageIO (the module of oiio_module.h). The one entry point the CLI uses for image file
-// formats.
+// Image files <-> the library's planar Image: binary PGM/PPM (pnm_io.h), PNG (png_io.h), OpenEXR
+// (exr_io.h), TIFF (tiff_io.h) and JPEG (jpeg_io.h) directly, for the kinds of file each of those
+// headers names, giving what OpenImageIO gives for them; every other file through OpenImageIO
+// (the module of oiio_module.h). The one entry point the CLI uses for image file formats.
 
 #include <filesystem>
 #include <memory>
@@ -42,11 +42,13 @@ class ImageRowReader {
 };
 
 // The rows of an image file (as read_image reads it): a binary 8-bit PGM/PPM mapped and read in
-// place, a PNG through libpng and another scanline file through OpenImageIO a strip at a time; a
-// 16-bit PGM/PPM or a tiled file is read whole first.
+// place, a PNG, EXR, TIFF or JPEG through its library and another scanline file through
+// OpenImageIO a strip at a time; a 16-bit PGM/PPM or a tiled file OpenImageIO reads is read
+// whole first (a tiled EXR read natively comes through the OpenEXR library's row of tiles).
 std::unique_ptr<ImageRowReader> open_image_rows(const std::filesystem::path& path);
 
-// Describes an image file without decoding its pixels (format, size, channels, type).
+// Describes an image file without decoding its pixels (format, size, channels, type); the natively
+// read formats without loading OpenImageIO.
 std::string describe_image_file(const std::filesystem::path& path);
 
 // The name whose extension picks an output's format: `path` itself, or with a format name

@@ -8,7 +8,7 @@ const OiioModule& oiio_module() {
   // A failed load throws and is retried next call.
   static const auto* module = static_cast<const OiioModule*>(
       load_module(PUPWAVE_OIIO_MODULE_NAME, PUPWAVE_OIIO_MODULE_PATH, "pupwave_oiio_module", "OpenImageIO",
-                  "needed for JPEG, TIFF, EXR, palette or interlaced PNG and other images"));
+                  "needed for image formats and kinds of file not read natively (tools/image_io.h)"));
   return *module;
 }
 

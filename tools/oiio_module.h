@@ -2,8 +2,9 @@
 // The OpenImageIO half of image file I/O lives in a plugin (tools/oiio/, built as a shared
 // module next to the `pupwave` binary) that is loaded on first use. Linking OpenImageIO pulls
 // in about 260 shared libraries: 0.19 s and 130 MiB resident at every start of the CLI, more
-// than a whole 4096^2 decode's budget. Commands whose image files are binary PGM/PPM or the
-// PNGs tools/png_io.h reads and writes (and .pw files and volumes) never load it.
+// than a whole 4096^2 decode's budget. Commands whose image files are of the kinds read and
+// written natively (tools/image_io.h: PGM/PPM, PNG, EXR, TIFF, JPEG), .pw files and volumes never
+// load it.
 
 #include <filesystem>
 #include <functional>

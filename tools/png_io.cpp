@@ -15,6 +15,7 @@
 
 #include "codec/image/image_view.h"
 #include "tools/atomic_file.h"
+#include "tools/strip_io.h"
 
 namespace pupwave::cli {
 namespace fs = std::filesystem;
@@ -123,7 +124,7 @@ std::vector<std::uint16_t> png_row_buffer(std::size_t width, std::size_t channel
 png_bytep png_bytes_of(std::vector<std::uint16_t>& row) { return reinterpret_cast<png_bytep>(row.data()); }
 
 // The rows of a PNG file read with png_read_row, a strip at a time.
-class PngRows final : public ImageRowReader {
+class PngRows final : public StripReader {
  public:
   // Null when the file is not a PNG of the kinds read here; throws for a corrupt one.
   static std::unique_ptr<PngRows> open(const fs::path& path);
@@ -134,22 +135,13 @@ class PngRows final : public ImageRowReader {
   PngRows(const PngRows&) = delete;
   PngRows& operator=(const PngRows&) = delete;
 
-  std::size_t width() const override { return width_; }
-  std::size_t height() const override { return height_; }
-  std::size_t channels() const override { return channels_; }
-  SampleType type() const override { return type_; }
-  const ImageMetadata& metadata() const override { return metadata_; }
-
-  Image next(std::size_t rows) override {
-    const std::size_t y0 = next_row_, y1 = std::min(height_, y0 + std::max<std::size_t>(rows, 1));
-    next_row_ = y1;
-    Image strip(width_, y1 - y0, channels_, type_);
-    for (std::size_t y = y0; y < y1; ++y) {
+ protected:
+  void read_strip(std::size_t, Image& strip) override {
+    for (std::size_t y = 0; y < strip.height; ++y) {
       if (!png_step_read_row(call_, png_bytes_of(row_))) fail();
       const ImageView row = interleaved_view(row_.data(), width_, 1, channels_, type_);
-      for (std::size_t c = 0; c < channels_; ++c) row.read_row(c, 0, strip.plane(c) + (y - y0) * width_);
+      for (std::size_t c = 0; c < channels_; ++c) row.read_row(c, 0, strip.plane(c) + y * width_);
     }
-    return strip;
   }
 
  private:
@@ -167,17 +159,16 @@ class PngRows final : public ImageRowReader {
     width_ = png_get_image_width(call_.png, call_.info);
     height_ = png_get_image_height(call_.png, call_.info);
     type_ = depth == 16 ? SampleType::u16 : SampleType::u8;
-    if (width_ * height_ > kMaxImageSamples / channels_)
-      throw std::runtime_error("cannot read " + path_.string() + ": image too large");
+    check_image_samples(path_, width_, height_, channels_);
     // Deflate expands at most 1032:1 (zlib's limit), so a file far too small for the size its
     // header claims is refused before the caller allocates the image for it.
     std::error_code ec;
     const std::uintmax_t file_bytes = fs::file_size(path_, ec);
     const std::size_t filtered = height_ * (1 + width_ * channels_ * (depth / 8));
     if (!ec && filtered / kDeflateMaxRatio > file_bytes)
-      throw std::runtime_error("cannot read " + path_.string() + ": its " + std::to_string(file_bytes) +
-                               " bytes cannot hold the " + std::to_string(width_) + "x" +
-                               std::to_string(height_) + " image its header claims (truncated or corrupt)");
+      throw_read_error(path_, "its " + std::to_string(file_bytes) + " bytes cannot hold the " +
+                                  std::to_string(width_) + "x" + std::to_string(height_) +
+                                  " image its header claims (truncated or corrupt)");
     // OpenImageIO's data window origin for a PNG; its channel names are the defaults (not kept).
     metadata_.x = png_get_x_offset_pixels(call_.png, call_.info);
     metadata_.y = png_get_y_offset_pixels(call_.png, call_.info);
@@ -185,22 +176,15 @@ class PngRows final : public ImageRowReader {
     return true;
   }
 
-  [[noreturn]] void fail() const {
-    throw std::runtime_error("cannot read " + path_.string() + ": " + call_.message);
-  }
+  [[noreturn]] void fail() const { throw_read_error(path_, call_.message); }
 
   fs::path path_;
   PngCall call_;
-  std::size_t width_ = 0, height_ = 0, channels_ = 0;
-  SampleType type_ = SampleType::u8;
-  ImageMetadata metadata_;
-  std::size_t next_row_ = 0;
   std::vector<std::uint16_t> row_;  // one row as libpng gives it
 };
 
 std::unique_ptr<PngRows> PngRows::open(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return nullptr;  // OpenImageIO's path reports why
+  if (!is_readable_file(path)) return nullptr;  // OpenImageIO's path reports why
   std::unique_ptr<PngRows> rows(new PngRows(path));
   PngCall& call = rows->call_;
   call.file = std::fopen(path.c_str(), "rb");
@@ -245,20 +229,11 @@ class PngWriter {
 
   // Appends the rows of `strip`, rounded and clamped to the sample type's range.
   void put(const Image& strip) {
-    const std::size_t c = strip.channels;
-    const float top = float(nominal_max(type_));
-    png_bytep narrow = png_bytes_of(row_);
     for (std::size_t y = 0; y < strip.height; ++y) {
-      for (std::size_t ch = 0; ch < c; ++ch) {
-        const float* src = strip.plane(ch) + y * strip.width;
-        for (std::size_t x = 0; x < strip.width; ++x) {
-          const auto v = unsigned(std::clamp(src[x], 0.0f, top) + 0.5f);
-          if (type_ == SampleType::u16)
-            row_[x * c + ch] = std::uint16_t(v);
-          else
-            narrow[x * c + ch] = std::uint8_t(v);
-        }
-      }
+      if (type_ == SampleType::u16)
+        interleave_row(strip, y, row_.data());
+      else
+        interleave_row(strip, y, png_bytes_of(row_));
       errno = 0;
       if (!png_step_write_row(call_, png_bytes_of(row_))) fail();
     }
@@ -268,17 +243,11 @@ class PngWriter {
   void finish() {
     errno = 0;
     if (!png_step_write_end(call_)) fail();
-    std::FILE* f = call_.file;
-    call_.file = nullptr;
-    if (std::fclose(f) != 0) throw_write_error(file_);
+    close_written_file(call_.file, file_);
   }
 
  private:
-  // A failed stdio write (errno, cleared before each step, says why) or libpng's refusal.
-  [[noreturn]] void fail() const {
-    if (errno != 0) throw_write_error(file_);
-    throw std::runtime_error("cannot write " + file_.string() + ": " + call_.message);
-  }
+  [[noreturn]] void fail() const { throw_write_failure(file_, call_.message); }
 
   fs::path file_;
   SampleType type_;
@@ -288,22 +257,11 @@ class PngWriter {
 
 }  // namespace
 
-bool has_png_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char ch) { return char(std::tolower(ch)); });
-  return ext == ".png";
-}
+bool has_png_extension(const fs::path& path) { return has_extension(path, {".png"}); }
 
 std::unique_ptr<ImageRowReader> open_png_rows(const fs::path& path) { return PngRows::open(path); }
 
-std::optional<Image> read_png(const fs::path& path) {
-  const auto rows = PngRows::open(path);
-  if (!rows) return std::nullopt;
-  Image image = rows->next(rows->height());  // one strip: the whole image, read row by row into place
-  image.metadata = rows->metadata();
-  return image;
-}
+std::optional<Image> read_png(const fs::path& path) { return read_whole(PngRows::open(path)); }
 
 bool png_writable(const fs::path& path, std::size_t channels, SampleType type,
                   const ImageMetadata& metadata) {
@@ -325,15 +283,7 @@ void write_png_rows(const fs::path& file, std::size_t width, std::size_t height,
     throw std::invalid_argument(
         "write_png_rows: needs 1 to 4 channels of 8- or 16-bit samples and no attributes");
   PngWriter writer(file, width, height, channels, type, metadata);
-  for (std::size_t rows = 0; rows < height;) {
-    const Image strip = next_strip();
-    if (strip.height == 0 || strip.width != width || strip.channels != channels || strip.type != type ||
-        rows + strip.height > height)
-      throw std::runtime_error("write_png_rows: a strip does not fit the image");
-    writer.put(strip);
-    rows += strip.height;
-  }
-  writer.finish();
+  write_strips(writer, width, height, channels, type, next_strip, "write_png_rows");
 }
 
 }  // namespace pupwave::cli

@@ -2,7 +2,7 @@
 // Binary PGM/PPM (P5/P6, maxval 255 or 65535), read and written here rather than through
 // OpenImageIO: its 2.4 PNM writer makes a stdio call per sample (about a quarter of a 4096^2
 // decode) and writes 8 bits only. Every other PNM variant (ASCII, PAM, other maxvals) goes
-// through OpenImageIO, as do other formats but PNG (png_io.h; tools/image_io.cpp).
+// through OpenImageIO, as do the formats tools/image_io.cpp does not read natively.
 
 #include <filesystem>
 #include <functional>

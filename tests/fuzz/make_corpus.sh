@@ -12,7 +12,7 @@ out=tests/fuzz/corpus
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 seeds=$(dirname "$(dirname "$cli")")/tests/fuzz/fuzz_make_seeds
-for t in image image_level volume info pnm png spec mesh c_api hdf5_chunk; do
+for t in image image_level volume info pnm png exr tiff jpeg spec mesh c_api hdf5_chunk; do
   mkdir -p "$out/$t"
   find "$out/$t" -type f ! -name 'regress-*' -delete
 done
@@ -48,6 +48,19 @@ crop "$tmp/camera.pgm" 10 10 7 5 "$tmp/tiny.pgm"
 cp "$tmp/grey.pgm" "$tmp/tiny.pgm" "$tmp/rgb.ppm" "$out/pnm/"
 "$cli" convert "$tmp/grey.pgm" "$out/png/grey.png" > /dev/null
 "$cli" convert "$tmp/rgb.ppm" "$out/png/rgb.png" > /dev/null
+# EXR, TIFF and JPEG as the CLI writes them (half and float EXR, 8/16-bit TIFF), plus layouts only
+# oiiotool writes here (a tiled PIZ EXR with alpha, an LZW TIFF).
+"$cli" convert "$tmp/rgb.ppm" "$out/exr/seed-rgb-half.exr" > /dev/null
+oiiotool "$tmp/grey.pgm" -d uint16 -o "$tmp/grey16.pgm"
+"$cli" convert "$tmp/grey16.pgm" "$out/exr/seed-grey-float.exr" > /dev/null
+oiiotool --nosoftwareattrib "$tmp/rgb.ppm" --eraseattrib ".*" --ch R,G,B,A=1 -d half --tile 8 8 --compression piz \
+  -o "$out/exr/seed-tiled-rgba-piz.exr"
+"$cli" convert "$tmp/rgb.ppm" "$out/tiff/seed-rgb-u8.tif" > /dev/null
+"$cli" convert "$tmp/grey16.pgm" "$out/tiff/seed-grey-u16.tif" > /dev/null
+"$cli" convert "$out/exr/seed-tiled-rgba-piz.exr" "$out/tiff/seed-rgba-float.tif" > /dev/null
+oiiotool --nosoftwareattrib "$tmp/rgb.ppm" --eraseattrib ".*" --compression lzw -o "$out/tiff/seed-rgb-lzw.tif"
+"$cli" convert "$tmp/rgb.ppm" "$out/jpeg/seed-rgb.jpg" > /dev/null
+"$cli" convert "$tmp/grey.pgm" "$out/jpeg/seed-grey.jpg" > /dev/null
 
 # Image streams: lossless and lossy, every coder, every transform family, odd sizes.
 img=0

@@ -7,12 +7,12 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "tools/image_io.h"
 #include "tools/oiio_module.h"
+#include "tools/strip_io.h"
 
 namespace pupwave::cli {
 namespace fs = std::filesystem;
@@ -88,22 +88,6 @@ void deinterleave(const T* src, Image& strip) {
     float* dst = strip.plane(ch);
     for (std::size_t i = 0; i < n; ++i) dst[i] = static_cast<float>(src[i * c + ch]);
   }
-}
-
-// Channel names a file of this many channels gets when none are given (and which need not be stored).
-std::vector<std::string> default_channel_names(std::size_t channels) {
-  static const char* grey[] = {"Y", "A"};
-  static const char* rgba[] = {"R", "G", "B", "A"};
-  std::vector<std::string> names;
-  for (std::size_t c = 0; c < channels; ++c)
-    names.emplace_back(channels <= 2 ? grey[c] : c < 4 ? rgba[c] : "channel" + std::to_string(c));
-  return names;
-}
-
-// Attributes that describe the file's encoding or OpenImageIO's reading of it, not the image.
-bool is_encoding_attribute(const std::string& name) {
-  return name.rfind("oiio:", 0) == 0 || name.rfind("openexr:", 0) == 0 || name == "compression" ||
-         name == "planarconfig";
 }
 
 // Channel names, windows and (for EXR files) scalar string/int/float attributes.
@@ -310,21 +294,11 @@ Image read(const fs::path& path) {
 std::string describe(const fs::path& path) {
   auto in = open_input(path);
   const OIIO::ImageSpec& spec = in->spec();
-  std::ostringstream s;
-  s << path.string() << ": " << in->format_name() << " image, " << spec.width << " x " << spec.height << ", "
-    << spec.nchannels << " channel" << (spec.nchannels == 1 ? "" : "s") << " (";
-  for (int c = 0; c < spec.nchannels; ++c) s << (c ? "," : "") << spec.channel_name(c);
-  s << "), " << spec.format.c_str();
-  if (spec.depth > 1) s << ", depth " << spec.depth;
-  if (spec.alpha_channel >= 0) s << ", alpha in channel " << spec.alpha_channel;
-  // What compress keeps besides the pixels (Image::metadata): windows and attributes.
-  const ImageMetadata m = metadata_of(spec, in->format_name());
-  if (m.x != 0 || m.y != 0) s << ", data window origin " << m.x << "," << m.y;
-  if (m.full_width > 0)
-    s << ", display window " << m.full_width << "x" << m.full_height << " at " << m.full_x << "," << m.full_y;
-  if (!m.attributes.empty()) s << "\n  " << m.attributes.size() << " attribute(s) kept by compress:";
-  for (std::size_t k = 0; k < m.attributes.size(); ++k) s << (k ? ", " : " ") << m.attributes[k].name;
-  return s.str();
+  std::vector<std::string> names;
+  for (int c = 0; c < spec.nchannels; ++c) names.push_back(spec.channel_name(c));
+  return describe_image(path, in->format_name(), std::size_t(spec.width), std::size_t(spec.height), names,
+                        spec.format.c_str(), spec.alpha_channel, metadata_of(spec, in->format_name()),
+                        spec.depth);
 }
 
 std::unique_ptr<OIIO::ImageOutput> open_output(const ImageShape& shape, const ImageMetadata& metadata,

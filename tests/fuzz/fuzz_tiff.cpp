@@ -1,0 +1,9 @@
+// fuzz_tiff: the libtiff reader (tools/tiff_io.cpp) through its row reader (fuzz_rows.h: the input
+// file, the invariants).
+#include "fuzz_rows.h"
+#include "tools/tiff_io.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const pupwave::fuzz::InputFile file(".tif");
+  return pupwave::fuzz::fuzz_rows(file, data, size, pupwave::cli::open_tiff_rows);
+}

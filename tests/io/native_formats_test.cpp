@@ -1,0 +1,312 @@
+// OpenEXR, TIFF and JPEG read and written here (tools/exr_io.h, tiff_io.h, jpeg_io.h) against
+// OpenImageIO's reading of the same files (the module's read): the same samples, type, channel
+// names and kept metadata on files OpenImageIO writes from the test photographs; round trips of
+// every sample type; the kinds left to OpenImageIO go there; corrupt and truncated files are
+// errors naming the file; and the CLI's commands on these formats do not load the module.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+
+#include "cli/run_cli.h"
+#include "tools/exr_io.h"
+#include "tools/image_io.h"
+#include "tools/jpeg_io.h"
+#include "tools/oiio_module.h"
+#include "tools/tiff_io.h"
+
+namespace pupwave::cli {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path scratch() {
+  fs::path dir = fs::temp_directory_path() / ("pupwave_native_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+Image photograph(const char* name) { return read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / name); }
+
+// The photograph's samples in another type, through the nominal range (255 <-> 65535 <-> 1.0).
+Image photograph_as(const char* name, SampleType type) { return convert_sample_type(photograph(name), type); }
+
+// The first `channels` planes of an image (a grey photograph repeated for more).
+Image with_channels(const Image& from, std::size_t channels) {
+  Image out(from.width, from.height, channels, from.type);
+  for (std::size_t c = 0; c < channels; ++c)
+    std::copy_n(from.plane(c % from.channels), from.plane_size(), out.plane(c));
+  return out;
+}
+
+void expect_same(const Image& a, const Image& b, const std::string& what) {
+  EXPECT_EQ(a.width, b.width) << what;
+  EXPECT_EQ(a.height, b.height) << what;
+  EXPECT_EQ(a.channels, b.channels) << what;
+  EXPECT_EQ(a.type, b.type) << what;
+  EXPECT_TRUE(a.samples == b.samples) << what;
+  EXPECT_TRUE(a.metadata == b.metadata) << what;
+  EXPECT_EQ(a.metadata.channel_names, b.metadata.channel_names) << what;
+  EXPECT_EQ(a.metadata.not_kept, b.metadata.not_kept) << what;
+}
+
+// Writes `image` to dir/name with OpenImageIO, then reads it with `native` and with OpenImageIO.
+template <class Read>
+void expect_read_as_openimageio_reads(const Image& image, const std::string& name, Read native) {
+  const fs::path path = scratch() / name;
+  oiio_module().write(image, path, path);
+  const auto read = native(path);
+  ASSERT_TRUE(read.has_value()) << name << " was left to OpenImageIO";
+  expect_same(*read, oiio_module().read(path), name);
+}
+
+std::string bytes_of(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// A copy of the file cut to `keep` bytes.
+fs::path truncated_copy(const fs::path& path, std::size_t keep) {
+  const fs::path cut = path.parent_path() / ("cut_" + path.filename().string());
+  std::ofstream(cut, std::ios::binary) << bytes_of(path).substr(0, keep);
+  return cut;
+}
+
+// Reads every row of the file natively; the error's message.
+template <class Open>
+std::string read_error(const fs::path& path, Open open) {
+  try {
+    auto rows = open(path);
+    if (!rows) return "left to OpenImageIO";
+    while (rows->next(16).height > 0) {
+    }
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// --- OpenEXR ---
+
+TEST(ExrIo, TestImageReadsAsOpenImageIoReadsIt) {
+  const fs::path path = fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr";
+  const auto native = read_exr(path);
+  ASSERT_TRUE(native.has_value());
+  EXPECT_EQ(native->metadata.attributes.size(), 6u);  // Software, DateTime, Orientation...
+  expect_same(*native, oiio_module().read(path), "forest_hdr.exr");
+}
+
+TEST(ExrIo, FilesOpenImageIoWritesReadAsItReadsThem) {
+  const auto read = [](const fs::path& p) { return read_exr(p); };
+  expect_read_as_openimageio_reads(photograph_as("chelsea.png", SampleType::f32), "float.exr", read);
+  expect_read_as_openimageio_reads(photograph_as("camera.png", SampleType::f16), "grey.exr", read);
+  Image rgba = with_channels(photograph_as("astronaut.png", SampleType::f16), 4);
+  expect_read_as_openimageio_reads(rgba, "rgba.exr", read);
+  // Layers, an X/Y layer, a data window and a display window, attributes of every kept kind.
+  Image layered = with_channels(photograph_as("coffee.png", SampleType::f16), 6);
+  layered.metadata.channel_names = {"diffuse.R", "diffuse.G", "diffuse.B", "P.X", "P.Y", "P.A"};
+  layered.metadata.x = 10;
+  layered.metadata.y = -4;
+  layered.metadata.full_x = 0;
+  layered.metadata.full_y = 0;
+  layered.metadata.full_width = 700;
+  layered.metadata.full_height = 500;
+  layered.metadata.attributes = {{"Software", ImageAttribute::Kind::string, "pupwave test", 0, 0.0},
+                                 {"DateTime", ImageAttribute::Kind::string, "2024:01:02 03:04:05", 0, 0.0},
+                                 {"frame", ImageAttribute::Kind::integer, {}, 42, 0.0},
+                                 {"XResolution", ImageAttribute::Kind::real, {}, 0, 300.0},
+                                 {"ExposureTime", ImageAttribute::Kind::real, {}, 0, 0.125}};
+  expect_read_as_openimageio_reads(layered, "layered.exr", read);
+}
+
+TEST(ExrIo, RoundTripsKeepSamplesNamesWindowsAndAttributes) {
+  for (SampleType type : {SampleType::f16, SampleType::f32}) {
+    for (std::size_t channels = 1; channels <= 4; ++channels) {
+      Image image = with_channels(photograph_as("chelsea.png", type), channels);
+      image.metadata.x = 3;
+      image.metadata.y = 5;
+      image.metadata.attributes = {{"note", ImageAttribute::Kind::string, "kept", 0, 0.0}};
+      const fs::path path = scratch() / ("rt" + std::to_string(channels) + to_string(type) + ".exr");
+      ASSERT_TRUE(exr_writable(path, type, image.metadata));
+      write_exr(image, path);
+      const auto back = read_exr(path);
+      ASSERT_TRUE(back.has_value());
+      EXPECT_EQ(back->type, type);
+      EXPECT_TRUE(back->samples == image.samples) << path;
+      EXPECT_EQ(back->metadata.x, 3);
+      EXPECT_EQ(back->metadata.y, 5);
+      EXPECT_TRUE(back->metadata.channel_names.empty()) << "default names are not stored";
+      ASSERT_FALSE(back->metadata.attributes.empty());
+      EXPECT_EQ(back->metadata.attributes.front().text, "kept");
+      expect_same(*back, oiio_module().read(path), path.string());
+    }
+  }
+}
+
+TEST(ExrIo, WrittenInStripsAsWholeAndNamedChannelsKept) {
+  Image image = with_channels(photograph_as("coffee.png", SampleType::f16), 3);
+  image.metadata.channel_names = {"Y", "BY", "RY"};
+  const fs::path whole = scratch() / "whole.exr", strips = scratch() / "strips.exr";
+  write_exr(image, whole);
+  std::size_t y0 = 0;
+  write_exr_rows(strips, image.width, image.height, 3, SampleType::f16, image.metadata, [&] {
+    const std::size_t rows = std::min<std::size_t>(50, image.height - y0);
+    Image strip(image.width, rows, 3, SampleType::f16);
+    for (std::size_t c = 0; c < 3; ++c)
+      std::copy_n(image.plane(c) + y0 * image.width, rows * image.width, strip.plane(c));
+    y0 += rows;
+    return strip;
+  });
+  EXPECT_EQ(bytes_of(whole), bytes_of(strips));
+  const auto back = read_exr(strips);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->metadata.channel_names, std::vector<std::string>({"Y", "BY", "RY"}));
+  EXPECT_TRUE(back->samples == image.samples);
+}
+
+TEST(ExrIo, KindsLeftToOpenImageIoGoThere) {
+  // An attribute OpenImageIO reads as a matrix (compress names it as not kept, in its words).
+  Image image = photograph_as("camera.png", SampleType::f16);
+  const fs::path plain = scratch() / "plain.exr";
+  oiio_module().write(image, plain, plain);
+  EXPECT_TRUE(read_exr(plain).has_value());
+  EXPECT_FALSE(read_exr(fs::path(PUPWAVE_TESTIMAGES_DIR) / "camera.png").has_value());
+  // Attributes with names OpenImageIO's writer renames or drops leave writing to it.
+  ImageMetadata m;
+  m.attributes = {{"ImageDescription", ImageAttribute::Kind::string, "x", 0, 0.0}};
+  EXPECT_FALSE(exr_writable("a.exr", SampleType::f16, m));
+  m.attributes = {{"oiio:ColorSpace", ImageAttribute::Kind::string, "Linear", 0, 0.0}};
+  EXPECT_FALSE(exr_writable("a.exr", SampleType::f16, m));
+  EXPECT_FALSE(exr_writable("a.exr", SampleType::u8, {}));
+}
+
+TEST(ExrIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
+  const fs::path path = scratch() / "whole_forest.exr";
+  fs::copy_file(fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr", path,
+                fs::copy_options::overwrite_existing);
+  const auto open = [](const fs::path& p) { return open_exr_rows(p); };
+  for (std::size_t keep : {std::size_t(12), std::size_t(300), fs::file_size(path) / 2}) {
+    const fs::path cut = truncated_copy(path, keep);
+    const std::string error = read_error(cut, open);
+    EXPECT_NE(error.find(cut.string()), std::string::npos) << keep << ": " << error;
+  }
+}
+
+// --- TIFF ---
+
+TEST(TiffIo, FilesOpenImageIoWritesReadAsItReadsThem) {
+  const auto read = [](const fs::path& p) { return read_tiff(p); };
+  for (SampleType type : {SampleType::u8, SampleType::u16, SampleType::f32})
+    for (std::size_t channels = 1; channels <= 4; ++channels)
+      expect_read_as_openimageio_reads(with_channels(photograph_as("astronaut.png", type), channels),
+                                       "oiio" + std::to_string(channels) + to_string(type) + ".tif", read);
+}
+
+TEST(TiffIo, RoundTripsKeepSamplesAndType) {
+  for (SampleType type : {SampleType::u8, SampleType::u16, SampleType::f32}) {
+    for (std::size_t channels = 1; channels <= 4; ++channels) {
+      const Image image = with_channels(photograph_as("coffee.png", type), channels);
+      const fs::path path = scratch() / ("rt" + std::to_string(channels) + to_string(type) + ".tiff");
+      ASSERT_TRUE(tiff_writable(path, channels, type, image.metadata));
+      write_tiff(image, path);
+      const auto back = read_tiff(path);
+      ASSERT_TRUE(back.has_value());
+      expect_same(*back, image, path.string());
+      expect_same(*back, oiio_module().read(path), path.string() + " against OpenImageIO");
+    }
+  }
+}
+
+TEST(TiffIo, KindsLeftToOpenImageIoGoThere) {
+  EXPECT_FALSE(tiff_writable("a.tif", 3, SampleType::f16, {}));
+  EXPECT_FALSE(tiff_writable("a.tif", 5, SampleType::u8, {}));
+  ImageMetadata moved;
+  moved.x = 4;
+  EXPECT_FALSE(tiff_writable("a.tif", 3, SampleType::u8, moved));
+  EXPECT_FALSE(read_tiff(fs::path(PUPWAVE_TESTIMAGES_DIR) / "camera.png").has_value());
+}
+
+TEST(TiffIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
+  const fs::path path = scratch() / "whole.tif";
+  write_tiff(photograph("chelsea.png"), path);
+  const auto open = [](const fs::path& p) { return open_tiff_rows(p); };
+  for (std::size_t keep : {std::size_t(8), std::size_t(200), fs::file_size(path) / 2}) {
+    const fs::path cut = truncated_copy(path, keep);
+    const std::string error = read_error(cut, open);
+    EXPECT_NE(error.find(cut.string()), std::string::npos) << keep << ": " << error;
+  }
+}
+
+// --- JPEG ---
+
+TEST(JpegIo, FilesOpenImageIoWritesReadAsItReadsThem) {
+  const auto read = [](const fs::path& p) { return read_jpeg(p); };
+  expect_read_as_openimageio_reads(photograph("chelsea.png"), "rgb.jpg", read);
+  expect_read_as_openimageio_reads(photograph("camera.png"), "grey.jpeg", read);
+}
+
+TEST(JpegIo, WrittenFilesReadBackCloseToTheImage) {
+  for (const char* name : {"astronaut.png", "camera.png"}) {
+    const Image image = photograph(name);
+    const fs::path path = scratch() / (std::string(name) + ".jpg");
+    ASSERT_TRUE(jpeg_writable(path, image.channels, image.type, image.metadata));
+    write_jpeg(image, path);
+    const auto back = read_jpeg(path);
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(back->channels, image.channels);
+    EXPECT_EQ(back->type, SampleType::u8);
+    double squared = 0.0;
+    for (std::size_t i = 0; i < image.samples.size(); ++i)
+      squared += std::pow(double(back->samples[i]) - double(image.samples[i]), 2.0);
+    const double psnr = 10.0 * std::log10(255.0 * 255.0 * double(image.samples.size()) / squared);
+    EXPECT_GT(psnr, 36.0) << name << " at quality 95";
+    expect_same(*back, oiio_module().read(path), path.string());
+  }
+}
+
+TEST(JpegIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
+  const fs::path path = scratch() / "whole.jpg";
+  write_jpeg(photograph("chelsea.png"), path);
+  const auto open = [](const fs::path& p) { return open_jpeg_rows(p); };
+  for (std::size_t keep : {std::size_t(4), std::size_t(300), fs::file_size(path) / 2}) {
+    const fs::path cut = truncated_copy(path, keep);
+    const std::string error = read_error(cut, open);
+    EXPECT_NE(error.find(cut.string()), std::string::npos) << keep << ": " << error;
+  }
+}
+
+// --- the CLI ---
+
+bool loads_openimageio(const std::string& args) {
+  const auto result = test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " + args +
+                                             " 2>&1 >/dev/null </dev/null");
+  EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
+  return result.output.find("pupwave_oiio") != std::string::npos;
+}
+
+TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
+  const fs::path dir = scratch();
+  const auto at = [&](const std::string& name) { return test::shell_quote((dir / name).string()); };
+  const std::string png = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png").string());
+  const std::string exr = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr").string());
+  EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.exr")));
+  EXPECT_FALSE(loads_openimageio("convert -q " + at("f.exr") + " " + at("g.exr")));
+  for (const char* ext : {".exr", ".tif", ".jpg"}) {
+    EXPECT_FALSE(loads_openimageio("convert -q " + png + " " + at(std::string("a") + ext))) << ext;
+    EXPECT_FALSE(loads_openimageio("info " + at(std::string("a") + ext))) << ext;
+    EXPECT_FALSE(loads_openimageio("compress -q --bpp 1 " + at(std::string("a") + ext) + " " + at("a.pw")))
+        << ext;
+    EXPECT_FALSE(loads_openimageio("decompress -q " + at("a.pw") + " " + at(std::string("b") + ext))) << ext;
+    EXPECT_FALSE(loads_openimageio("convert -q " + at(std::string("a") + ext) + " " + at("back.ppm"))) << ext;
+  }
+  expect_same(read_image(dir / "a.tif"), photograph("astronaut.png"), "a.tif");
+  // The check can fail: a BMP still goes through OpenImageIO.
+  EXPECT_TRUE(loads_openimageio("convert -q " + png + " " + at("a.bmp")));
+}
+
+}  // namespace
+}  // namespace pupwave::cli
