@@ -12,34 +12,13 @@
 #include <string>
 #include <tuple>
 
+#include "io/io_test_files.h"
 #include "tools/image_io.h"
 #include "tools/pnm_io.h"
 
 namespace pupwave::cli {
 namespace {
-namespace fs = std::filesystem;
-
-fs::path temp_dir() {
-  fs::path dir = fs::temp_directory_path() / ("pupwave_io_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-// Random samples covering the whole range of the type (negative and large values for floats).
-Image random_image(std::size_t w, std::size_t h, std::size_t c, SampleType type, unsigned seed) {
-  Image img(w, h, c, type);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> unit(-2.0f, 3.0f);
-  for (float& v : img.samples) {
-    switch (type) {
-      case SampleType::u8: v = float(rng() % 256); break;
-      case SampleType::u16: v = float(rng() % 65536); break;
-      case SampleType::f16: v = float(Imath::half(unit(rng))); break;
-      case SampleType::f32: v = unit(rng); break;
-    }
-  }
-  return img;
-}
+using namespace pupwave::cli::test;
 
 using Case = std::tuple<std::string, SampleType, std::size_t>;
 
@@ -49,7 +28,7 @@ TEST_P(LosslessRoundTrip, SamplesComeBackExactly) {
   const auto [ext, type, channels] = GetParam();
   const Image img = random_image(37, 23, channels, type, unsigned(channels * 7 + int(type)));
   const fs::path path =
-      temp_dir() / ("rt_" + std::to_string(int(type)) + "_" + std::to_string(channels) + ext);
+      scratch_dir() / ("rt_" + std::to_string(int(type)) + "_" + std::to_string(channels) + ext);
   SampleType stored = SampleType::u8;
   write_image(img, path, &stored);
   EXPECT_EQ(stored, type);
@@ -81,7 +60,7 @@ INSTANTIATE_TEST_SUITE_P(AllFormats, LosslessRoundTrip, ::testing::ValuesIn(loss
 // Formats that cannot hold a type store the closest exact one: half in TIFF becomes float.
 TEST(ImageIo, HalfInTiffIsStoredExactlyAsFloat) {
   const Image img = random_image(11, 7, 3, SampleType::f16, 5);
-  const fs::path path = temp_dir() / "half.tif";
+  const fs::path path = scratch_dir() / "half.tif";
   SampleType stored = SampleType::u8;
   write_image(img, path, &stored);
   EXPECT_EQ(stored, SampleType::f32);
@@ -93,7 +72,7 @@ TEST(ImageIo, HalfInTiffIsStoredExactlyAsFloat) {
 
 TEST(ImageIo, JpegRoundTripIsCloseAndEightBit) {
   const Image img = read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png");
-  const fs::path path = temp_dir() / "astronaut.jpg";
+  const fs::path path = scratch_dir() / "astronaut.jpg";
   write_image(img, path);
   const Image back = read_image(path);
   ASSERT_EQ(back.type, SampleType::u8);
@@ -127,7 +106,7 @@ TEST(ImageIo, ReadsTheBundledPhotographs) {
 TEST(ImageIo, FloatToPngIsConvertedThroughTheNominalRange) {
   Image img(4, 1, 1, SampleType::f32);
   img.samples = {0.0f, 0.5f, 1.0f, 2.0f};
-  const fs::path path = temp_dir() / "float.png";
+  const fs::path path = scratch_dir() / "float.png";
   SampleType stored = SampleType::u8;
   write_image(img, path, &stored);
   EXPECT_EQ(stored, SampleType::u16);
@@ -139,14 +118,14 @@ TEST(ImageIo, FloatToPngIsConvertedThroughTheNominalRange) {
 TEST(ImageIo, AlphaIsNotPremultiplied) {
   Image img(2, 1, 4, SampleType::u8);
   img.samples = {200, 10, 100, 20, 50, 30, 0, 255};  // planar R,G,B,A; first pixel alpha 0
-  const fs::path path = temp_dir() / "alpha.png";
+  const fs::path path = scratch_dir() / "alpha.png";
   write_image(img, path);
   EXPECT_EQ(read_image(path).samples, img.samples);
   fs::remove(path);
 }
 
 TEST(ImageIo, ClearErrorsForBadInput) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   EXPECT_THROW(read_image(dir / "missing.png"), std::runtime_error);
   EXPECT_THROW(read_image(dir), std::runtime_error);
   const fs::path junk = dir / "junk.png";
@@ -167,7 +146,7 @@ TEST(ImageIo, ClearErrorsForBadInput) {
 // Binary PPM: the header is plain text, 16-bit samples big-endian; truncated or absurd headers
 // are refused before any raster is allocated.
 TEST(ImageIo, BinaryPnmLayoutAndBadHeaders) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   Image img(2, 1, 3, SampleType::u16);
   img.at(0, 0, 0) = 258;  // 0x0102
   img.at(2, 1, 0) = 65535;
@@ -191,7 +170,7 @@ TEST(ImageIo, BinaryPnmLayoutAndBadHeaders) {
 // Strip-by-strip PGM writing (the writer runs on its own thread): strips land in order, a
 // strip of the wrong shape, a producer that throws and a full device are errors, not hangs.
 TEST(ImageIo, PnmRowsWriterKeepsOrderAndReportsFailures) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   const std::size_t width = 7, height = 50;
   Image whole(width, height, 1, SampleType::u8);
   for (std::size_t i = 0; i < whole.samples.size(); ++i) whole.samples[i] = float((i * 37) % 251);

@@ -12,24 +12,14 @@
 #include <iterator>
 #include <string>
 
+#include "io/io_test_files.h"
 #include "tools/image_io.h"
 
 namespace pupwave::cli {
 namespace {
-namespace fs = std::filesystem;
-
-fs::path temp_dir() {
-  fs::path dir = fs::temp_directory_path() / ("pupwave_rows_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+using namespace pupwave::cli::test;
 
 fs::path testimage(const std::string& name) { return fs::path(PUPWAVE_TESTIMAGES_DIR) / name; }
-
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // The whole image gathered from strips of `rows` rows.
 Image read_by_strips(const fs::path& path, std::size_t rows) {
@@ -49,19 +39,10 @@ Image read_by_strips(const fs::path& path, std::size_t rows) {
   return out;
 }
 
-void expect_same_image(const Image& a, const Image& b, const std::string& what) {
-  EXPECT_EQ(a.width, b.width) << what;
-  EXPECT_EQ(a.height, b.height) << what;
-  EXPECT_EQ(a.channels, b.channels) << what;
-  EXPECT_EQ(a.type, b.type) << what;
-  EXPECT_TRUE(a.samples == b.samples) << what;
-  EXPECT_TRUE(a.metadata == b.metadata) << what;
-}
-
 class ImageRows : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = temp_dir();
+    dir_ = scratch_dir();
     // A 16-bit PPM (read whole) and a tiled TIFF (read whole by OpenImageIO's tiles).
     Image astronaut = read_image(testimage("astronaut.png"));
     Image wide = astronaut;

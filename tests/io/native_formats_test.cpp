@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cli/run_cli.h"
+#include "io/io_test_files.h"
 #include "tools/exr_io.h"
 #include "tools/image_io.h"
 #include "tools/jpeg_io.h"
@@ -22,13 +23,7 @@
 
 namespace pupwave::cli {
 namespace {
-namespace fs = std::filesystem;
-
-fs::path scratch() {
-  fs::path dir = fs::temp_directory_path() / ("pupwave_native_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+using namespace pupwave::cli::test;
 
 Image photograph(const char* name) { return read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / name); }
 
@@ -43,36 +38,20 @@ Image with_channels(const Image& from, std::size_t channels) {
   return out;
 }
 
-void expect_same(const Image& a, const Image& b, const std::string& what) {
-  EXPECT_EQ(a.width, b.width) << what;
-  EXPECT_EQ(a.height, b.height) << what;
-  EXPECT_EQ(a.channels, b.channels) << what;
-  EXPECT_EQ(a.type, b.type) << what;
-  EXPECT_TRUE(a.samples == b.samples) << what;
-  EXPECT_TRUE(a.metadata == b.metadata) << what;
-  EXPECT_EQ(a.metadata.channel_names, b.metadata.channel_names) << what;
-  EXPECT_EQ(a.metadata.not_kept, b.metadata.not_kept) << what;
-}
-
 // Writes `image` to dir/name with OpenImageIO, then reads it with `native` and with OpenImageIO.
 template <class Read>
 void expect_read_as_openimageio_reads(const Image& image, const std::string& name, Read native) {
-  const fs::path path = scratch() / name;
+  const fs::path path = scratch_dir() / name;
   oiio_module().write(image, path, path);
   const auto read = native(path);
   ASSERT_TRUE(read.has_value()) << name << " was left to OpenImageIO";
-  expect_same(*read, oiio_module().read(path), name);
-}
-
-std::string bytes_of(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
+  expect_same_image(*read, oiio_module().read(path), name);
 }
 
 // A copy of the file cut to `keep` bytes.
 fs::path truncated_copy(const fs::path& path, std::size_t keep) {
   const fs::path cut = path.parent_path() / ("cut_" + path.filename().string());
-  std::ofstream(cut, std::ios::binary) << bytes_of(path).substr(0, keep);
+  std::ofstream(cut, std::ios::binary) << file_bytes(path).substr(0, keep);
   return cut;
 }
 
@@ -97,7 +76,7 @@ TEST(ExrIo, TestImageReadsAsOpenImageIoReadsIt) {
   const auto native = read_exr(path);
   ASSERT_TRUE(native.has_value());
   EXPECT_EQ(native->metadata.attributes.size(), 6u);  // Software, DateTime, Orientation...
-  expect_same(*native, oiio_module().read(path), "forest_hdr.exr");
+  expect_same_image(*native, oiio_module().read(path), "forest_hdr.exr");
 }
 
 TEST(ExrIo, FilesOpenImageIoWritesReadAsItReadsThem) {
@@ -130,7 +109,7 @@ TEST(ExrIo, RoundTripsKeepSamplesNamesWindowsAndAttributes) {
       image.metadata.x = 3;
       image.metadata.y = 5;
       image.metadata.attributes = {{"note", ImageAttribute::Kind::string, "kept", 0, 0.0}};
-      const fs::path path = scratch() / ("rt" + std::to_string(channels) + to_string(type) + ".exr");
+      const fs::path path = scratch_dir() / ("rt" + std::to_string(channels) + to_string(type) + ".exr");
       ASSERT_TRUE(exr_writable(path, type, image.metadata));
       write_exr(image, path);
       const auto back = read_exr(path);
@@ -142,7 +121,7 @@ TEST(ExrIo, RoundTripsKeepSamplesNamesWindowsAndAttributes) {
       EXPECT_TRUE(back->metadata.channel_names.empty()) << "default names are not stored";
       ASSERT_FALSE(back->metadata.attributes.empty());
       EXPECT_EQ(back->metadata.attributes.front().text, "kept");
-      expect_same(*back, oiio_module().read(path), path.string());
+      expect_same_image(*back, oiio_module().read(path), path.string());
     }
   }
 }
@@ -150,7 +129,7 @@ TEST(ExrIo, RoundTripsKeepSamplesNamesWindowsAndAttributes) {
 TEST(ExrIo, WrittenInStripsAsWholeAndNamedChannelsKept) {
   Image image = with_channels(photograph_as("coffee.png", SampleType::f16), 3);
   image.metadata.channel_names = {"Y", "BY", "RY"};
-  const fs::path whole = scratch() / "whole.exr", strips = scratch() / "strips.exr";
+  const fs::path whole = scratch_dir() / "whole.exr", strips = scratch_dir() / "strips.exr";
   write_exr(image, whole);
   std::size_t y0 = 0;
   write_exr_rows(strips, image.width, image.height, 3, SampleType::f16, image.metadata, [&] {
@@ -161,7 +140,7 @@ TEST(ExrIo, WrittenInStripsAsWholeAndNamedChannelsKept) {
     y0 += rows;
     return strip;
   });
-  EXPECT_EQ(bytes_of(whole), bytes_of(strips));
+  EXPECT_EQ(file_bytes(whole), file_bytes(strips));
   const auto back = read_exr(strips);
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->metadata.channel_names, std::vector<std::string>({"Y", "BY", "RY"}));
@@ -171,7 +150,7 @@ TEST(ExrIo, WrittenInStripsAsWholeAndNamedChannelsKept) {
 TEST(ExrIo, KindsLeftToOpenImageIoGoThere) {
   // An attribute OpenImageIO reads as a matrix (compress names it as not kept, in its words).
   Image image = photograph_as("camera.png", SampleType::f16);
-  const fs::path plain = scratch() / "plain.exr";
+  const fs::path plain = scratch_dir() / "plain.exr";
   oiio_module().write(image, plain, plain);
   EXPECT_TRUE(read_exr(plain).has_value());
   EXPECT_FALSE(read_exr(fs::path(PUPWAVE_TESTIMAGES_DIR) / "camera.png").has_value());
@@ -185,7 +164,7 @@ TEST(ExrIo, KindsLeftToOpenImageIoGoThere) {
 }
 
 TEST(ExrIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
-  const fs::path path = scratch() / "whole_forest.exr";
+  const fs::path path = scratch_dir() / "whole_forest.exr";
   fs::copy_file(fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr", path,
                 fs::copy_options::overwrite_existing);
   const auto open = [](const fs::path& p) { return open_exr_rows(p); };
@@ -210,13 +189,13 @@ TEST(TiffIo, RoundTripsKeepSamplesAndType) {
   for (SampleType type : {SampleType::u8, SampleType::u16, SampleType::f32}) {
     for (std::size_t channels = 1; channels <= 4; ++channels) {
       const Image image = with_channels(photograph_as("coffee.png", type), channels);
-      const fs::path path = scratch() / ("rt" + std::to_string(channels) + to_string(type) + ".tiff");
+      const fs::path path = scratch_dir() / ("rt" + std::to_string(channels) + to_string(type) + ".tiff");
       ASSERT_TRUE(tiff_writable(path, channels, type, image.metadata));
       write_tiff(image, path);
       const auto back = read_tiff(path);
       ASSERT_TRUE(back.has_value());
-      expect_same(*back, image, path.string());
-      expect_same(*back, oiio_module().read(path), path.string() + " against OpenImageIO");
+      expect_same_image(*back, image, path.string());
+      expect_same_image(*back, oiio_module().read(path), path.string() + " against OpenImageIO");
     }
   }
 }
@@ -231,7 +210,7 @@ TEST(TiffIo, KindsLeftToOpenImageIoGoThere) {
 }
 
 TEST(TiffIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
-  const fs::path path = scratch() / "whole.tif";
+  const fs::path path = scratch_dir() / "whole.tif";
   write_tiff(photograph("chelsea.png"), path);
   const auto open = [](const fs::path& p) { return open_tiff_rows(p); };
   for (std::size_t keep : {std::size_t(8), std::size_t(200), fs::file_size(path) / 2}) {
@@ -252,7 +231,7 @@ TEST(JpegIo, FilesOpenImageIoWritesReadAsItReadsThem) {
 TEST(JpegIo, WrittenFilesReadBackCloseToTheImage) {
   for (const char* name : {"astronaut.png", "camera.png"}) {
     const Image image = photograph(name);
-    const fs::path path = scratch() / (std::string(name) + ".jpg");
+    const fs::path path = scratch_dir() / (std::string(name) + ".jpg");
     ASSERT_TRUE(jpeg_writable(path, image.channels, image.type, image.metadata));
     write_jpeg(image, path);
     const auto back = read_jpeg(path);
@@ -264,12 +243,12 @@ TEST(JpegIo, WrittenFilesReadBackCloseToTheImage) {
       squared += std::pow(double(back->samples[i]) - double(image.samples[i]), 2.0);
     const double psnr = 10.0 * std::log10(255.0 * 255.0 * double(image.samples.size()) / squared);
     EXPECT_GT(psnr, 36.0) << name << " at quality 95";
-    expect_same(*back, oiio_module().read(path), path.string());
+    expect_same_image(*back, oiio_module().read(path), path.string());
   }
 }
 
 TEST(JpegIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
-  const fs::path path = scratch() / "whole.jpg";
+  const fs::path path = scratch_dir() / "whole.jpg";
   write_jpeg(photograph("chelsea.png"), path);
   const auto open = [](const fs::path& p) { return open_jpeg_rows(p); };
   for (std::size_t keep : {std::size_t(4), std::size_t(300), fs::file_size(path) / 2}) {
@@ -289,7 +268,7 @@ bool loads_openimageio(const std::string& args) {
 }
 
 TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
-  const fs::path dir = scratch();
+  const fs::path dir = scratch_dir();
   const auto at = [&](const std::string& name) { return test::shell_quote((dir / name).string()); };
   const std::string png = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png").string());
   const std::string exr = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr").string());
@@ -303,7 +282,7 @@ TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
     EXPECT_FALSE(loads_openimageio("decompress -q " + at("a.pw") + " " + at(std::string("b") + ext))) << ext;
     EXPECT_FALSE(loads_openimageio("convert -q " + at(std::string("a") + ext) + " " + at("back.ppm"))) << ext;
   }
-  expect_same(read_image(dir / "a.tif"), photograph("astronaut.png"), "a.tif");
+  expect_same_image(read_image(dir / "a.tif"), photograph("astronaut.png"), "a.tif");
   // The check can fail: a BMP still goes through OpenImageIO.
   EXPECT_TRUE(loads_openimageio("convert -q " + png + " " + at("a.bmp")));
 }

@@ -17,49 +17,14 @@
 #include <vector>
 
 #include "cli/run_cli.h"
+#include "io/io_test_files.h"
 #include "tools/image_io.h"
 #include "tools/oiio_module.h"
 #include "tools/png_io.h"
 
 namespace pupwave::cli {
 namespace {
-namespace fs = std::filesystem;
-
-fs::path temp_dir() {
-  fs::path dir = fs::temp_directory_path() / ("pupwave_png_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-fs::path testimage(const std::string& name) { return fs::path(PUPWAVE_TESTIMAGES_DIR) / name; }
-
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void put_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
-
-void expect_same_image(const Image& a, const Image& b, const std::string& what) {
-  EXPECT_EQ(a.width, b.width) << what;
-  EXPECT_EQ(a.height, b.height) << what;
-  EXPECT_EQ(a.channels, b.channels) << what;
-  EXPECT_EQ(a.type, b.type) << what;
-  EXPECT_TRUE(a.samples == b.samples) << what;
-  EXPECT_TRUE(a.metadata == b.metadata) << what;
-  EXPECT_EQ(a.metadata.x, b.metadata.x) << what;
-  EXPECT_EQ(a.metadata.y, b.metadata.y) << what;
-}
-
-Image random_image(std::size_t w, std::size_t h, std::size_t c, SampleType type, unsigned seed) {
-  Image img(w, h, c, type);
-  std::mt19937 rng(seed);
-  const unsigned range = type == SampleType::u16 ? 65536 : 256;
-  for (float& v : img.samples) v = float(rng() % range);
-  return img;
-}
+using namespace pupwave::cli::test;
 
 // --- PNG files built chunk by chunk, for the kinds a libpng writer here never makes ---
 
@@ -107,7 +72,7 @@ TEST(PngIo, PhotographsReadAsOpenImageIoReadsThem) {
 }
 
 TEST(PngIo, SixteenBitPhotographReadsAsOpenImageIoReadsIt) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   Image wide = read_image(testimage("coffee.png"));
   wide.type = SampleType::u16;
   for (std::size_t i = 0; i < wide.samples.size(); ++i)
@@ -140,7 +105,7 @@ TEST(PngIo, RowsInStripsGiveTheWholeImage) {
 // The data window origin of an oFFs chunk in pixels, as OpenImageIO reads it; one in micrometres
 // is no origin for either.
 TEST(PngIo, OffsetChunkGivesOpenImageIosOrigin) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   const std::string raw = raw_rows(2, 3 * 3, 11);
   const auto offs = [](std::int32_t x, std::int32_t y, char unit) {
     return chunk("oFFs", be32(std::uint32_t(x)) + be32(std::uint32_t(y)) + unit);
@@ -161,7 +126,7 @@ TEST(PngIo, OffsetChunkGivesOpenImageIosOrigin) {
 // Palette, 1-bit, tRNS and interlaced files are OpenImageIO's (it expands them): read_image
 // gives what it gives.
 TEST(PngIo, OtherKindsAreLeftToOpenImageIo) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   const std::string plte = chunk("PLTE", std::string("\x00\x00\x00\xff\x80\x10\x20\x40\xff", 9));
   const struct {
     const char* name;
@@ -193,7 +158,7 @@ TEST_P(PngRoundTrip, WrittenNativelyReadsBackIdenticallyBothWays) {
   img.metadata.x = 3;
   img.metadata.y = -2;
   const fs::path path =
-      temp_dir() / ("rt_" + std::to_string(int(type)) + "_" + std::to_string(channels) + ".png");
+      scratch_dir() / ("rt_" + std::to_string(int(type)) + "_" + std::to_string(channels) + ".png");
   ASSERT_TRUE(png_writable(path, channels, type, img.metadata));
   write_png(img, path);
   const auto native = read_png(path);
@@ -208,7 +173,7 @@ INSTANTIATE_TEST_SUITE_P(GreyToRgba, PngRoundTrip,
                                             ::testing::Values(1, 2, 3, 4)));
 
 TEST(PngIo, RowWriterWritesWhatTheWholeImageWriterWrites) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   const Image whole = read_image(testimage("astronaut.png"));
   std::size_t y = 0;
   const auto next = [&] {
@@ -257,7 +222,7 @@ void expect_read_error(const fs::path& path, const std::string& why) {
 }
 
 TEST(PngIo, TruncatedAndCorruptFilesAreErrorsNamingThePath) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   const std::string coffee = file_bytes(testimage("coffee.png"));
   put_bytes(dir / "truncated.png", coffee.substr(0, coffee.size() / 2));
   expect_read_error(dir / "truncated.png", "cannot read");
@@ -276,7 +241,7 @@ TEST(PngIo, TruncatedAndCorruptFilesAreErrorsNamingThePath) {
 // allocated (an allocation of that size would throw std::bad_alloc instead); sides over libpng's
 // limit are refused by libpng.
 TEST(PngIo, HostileHeadersAreRefused) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   put_bytes(dir / "huge.png", png_file(1000000, 1000000, 16, 6, 0, raw_rows(1, 8, 0)));
   expect_read_error(dir / "huge.png", "too large");
   put_bytes(dir / "wide.png", png_file(0x7fffffff, 1, 8, 0, 0, raw_rows(1, 8, 0)));
@@ -299,7 +264,7 @@ bool cli_loads_openimageio(const std::string& args) {
 }
 
 TEST(PngCli, PngCommandsDoNotLoadOpenImageIo) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir();
   const std::string png = test::shell_quote(testimage("astronaut.png").string());
   const auto at = [&](const char* name) { return test::shell_quote((dir / name).string()); };
   EXPECT_FALSE(cli_loads_openimageio("convert -q " + png + " " + at("a.ppm")));
