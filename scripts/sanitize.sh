@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # CI's robustness job (docs/fuzzing.md): the decoder test programs built once with ASan +
 # UBSan (build-asan, gcc) and run, then every libFuzzer target (build-fuzz, clang) run for
-# PUPWAVE_FUZZ_SECONDS (default 60) from its seed corpus. Any sanitizer report, failed test,
+# PUPWAVE_FUZZ_SECONDS (default 45) from its seed corpus. Any sanitizer report, failed test,
 # crash, invariant failure, leak or timeout found by a fuzzer fails the job; a finding is
 # left in build-fuzz/findings/<target>/ (add it to tests/fuzz/corpus/<target>/regress-*).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${PUPWAVE_FUZZ_SECONDS:-60}
+seconds=${PUPWAVE_FUZZ_SECONDS:-45}
 jobs=$(nproc)
 
 # The test programs that exercise the decoders and parsers, plus the fuzz targets' corpus
