@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "codec/api/api_volume_options.h"
 #include "codec/image/image_stream.h"
 #include "codec/image/transfer.h"
 
@@ -43,6 +44,9 @@ std::string volume_target_miss(VolumeRate rate, double target, const TargetOutco
   if (outcome.met) return "";
   const std::string who(subject);
   switch (rate) {
+    case VolumeRate::automatic:  // misses only as the relative bound it codes floats to
+      return volume_target_miss(VolumeRate::max_error_rel, kDefaultRelativeError, outcome, stream_bytes,
+                                subject);
     case VolumeRate::bpv:
       return "--bpv " + number(target) + " not met: " + who + " is " + std::to_string(stream_bytes) +
              " bytes (" + number(outcome.achieved) + " bpv)";

@@ -24,7 +24,8 @@ std::string image_target_miss(ImageRate rate, double target, const TargetOutcome
 // The same for a volume stream of `stream_bytes` bytes: "--bpv 1 not met: SUBJECT is 70 bytes
 // (70 bpv)", "--psnr 60 not met: SUBJECT reaches PSNR 52.1 dB", or for an error bound (every
 // other rate) "error bound TARGET not met: SUBJECT has a largest error of ACHIEVED", in the unit
-// the caller gives `target` and outcome.achieved in; "" when outcome.met.
+// the caller gives `target` and outcome.achieved in (automatic: the relative bound it codes
+// floats to, kDefaultRelativeError, whatever `target`); "" when outcome.met.
 std::string volume_target_miss(VolumeRate rate, double target, const TargetOutcome& outcome,
                                std::size_t stream_bytes, std::string_view subject);
 

@@ -245,11 +245,8 @@ py::tuple compress_volume(const py::object& obj, std::optional<double> max_error
     py::gil_scoped_release release;
     out = api::compress_volume(view, options, outcome);
   }
-  // automatic can miss only as the relative bound it codes floats to.
-  const bool automatic = options.rate == api::VolumeRate::automatic;
-  const std::string miss = api::volume_target_miss(automatic ? api::VolumeRate::max_error_rel : options.rate,
-                                                   automatic ? api::kDefaultRelativeError : options.target,
-                                                   outcome, out.size(), "the stream");
+  const std::string miss =
+      api::volume_target_miss(options.rate, options.target, outcome, out.size(), "the stream");
   return py::make_tuple(to_bytes(out), miss);
 }
 
