@@ -256,9 +256,9 @@ void run_compress(const CompressOptions& opt) {
     return pupwave::api::encode_resolved(view, enc, coder_of(opt));
   }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  refuse_if_strict(opt.strict, image_target_miss(enc, r, view.width, view.height, "the stream"), opt.output);
+  refuse_if_strict(opt.strict, image_target_miss(enc, r, "the stream"), opt.output);
   write_output_bytes(opt.output, r.bytes);
-  warn_if_missed(image_target_miss(enc, r, view.width, view.height, stream_subject(opt.output)));
+  warn_if_missed(image_target_miss(enc, r, stream_subject(opt.output)));
   std::FILE* status = opt.verbosity.stream();
   if (status == nullptr) return;
   if (r.switched_to_lossless)

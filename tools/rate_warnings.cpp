@@ -3,42 +3,49 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "codec/image/image_stream.h"
-#include "tools/cli_numbers.h"
+#include "codec/api/api_target_miss.h"
 #include "tools/cli_stdio.h"
 
 namespace pupwave::cli {
-std::string image_target_miss(const EncodeOptions& enc, const EncodeResult& r, std::size_t width,
-                              std::size_t height, const std::string& subject) {
-  if (r.target_met) return "";
-  if (enc.mode == RateMode::psnr)
-    return "--psnr " + shortest(enc.target) + " not met: " + subject + " reaches " + r.metric + " " +
-           shortest(r.psnr) + " dB";
-  std::string text = "--bpp " + shortest(enc.target) + " not met: " + subject + " is " +
-                     std::to_string(r.bytes.size()) + " bytes (" + shortest(r.bpp) + " bpp) for this " +
-                     std::to_string(width) + "x" + std::to_string(height) + " image";
-  // What the stream holds before any coded data, said where it alone exceeds the budget: why a
-  // tiny image cannot meet it.
-  const std::size_t framing = container_size(parse_container(r.bytes).header, 0, 0);
-  if (8.0 * double(framing) > enc.target * double(width * height))
-    text += "; its header and chunk framing alone take " + std::to_string(framing) + " bytes";
-  return text;
+namespace {
+
+pupwave::api::ImageRate api_rate(RateMode mode) {
+  switch (mode) {
+    case RateMode::psnr: return pupwave::api::ImageRate::psnr;
+    case RateMode::bpp: return pupwave::api::ImageRate::bpp;
+    case RateMode::step: return pupwave::api::ImageRate::step;
+    case RateMode::lossless: break;
+  }
+  return pupwave::api::ImageRate::lossless;
+}
+
+// The encoder's volume modes as the API's: its max_error mode is an absolute bound (a relative
+// one was scaled to sample units before encoding).
+pupwave::api::VolumeRate api_rate(VolumeRateMode mode) {
+  switch (mode) {
+    case VolumeRateMode::bpv: return pupwave::api::VolumeRate::bpv;
+    case VolumeRateMode::psnr: return pupwave::api::VolumeRate::psnr;
+    case VolumeRateMode::step: return pupwave::api::VolumeRate::step;
+    case VolumeRateMode::lossless: return pupwave::api::VolumeRate::lossless;
+    case VolumeRateMode::max_error: break;
+  }
+  return pupwave::api::VolumeRate::max_error;
+}
+
+}  // namespace
+
+std::string image_target_miss(const EncodeOptions& enc, const EncodeResult& r, const std::string& subject) {
+  const pupwave::api::TargetOutcome outcome{r.target_met, enc.mode == RateMode::bpp ? r.bpp : r.psnr};
+  return pupwave::api::image_target_miss(api_rate(enc.mode), enc.target, outcome, r.bytes, subject);
 }
 
 std::string volume_target_miss(const VolumeEncodeOptions& enc, const VolumeEncodeResult& r,
                                const std::string& subject) {
-  if (r.target_met) return "";
-  switch (enc.mode) {
-    case VolumeRateMode::bpv:
-      return "--bpv " + shortest(enc.target) + " not met: " + subject + " is " + std::to_string(r.size) +
-             " bytes (" + shortest(r.bpv) + " bpv)";
-    case VolumeRateMode::psnr:
-      return "--psnr " + shortest(enc.target) + " not met: " + subject + " reaches PSNR " + shortest(r.psnr) +
-             " dB";
-    default:  // max_error: the bound in sample units, as --max-error or --max-error-rel set it
-      return "error bound " + shortest(enc.target) + " not met: " + subject + " has a largest error of " +
-             shortest(r.max_error);
-  }
+  const double achieved = enc.mode == VolumeRateMode::bpv    ? r.bpv
+                          : enc.mode == VolumeRateMode::psnr ? r.psnr
+                                                             : r.max_error;
+  return pupwave::api::volume_target_miss(api_rate(enc.mode), enc.target, {r.target_met, achieved}, r.size,
+                                          subject);
 }
 
 std::string stream_subject(const std::string& output) { return is_stdio(output) ? "the stream" : output; }

@@ -11,13 +11,13 @@
 
 namespace pupwave::cli {
 
-// How an image stream misses its target, "--bpp 1 not met: SUBJECT is 110 bytes (220 bpp) for
-// this 2x2 image; its header and chunk framing alone take 93 bytes" (that last part where the
-// framing alone exceeds the budget), with `subject` naming the stream; "" when the target is met.
-std::string image_target_miss(const EncodeOptions& enc, const EncodeResult& r, std::size_t width,
-                              std::size_t height, const std::string& subject);
+// How an image stream misses its target, in the library's words (api::image_target_miss:
+// "--bpp 1 not met: SUBJECT is 110 bytes (220 bpp) for this 2x2 image; ..."), with `subject`
+// naming the stream; "" when the target is met.
+std::string image_target_miss(const EncodeOptions& enc, const EncodeResult& r, const std::string& subject);
 
-// The same for a volume stream ("--bpv 1 not met: SUBJECT is 70 bytes (70 bpv)").
+// The same for a volume stream ("--bpv 1 not met: SUBJECT is 70 bytes (70 bpv)"); an error
+// bound is said in sample units, as the encoder holds it.
 std::string volume_target_miss(const VolumeEncodeOptions& enc, const VolumeEncodeResult& r,
                                const std::string& subject);
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "codec/api/api_target_miss.h"
 #include "pupwave/pupwave.h"
 #include "pupwave/pupwave.hpp"
 
@@ -26,6 +27,7 @@ struct pupwave_options {
 struct pupwave_stream {
   std::vector<std::uint8_t> bytes;
   pupwave::api::TargetOutcome outcome;  // of the rate target it was compressed for
+  std::string miss;                     // api_target_miss.h's text for a missed target, "" when met
 };
 
 struct pupwave_decoded {
@@ -134,6 +136,12 @@ pupwave::api::VolumeOptions volume_options(const pupwave_options* o) {
   out.threads = o->threads;
   out.brick = o->brick;
   return out;
+}
+
+// The text of a volume stream's missed target (api_target_miss.h), "" when met.
+std::string volume_miss(const pupwave::api::VolumeOptions& o, const pupwave_stream& stream) {
+  return pupwave::api::volume_target_miss(o.rate, o.target, stream.outcome, stream.bytes.size(),
+                                          "the stream");
 }
 
 pupwave::api::Volume single_grid(const void* stream, std::size_t size, int level, unsigned threads) {
@@ -246,6 +254,9 @@ int pupwave_stream_target_met(const pupwave_stream* stream) { return stream && s
 double pupwave_stream_achieved(const pupwave_stream* stream) {
   return stream ? stream->outcome.achieved : std::numeric_limits<double>::quiet_NaN();
 }
+const char* pupwave_stream_target_miss(const pupwave_stream* stream) {
+  return stream ? stream->miss.c_str() : "";
+}
 void pupwave_stream_destroy(pupwave_stream* stream) { delete stream; }
 
 pupwave_status pupwave_compress_image(const pupwave_options* options, const void* data, pupwave_type type,
@@ -256,8 +267,11 @@ pupwave_status pupwave_compress_image(const pupwave_options* options, const void
     *out = nullptr;
     const pupwave::api::ImageView view{data,           width,        height,    channels, image_type(type),
                                        channel_stride, pixel_stride, row_stride};
+    const pupwave::api::ImageOptions o = image_options(options);
     auto stream = std::make_unique<pupwave_stream>();
-    stream->bytes = pupwave::api::compress_image(view, image_options(options), stream->outcome);
+    stream->bytes = pupwave::api::compress_image(view, o, stream->outcome);
+    stream->miss =
+        pupwave::api::image_target_miss(o.rate, o.target, stream->outcome, stream->bytes, "the stream");
     *out = stream.release();
   });
 }
@@ -302,8 +316,10 @@ pupwave_status pupwave_compress_volume(const pupwave_options* options, const voi
     require(out != nullptr, "out is null");
     *out = nullptr;
     const pupwave::api::VolumeView view{data, {nx, ny, nz}, voxel_type(type)};
+    const pupwave::api::VolumeOptions o = volume_options(options);
     auto stream = std::make_unique<pupwave_stream>();
-    stream->bytes = pupwave::api::compress_volume(view, volume_options(options), stream->outcome);
+    stream->bytes = pupwave::api::compress_volume(view, o, stream->outcome);
+    stream->miss = volume_miss(o, *stream);
     *out = stream.release();
   });
 }
@@ -322,9 +338,10 @@ pupwave_status pupwave_compress_sparse_volume(const pupwave_options* options, co
       views[i] = {
           {b.origin[0], b.origin[1], b.origin[2]}, {b.data, {b.dims[0], b.dims[1], b.dims[2]}, vt}, b.active};
     }
+    const pupwave::api::VolumeOptions o = volume_options(options);
     auto stream = std::make_unique<pupwave_stream>();
-    stream->bytes =
-        pupwave::api::compress_sparse_volume(views, background, volume_options(options), stream->outcome);
+    stream->bytes = pupwave::api::compress_sparse_volume(views, background, o, stream->outcome);
+    stream->miss = volume_miss(o, *stream);
     *out = stream.release();
   });
 }

@@ -79,7 +79,8 @@ static void test_image_rates(void) {
   pupwave_stream_destroy(s);
   CHECK(pupwave_options_set_effort(o, 3) == PUPWAVE_ERROR_ARGUMENT);
   CHECK(pupwave_options_set_effort(o, 2) == PUPWAVE_OK);
-  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_ERROR_ARGUMENT);
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) ==
+        PUPWAVE_ERROR_ARGUMENT);
   CHECK(strstr(pupwave_last_error(), "ebcot") != NULL); /* effort 2 is the bit-plane coder's */
   CHECK(pupwave_options_set_coder(o, PUPWAVE_CODER_EBCOT) == PUPWAVE_OK);
   CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
@@ -185,7 +186,7 @@ static void test_target_outcome(void) {
   slice = v + 45 * n * n;
   CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_BPP, 2.0) == PUPWAVE_OK);
   CHECK(pupwave_compress_image(o, slice, PUPWAVE_F32, n, n, 1, 1, 1, (ptrdiff_t)n, &s) == PUPWAVE_OK);
-  CHECK(pupwave_stream_target_met(s) == 1);
+  CHECK(pupwave_stream_target_met(s) == 1 && strcmp(pupwave_stream_target_miss(s), "") == 0);
   CHECK(fabs(pupwave_stream_achieved(s) - 8.0 * (double)pupwave_stream_size(s) / (double)(n * n)) < 1e-9);
   CHECK(pupwave_stream_achieved(s) <= 2.0);
   pupwave_stream_destroy(s);
@@ -195,6 +196,10 @@ static void test_target_outcome(void) {
         PUPWAVE_OK);
   CHECK(s && pupwave_stream_size(s) > 0 && pupwave_stream_target_met(s) == 0);
   CHECK(fabs(pupwave_stream_achieved(s) - 8.0 * (double)pupwave_stream_size(s) / 4.0) < 1e-9);
+  /* The text of the CLI's `warning:` line for it. */
+  CHECK(strncmp(pupwave_stream_target_miss(s), "--bpp 1 not met: the stream is ", 31) == 0);
+  CHECK(strstr(pupwave_stream_target_miss(s),
+               " bpp) for this 2x2 image; its header and chunk framing alone take ") != NULL);
   pupwave_stream_destroy(s);
   /* A step sets no target to miss. */
   CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_STEP, 0.5) == PUPWAVE_OK);
@@ -211,6 +216,7 @@ static void test_target_outcome(void) {
   CHECK(pupwave_compress_volume(o, cube, PUPWAVE_F32, 2, 2, 2, &s) == PUPWAVE_OK);
   CHECK(s && pupwave_stream_target_met(s) == 0);
   CHECK(fabs(pupwave_stream_achieved(s) - 8.0 * (double)pupwave_stream_size(s) / 8.0) < 1e-9);
+  CHECK(strncmp(pupwave_stream_target_miss(s), "--bpv 1 not met: the stream is ", 31) == 0);
   pupwave_stream_destroy(s);
   /* An error bound is guaranteed: met, and the error reached is within it. */
   CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_MAX_ERROR_REL, 1e-2) == PUPWAVE_OK);
@@ -219,6 +225,7 @@ static void test_target_outcome(void) {
   CHECK(pupwave_stream_achieved(s) > 0.0 && pupwave_stream_achieved(s) <= 1e-2);
   pupwave_stream_destroy(s);
   CHECK(pupwave_stream_target_met(NULL) == 0 && isnan(pupwave_stream_achieved(NULL)));
+  CHECK(strcmp(pupwave_stream_target_miss(NULL), "") == 0);
   pupwave_options_destroy(o);
   free(v);
 }

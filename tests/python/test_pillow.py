@@ -159,6 +159,16 @@ def test_missed_target_warns_and_writes():
     assert pupwave.decompress(data).shape == (2, 2, 3)
 
 
+def test_strict_save_raises_the_miss_naming_the_file_and_writes_nothing(tmp_path):
+    tiny = png("chelsea").crop((200, 100, 202, 102))
+    path = tmp_path / "tiny.pw"
+    with pytest.raises(pupwave.PupwaveTargetError, match=r"tiny\.pw: --bpp 1 not met: the stream is \d+ bytes"):
+        tiny.save(path, bpp=1, strict=True)
+    assert not path.exists()
+    astronaut = png("astronaut")  # a target met: strict changes nothing
+    assert saved(astronaut, bpp=1, strict=True) == pupwave.compress(np.asarray(astronaut), bpp=1)
+
+
 def test_bad_save_arguments_name_the_file(tmp_path):
     camera = png("camera")
     path = tmp_path / "bad.pw"

@@ -54,6 +54,16 @@ def test_psnr_beyond_a_float_images_reach_warns_the_clis_text(cli, tiny, tmp_pat
     assert expected.startswith("--psnr 120 not met: the stream reaches log-PSNR ")
 
 
+def test_volume_psnr_beyond_reach_warns_the_clis_text(cli, wmag, tmp_path):
+    block = np.ascontiguousarray(wmag[40:44, 40:44, 40:44])  # 4x4x4 real values: 150 dB is out of reach
+    block.tofile(tmp_path / "block.f32")
+    expected = cli_warning(cli, tmp_path / "block.f32", ["--dims", "4,4,4", "--dtype", "f32", "--psnr", "150"])
+    with pytest.warns(pupwave.PupwaveTargetWarning) as caught:
+        pupwave.compress_volume(block, psnr=150)
+    assert [str(w.message) for w in caught] == [expected]
+    assert expected.startswith("--psnr 150 not met: the stream reaches PSNR ")
+
+
 def test_strict_raises_the_warnings_text_instead(tiny, wmag):
     with pytest.raises(pupwave.PupwaveTargetError, match=r"^--bpp 1 not met: the stream is \d+ bytes"):
         pupwave.compress(tiny, bpp=1, strict=True)

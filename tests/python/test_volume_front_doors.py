@@ -11,12 +11,17 @@ import pytest
 import pupwave
 from conftest import TESTIMAGES
 
-# (CLI flags, the same as pupwave.compress_volume keywords); Python offers these four modes.
+# (CLI flags, the same as pupwave.compress_volume keywords): every rate mode, and a transform,
+# levels and brick edge that are not the defaults.
 RATE_SETS = [
     ([], {}),
     (["--max-error", "0.5"], {"max_error": 0.5}),
     (["--max-error-rel", "1e-4"], {"max_error_rel": 1e-4}),
     (["--bpv", "1.5"], {"bpv": 1.5}),
+    (["--psnr", "55"], {"psnr": 55}),
+    (["--step", "0.25"], {"step": 0.25}),
+    (["--bpv", "1.5", "--transform", "cdf53", "--levels", "2", "--brick", "32"],
+     {"bpv": 1.5, "transform": "cdf53", "levels": 2, "brick": 32}),
 ]
 
 
@@ -41,3 +46,26 @@ def test_the_default_is_lossless_for_integers():
     field = np.round(wmag91().astype(np.float64) * 100).astype(np.uint16)
     assert pupwave.info(pupwave.compress_volume(field))["lossless"]
     assert not pupwave.info(pupwave.compress_volume(wmag91()))["lossless"]
+
+
+def test_the_float_default_is_the_librarys_relative_bound():
+    field = wmag91()
+    assert pupwave.compress_volume(field) == pupwave.compress_volume(
+        field, max_error_rel=pupwave._pupwave.DEFAULT_MAX_ERROR_REL)
+    bound = pupwave.info(pupwave.compress_volume(field))["max_error"]
+    assert bound == pytest.approx(1e-3 * np.ptp(field.astype(np.float64)))
+
+
+def test_rate_options_change_the_stream_as_asked():
+    field = wmag91()
+    fine, coarse = pupwave.compress_volume(field, step=0.05), pupwave.compress_volume(field, step=0.5)
+    assert len(fine) > len(coarse)
+    back = pupwave.decompress_volume(pupwave.compress_volume(field, psnr=55))
+    peak = np.ptp(field.astype(np.float64))
+    assert 10 * np.log10(peak**2 / np.mean((back.astype(np.float64) - field) ** 2)) > 54
+    described = pupwave.info(pupwave.compress_volume(field, bpv=1.5, transform="cdf53", levels=2, brick=32))
+    assert described["transform"] == "cdf53" and described["levels"] == 2
+    with pytest.raises(ValueError, match="at most one of max_error, max_error_rel, bpv, psnr, step and lossless"):
+        pupwave.compress_volume(field, psnr=50, step=1)
+    with pytest.raises(ValueError, match="brick"):
+        pupwave.compress_volume(field, brick=12)

@@ -4,23 +4,24 @@
 // package (pupwave/__init__.py) converts other dtypes (pupwave/dtypes.py) and passes the text
 // attributes that record them: compress* take `attributes` (dict), decompress* return
 // (array, attributes). Every call takes `threads` (None or 0: all cores, 1: the calling thread);
-// compress* return (bytes, miss), miss the CLI's text for a missed rate target ('' when met),
-// which the package turns into a warning or, with strict=True, an error.
+// compress* return (bytes, miss), miss the library's text for a missed rate target
+// (codec/api/api_target_miss.h, the CLI's `warning:` text; '' when met), which the package turns
+// into a warning or, with strict=True, an error.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "codec/image/image_stream.h"
-#include "codec/image/transfer.h"
+#include "codec/api/api_target_miss.h"
+#include "codec/api/api_volume_options.h"
 #include "pupwave/pupwave.hpp"
 
 namespace py = pybind11;
@@ -125,49 +126,11 @@ py::dict to_dict(const std::vector<api::Attribute>& attributes) {
   return d;
 }
 
-// A number for messages (%.6g, as the CLI's).
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
 // The `threads` argument as the API's (None or 0: all cores, 1: the calling thread).
 unsigned thread_count(std::optional<int> threads) {
   if (threads && *threads < 0)
     throw py::value_error("threads must be None or an integer >= 0, got " + std::to_string(*threads));
   return unsigned(threads.value_or(0));
-}
-
-// How an image stream misses its rate target, in the words of the CLI's `warning:` line
-// (tools/rate_warnings.cpp, image_target_miss, subject "the stream"); "" when it is met.
-std::string image_target_miss(const api::ImageOptions& options, const api::TargetOutcome& outcome,
-                              const std::vector<std::uint8_t>& stream, std::size_t width,
-                              std::size_t height) {
-  if (outcome.met) return "";
-  const pupwave::StreamHeader header = pupwave::parse_container(stream).header;
-  if (options.rate == api::ImageRate::psnr)
-    return "--psnr " + number(options.target) + " not met: the stream reaches " +
-           pupwave::metric_name(header.transfer) + " " + number(outcome.achieved) + " dB";
-  std::string text = "--bpp " + number(options.target) + " not met: the stream is " +
-                     std::to_string(stream.size()) + " bytes (" + number(outcome.achieved) +
-                     " bpp) for this " + std::to_string(width) + "x" + std::to_string(height) + " image";
-  // Why a tiny image cannot meet the budget: what the stream holds before any coded data.
-  const std::size_t framing = pupwave::container_size(header, 0, 0);
-  if (8.0 * double(framing) > options.target * double(width * height))
-    text += "; its header and chunk framing alone take " + std::to_string(framing) + " bytes";
-  return text;
-}
-
-// The same for a volume stream (tools/rate_warnings.cpp, volume_target_miss).
-std::string volume_target_miss(const api::VolumeOptions& options, const api::TargetOutcome& outcome,
-                               std::size_t stream_bytes) {
-  if (outcome.met) return "";
-  if (options.rate == api::VolumeRate::bpv)
-    return "--bpv " + number(options.target) + " not met: the stream is " + std::to_string(stream_bytes) +
-           " bytes (" + number(outcome.achieved) + " bpv)";
-  return "error bound " + number(options.target) + " not met: the stream has a largest error of " +
-         number(outcome.achieved);
 }
 
 int count_set(std::initializer_list<bool> flags) {
@@ -217,7 +180,8 @@ py::tuple compress(const py::object& obj, std::optional<double> bpp, std::option
     py::gil_scoped_release release;
     out = api::compress_image(view, options, outcome);
   }
-  return py::make_tuple(to_bytes(out), image_target_miss(options, outcome, out, view.width, view.height));
+  return py::make_tuple(to_bytes(out),
+                        api::image_target_miss(options.rate, options.target, outcome, out, "the stream"));
 }
 
 py::tuple decompress(const py::object& data, int level, std::optional<int> threads) {
@@ -234,8 +198,30 @@ py::tuple decompress(const py::object& data, int level, std::optional<int> threa
                         to_dict(image.attributes));
 }
 
+// The volume rate of compress_volume's arguments (at most one given; none: automatic, the
+// library's default, as the CLI's).
+void set_volume_rate(api::VolumeOptions& options, std::optional<double> max_error,
+                     std::optional<double> max_error_rel, std::optional<double> bpv,
+                     std::optional<double> psnr, std::optional<double> step, bool lossless) {
+  if (count_set({max_error.has_value(), max_error_rel.has_value(), bpv.has_value(), psnr.has_value(),
+                 step.has_value(), lossless}) > 1)
+    throw py::value_error("give at most one of max_error, max_error_rel, bpv, psnr, step and lossless");
+  const std::pair<const std::optional<double>&, api::VolumeRate> targets[] = {
+      {max_error, api::VolumeRate::max_error},
+      {max_error_rel, api::VolumeRate::max_error_rel},
+      {bpv, api::VolumeRate::bpv},
+      {psnr, api::VolumeRate::psnr},
+      {step, api::VolumeRate::step}};
+  for (const auto& [target, rate] : targets)
+    if (target) options.rate = rate, options.target = *target;
+  if (lossless) options.rate = api::VolumeRate::lossless;
+}
+
 py::tuple compress_volume(const py::object& obj, std::optional<double> max_error,
-                          std::optional<double> max_error_rel, std::optional<double> bpv, bool lossless,
+                          std::optional<double> max_error_rel, std::optional<double> bpv,
+                          std::optional<double> psnr, std::optional<double> step, bool lossless,
+                          const std::optional<std::string>& transform, std::optional<int> levels,
+                          std::optional<std::size_t> brick,
                           const std::map<std::string, std::string>& attributes, std::optional<int> threads) {
   const py::array given = as_array(obj);
   // The dtype first: readable_in_place divides by its (then nonzero) item size.
@@ -243,17 +229,11 @@ py::tuple compress_volume(const py::object& obj, std::optional<double> max_error
   const py::array a = readable_in_place(given);
   if (a.ndim() != 3)
     throw py::value_error("expected a 3-D (z, y, x) array, got " + std::to_string(a.ndim()) + "-D");
-  if (count_set({max_error.has_value(), max_error_rel.has_value(), bpv.has_value(), lossless}) > 1)
-    throw py::value_error("give at most one of max_error, max_error_rel, bpv and lossless");
-  api::VolumeOptions options;  // no rate given: the library's default (VolumeRate::automatic), as the CLI's
-  if (lossless)
-    options.rate = api::VolumeRate::lossless;
-  else if (max_error)
-    options.rate = api::VolumeRate::max_error, options.target = *max_error;
-  else if (bpv)
-    options.rate = api::VolumeRate::bpv, options.target = *bpv;
-  else if (max_error_rel)
-    options.rate = api::VolumeRate::max_error_rel, options.target = *max_error_rel;
+  api::VolumeOptions options;
+  set_volume_rate(options, max_error, max_error_rel, bpv, psnr, step, lossless);
+  options.transform = transform.value_or("");  // none: the library's default for the rate
+  options.levels = levels.value_or(-1);
+  if (brick) options.brick = *brick;  // none: the library's default edge
   options.attributes = to_attributes(attributes);
   options.threads = thread_count(threads);
   api::VolumeView view{
@@ -265,7 +245,9 @@ py::tuple compress_volume(const py::object& obj, std::optional<double> max_error
     py::gil_scoped_release release;
     out = api::compress_volume(view, options, outcome);
   }
-  return py::make_tuple(to_bytes(out), volume_target_miss(options, outcome, out.size()));
+  const std::string miss =
+      api::volume_target_miss(options.rate, options.target, outcome, out.size(), "the stream");
+  return py::make_tuple(to_bytes(out), miss);
 }
 
 py::tuple decompress_volume(const py::object& data, int level, std::optional<int> threads) {
@@ -333,6 +315,9 @@ PYBIND11_MODULE(_pupwave, m) {
     }
   });
   m.attr("__version__") = PUPWAVE_VERSION_STRING;
+  // The fraction of the value range that bounds a float volume's error when no rate is given:
+  // the package tightens it for float16 input.
+  m.attr("DEFAULT_MAX_ERROR_REL") = api::kDefaultRelativeError;
   // Docstrings are the package's (pupwave/__init__.py); these say what differs from it.
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = py::none(),
@@ -344,7 +329,9 @@ PYBIND11_MODULE(_pupwave, m) {
   m.def("decompress", &decompress, py::arg("data"), py::arg("level") = 0, py::arg("threads") = py::none(),
         "(array of the stored dtype, the stream's text attributes as a dict).");
   m.def("compress_volume", &compress_volume, py::arg("array3d"), py::arg("max_error") = py::none(),
-        py::arg("max_error_rel") = py::none(), py::arg("bpv") = py::none(), py::arg("lossless") = false,
+        py::arg("max_error_rel") = py::none(), py::arg("bpv") = py::none(), py::arg("psnr") = py::none(),
+        py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = py::none(),
+        py::arg("levels") = py::none(), py::arg("brick") = py::none(),
         py::arg("attributes") = std::map<std::string, std::string>{}, py::arg("threads") = py::none(),
         "pupwave.compress_volume on a uint8/uint16/float32/float64 array; attributes (str -> str) are "
         "stored as the grid's metadata. Returns (bytes, miss) as compress does.");

@@ -111,6 +111,10 @@ int pupwave_stream_target_met(const pupwave_stream* stream);
  * F16/F32 images), the largest error (for MAX_ERROR_REL as a fraction of the value range); NaN
  * for STEP, LOSSLESS and a NULL stream. */
 double pupwave_stream_achieved(const pupwave_stream* stream);
+/* How the stream misses its target, in the words of the CLI's `warning:` line with "the stream"
+ * as its subject ("--bpp 1 not met: the stream is 110 bytes (220 bpp) for this 2x2 image; ...");
+ * "" when it meets it or stream is NULL. Valid until the stream is destroyed. */
+const char* pupwave_stream_target_miss(const pupwave_stream* stream);
 void pupwave_stream_destroy(pupwave_stream* stream);
 
 /* Compresses an image: sample (c, x, y) is the element at

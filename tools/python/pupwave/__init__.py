@@ -3,8 +3,8 @@
 compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, levels=None, effort=1,
          entropy="auto", threads=None, strict=False) -> bytes
 decompress(data, level=0, threads=None) -> numpy.ndarray
-compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False, threads=None,
-                strict=False) -> bytes
+compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=None, step=None, lossless=False,
+                transform=None, levels=None, brick=None, threads=None, strict=False) -> bytes
 decompress_volume(data, level=0, threads=None) -> numpy.ndarray
 info(data) -> dict
 hdf5_filter(max_error=None, bpv=None, lossless=False) -> dict of h5py create_dataset keywords (docs/hdf5.md);
@@ -100,32 +100,45 @@ def decompress(data, level=0, threads=None):
     return dtypes.from_stored(array, attributes, dtypes.IMAGE)
 
 
-def compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, lossless=False, threads=None,
-                    strict=False):
+def compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=None, step=None, lossless=False,
+                    transform=None, levels=None, brick=None, threads=None, strict=False):
     """Compress a volume to .pw bytes.
 
     array3d: 3-D (z, y, x) array of any bool, integer or float dtype (uint8, uint16, float32,
         float64 stored as they are).
-    max_error, max_error_rel, bpv, lossless: the rate; at most one. max_error: every value within
-        this of its original; max_error_rel: the same with bound max_error_rel * (max - min) of the
-        array; bpv: bits per value; lossless: bit exact (integers). Default: lossless for integers,
-        max_error_rel=1e-3 for floats. A float16 volume is coded to half the bound (its decoded
-        values, rounded back to float16, keep within the bound asked for).
+    max_error, max_error_rel, bpv, psnr, step, lossless: the rate; at most one (the CLI's
+        --max-error, --max-error-rel, --bpv, --psnr, --step, --lossless). max_error: every value
+        within this of its original (guaranteed); max_error_rel: the same with bound
+        max_error_rel * (max - min) of the array; bpv: bits per value; psnr: dB, peak = the value
+        range (estimated); step: the quantizer base step; lossless: bit exact (integers).
+        Default: lossless for integers, for floats the library's relative bound
+        (_pupwave.DEFAULT_MAX_ERROR_REL, 1e-3). A float16 volume is coded to half its bound,
+        given or default (its decoded values, rounded back to float16, keep within the bound).
+    transform: a spec as the CLI's --transform; None: the rate's default (pups:cinpact-interp-vm4
+        for error bounds, cdf53 for lossless, else cdf97).
+    levels: decomposition levels per brick; None: the default.
+    brick: brick edge, a power of two 8..256; None: 64.
     threads: None or 0 all cores, 1 the calling thread, n at most n (the bytes do not depend on it).
     strict: raise PupwaveTargetError instead of warning when the target is missed.
 
-    Returns the stream (bytes). Warns PupwaveTargetWarning (the CLI's `warning:` text) when the
-    stream misses its bpv budget or error bound. Raises ValueError, TypeError or
-    PupwaveTargetError as compress does.
+    Returns the stream (bytes), the CLI's bytes for the same settings. Warns PupwaveTargetWarning
+    (the CLI's `warning:` text) when the stream misses its bpv budget, psnr target or error bound.
+    Raises ValueError, TypeError or PupwaveTargetError as compress does.
     """
     stored, attributes = dtypes.to_stored(array3d, dtypes.VOLUME)
     if dtypes.halves_bound(array3d):
-        if max_error is None and max_error_rel is None and bpv is None and not lossless:
-            max_error_rel = 1e-3  # the floats' default, made explicit to be halved
-        max_error = max_error / 2 if max_error is not None else None
-        max_error_rel = max_error_rel / 2 if max_error_rel is not None else None
-    return _checked(_pupwave.compress_volume(stored, max_error, max_error_rel, bpv, lossless, attributes, threads),
-                    strict)
+        max_error, max_error_rel = _halved_bounds(max_error, max_error_rel, bpv, psnr, step, lossless)
+    return _checked(_pupwave.compress_volume(stored, max_error, max_error_rel, bpv, psnr, step, lossless, transform,
+                                             levels, brick, attributes, threads), strict)
+
+
+def _halved_bounds(max_error, max_error_rel, bpv, psnr, step, lossless):
+    """(max_error, max_error_rel) halved for a float16 volume; with no rate given, the library's
+    default relative bound, made explicit to be halved."""
+    if all(r is None for r in (max_error, max_error_rel, bpv, psnr, step)) and not lossless:
+        max_error_rel = _pupwave.DEFAULT_MAX_ERROR_REL
+    return (max_error / 2 if max_error is not None else None,
+            max_error_rel / 2 if max_error_rel is not None else None)
 
 
 def decompress_volume(data, level=0, threads=None):

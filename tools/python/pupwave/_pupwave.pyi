@@ -7,6 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+DEFAULT_MAX_ERROR_REL: float
 
 def compress(
     array: npt.NDArray[Any],
@@ -31,7 +32,12 @@ def compress_volume(
     max_error: Optional[float] = None,
     max_error_rel: Optional[float] = None,
     bpv: Optional[float] = None,
+    psnr: Optional[float] = None,
+    step: Optional[float] = None,
     lossless: bool = False,
+    transform: Optional[str] = None,
+    levels: Optional[int] = None,
+    brick: Optional[int] = None,
     attributes: Dict[str, str] = {},
     threads: Optional[int] = None,
 ) -> Tuple[bytes, str]:

@@ -12,7 +12,9 @@ whose size is at least (w, h) (as JPEG's draft picks a DCT scale; the mode is no
 already loaded (whose pixels may have been edited) take Pillow's own reduce.
 
 Save keywords, at most one: bpp, psnr, lossless, quality (1..99: a PSNR target from 25 dB to
-55 dB, linear; 100: lossless). None: pupwave's default, psnr 40.
+55 dB, linear; 100: lossless). None: pupwave's default, psnr 40. strict=True raises
+pupwave.PupwaveTargetError (naming the file) where the target is missed, and writes nothing,
+as pupwave.compress(strict=True) does; without it the miss is warned (PupwaveTargetWarning).
 """
 
 import numbers
@@ -199,7 +201,9 @@ def _save(im, fp, filename):
         raise OSError(f"{name}: cannot write mode {im.mode} as {FORMAT} (convert it to one of {', '.join(RAW)})")
     array = np.asarray(im, dtype=SAVE_DTYPES.get(im.mode))
     try:
-        data = pupwave.compress(array, **target(im.encoderinfo))
+        data = pupwave.compress(array, strict=bool(im.encoderinfo.get("strict")), **target(im.encoderinfo))
+    except pupwave.PupwaveTargetError as e:
+        raise pupwave.PupwaveTargetError(f"{name}: {e}") from e
     except ValueError as e:
         raise ValueError(f"{name}: {e}") from e
     fp.write(data)
