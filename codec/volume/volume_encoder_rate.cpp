@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "codec/entropy/block_encoder.h"
 #include "codec/rate/byte_budget.h"
 #include "codec/rate/pcrd.h"
 #include "codec/volume/volume_encoder_plan.h"
@@ -14,6 +15,11 @@ namespace {
 
 constexpr int kMaxStepRefinements = 3;
 constexpr int kMaxRounds = 5;
+// A PSNR beyond what the coder's index range allows at the step it implies (float volumes:
+// targets past the samples' own precision) codes at a step this many times coarser, up to
+// kMaxStepCoarsenings times, and the result says what it reached (a missed target, warned).
+constexpr double kStepCoarsening = 4.0;
+constexpr int kMaxStepCoarsenings = 16;
 // Bytes per block entry assumed while choosing passes (the index is range coded).
 constexpr double kIndexBytesPerBlock = 1.5;
 
@@ -43,6 +49,17 @@ Coded code_all(const VolumePlan& plan, double base) {
       c.initial += c.codes[i].coded.coded[k].initial_distortion;
     }
   return c;
+}
+
+// code_all at `base`, or at the finest coarser step whose indices fit the coder (base updated).
+Coded code_all_in_range(const VolumePlan& plan, double& base) {
+  for (int k = 0;; ++k, base *= kStepCoarsening) {
+    try {
+      return code_all(plan, base);
+    } catch (const IndexRangeError&) {
+      if (k == kMaxStepCoarsenings) throw;
+    }
+  }
 }
 
 void set_passes(Coded& c, const std::vector<int>& passes) {
@@ -109,9 +126,9 @@ std::vector<BrickCode> for_size(const std::vector<VolumeGrid>& grids, VolumePlan
 std::vector<BrickCode> for_psnr(const std::vector<VolumeGrid>& grids, VolumePlan& plan, double psnr) {
   const double peak = plan.range > 0.0 ? plan.range : 1.0;
   const double target_mse = peak * peak / std::pow(10.0, psnr / 10.0);
-  const double base = 0.3 * std::sqrt(target_mse);
+  double base = 0.3 * std::sqrt(target_mse);
   const double voxels = double(std::max<std::size_t>(plan.voxels, 1));  // active voxels of all grids
-  Coded c = code_all(plan, base);
+  Coded c = code_all_in_range(plan, base);
   double allowed = target_mse * voxels / (base * base);
   std::vector<int> best;
   for (int k = 0; k < kMaxRounds; ++k) {

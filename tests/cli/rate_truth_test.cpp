@@ -262,5 +262,17 @@ TEST_F(RateTruth, VolumeBpvMissIsWarnedOrRefused) {
   EXPECT_EQ(met.err, "");
 }
 
+// A PSNR beyond a float volume's own precision (200 dB on a 2x2x2 crop of wmag91) writes the
+// finest stream the coder's index range allows, with a warning giving what it reaches (not a
+// "quantization indices beyond the coder's range" error and no file).
+TEST_F(RateTruth, UnreachableVolumePsnrIsWrittenAndWarned) {
+  const std::string raw = wmag_crop(2), pw = out("deep.pw");
+  const Split r = run_split({"compress", raw, pw, "--dims", "2,2,2", "--dtype", "f32", "--psnr", "200"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(pw));
+  EXPECT_EQ(r.err.rfind("warning: --psnr 200 not met: " + pw, 0), 0u) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;
+}
+
 }  // namespace
 }  // namespace pupwave
