@@ -18,7 +18,7 @@
 
 namespace pupwave::cli {
 namespace {
-using namespace pupwave::cli::test;
+using namespace pupwave::test;
 
 using Case = std::tuple<std::string, SampleType, std::size_t>;
 

@@ -17,7 +17,7 @@
 
 namespace pupwave::cli {
 namespace {
-using namespace pupwave::cli::test;
+using namespace pupwave::test;
 
 fs::path testimage(const std::string& name) { return fs::path(PUPWAVE_TESTIMAGES_DIR) / name; }
 

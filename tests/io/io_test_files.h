@@ -15,7 +15,7 @@
 
 #include "codec/image/image.h"
 
-namespace pupwave::cli::test {
+namespace pupwave::test {
 
 namespace fs = std::filesystem;
 
@@ -64,4 +64,4 @@ inline void expect_same_image(const Image& a, const Image& b, const std::string&
   EXPECT_EQ(a.metadata.not_kept, b.metadata.not_kept) << what;
 }
 
-}  // namespace pupwave::cli::test
+}  // namespace pupwave::test

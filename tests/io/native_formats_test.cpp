@@ -23,7 +23,7 @@
 
 namespace pupwave::cli {
 namespace {
-using namespace pupwave::cli::test;
+using namespace pupwave::test;
 
 Image photograph(const char* name) { return read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / name); }
 

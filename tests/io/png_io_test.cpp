@@ -24,7 +24,7 @@
 
 namespace pupwave::cli {
 namespace {
-using namespace pupwave::cli::test;
+using namespace pupwave::test;
 
 // --- PNG files built chunk by chunk, for the kinds a libpng writer here never makes ---
 
