@@ -257,16 +257,17 @@ TEST(PngIo, HostileHeadersAreRefused) {
 // Whether running the CLI with these arguments dlopens the OpenImageIO module (glibc's loader
 // names every file it loads under LD_DEBUG=files); the command must succeed.
 bool cli_loads_openimageio(const std::string& args) {
-  const auto result = test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " + args +
-                                             " 2>&1 >/dev/null </dev/null");
+  const auto result =
+      pupwave::test::run_shell_output("LD_DEBUG=files " + pupwave::test::shell_quote(PUPWAVE_CLI) + " " +
+                                      args + " 2>&1 >/dev/null </dev/null");
   EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
   return result.output.find("pupwave_oiio") != std::string::npos;
 }
 
 TEST(PngCli, PngCommandsDoNotLoadOpenImageIo) {
   const fs::path dir = scratch_dir();
-  const std::string png = test::shell_quote(testimage("astronaut.png").string());
-  const auto at = [&](const char* name) { return test::shell_quote((dir / name).string()); };
+  const std::string png = pupwave::test::shell_quote(testimage("astronaut.png").string());
+  const auto at = [&](const char* name) { return pupwave::test::shell_quote((dir / name).string()); };
   EXPECT_FALSE(cli_loads_openimageio("convert -q " + png + " " + at("a.ppm")));
   EXPECT_FALSE(cli_loads_openimageio("convert -q " + at("a.ppm") + " " + at("a.png")));
   EXPECT_FALSE(cli_loads_openimageio("compress -q " + png + " " + at("a.pw")));
