@@ -277,6 +277,10 @@ TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
       pupwave::test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr").string());
   EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.exr")));
   EXPECT_FALSE(loads_openimageio("convert -q " + at("f.exr") + " " + at("g.exr")));
+  // An EXR's attributes (PixelAspectRatio, screenWindowWidth, ...) keep no PNG from the native writer.
+  EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.png")));
+  EXPECT_FALSE(loads_openimageio("compress -q --bpp 2 " + exr + " " + at("f.pw")));
+  EXPECT_FALSE(loads_openimageio("decompress -q " + at("f.pw") + " " + at("f.png")));
   for (const char* ext : {".exr", ".tif", ".jpg"}) {
     EXPECT_FALSE(loads_openimageio("convert -q " + png + " " + at(std::string("a") + ext))) << ext;
     EXPECT_FALSE(loads_openimageio("info " + at(std::string("a") + ext))) << ext;
