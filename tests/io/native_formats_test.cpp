@@ -302,6 +302,34 @@ TEST(JpegIo, WrittenFilesReadBackCloseToTheImage) {
   }
 }
 
+// The JFIF segment (APP0, the file's first after its start marker) of a JPEG file.
+std::string jfif_segment(const fs::path& path) {
+  const std::string bytes = file_bytes(path);
+  EXPECT_EQ(bytes.substr(2, 2), "\xff\xe0") << path;
+  return bytes.substr(2, 18);
+}
+
+// An EXR's own attributes (screenWindowWidth, PixelAspectRatio 1) as OpenImageIO writes them.
+TEST(JpegIo, ExrAttributesAreWrittenAsOpenImageIoWritesThem) {
+  Image img = photograph("astronaut.png");
+  img.metadata.attributes = {{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 1.0},
+                             {"screenWindowWidth", ImageAttribute::Kind::real, "", 0, 1.0}};
+  const fs::path dir = scratch_dir();
+  ASSERT_TRUE(jpeg_writable(dir / "native.jpg", 3, SampleType::u8, img.metadata));
+  write_jpeg(img, dir / "native.jpg");
+  oiio_module().write(img, dir / "oiio.jpg", dir / "oiio.jpg");
+  EXPECT_EQ(jfif_segment(dir / "native.jpg"), jfif_segment(dir / "oiio.jpg"));
+  // The comparison can fail: a density of 72 x 72, not libjpeg's default of 1 x 1.
+  EXPECT_EQ(jfif_segment(dir / "native.jpg").substr(12, 4), "\0\x48\0\x48"s);
+  expect_same_image(*read_jpeg(dir / "native.jpg"), oiio_module().read(dir / "oiio.jpg"), "read back");
+  for (const ImageAttribute& a : {ImageAttribute{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 2.0},
+                                  ImageAttribute{"Software", ImageAttribute::Kind::string, "x", 0, 0}}) {
+    ImageMetadata m;
+    m.attributes.push_back(a);
+    EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, m)) << a.name;
+  }
+}
+
 TEST(JpegIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
   const fs::path path = scratch_dir() / "whole.jpg";
   write_jpeg(photograph("chelsea.png"), path);
@@ -336,6 +364,10 @@ TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
   // native writers.
   EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.png")));
   EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.tif")));
+  // forest_hdr.exr's DateTime and Software go into OpenImageIO's EXIF block: an EXR with only its
+  // own attributes is written natively as JPEG.
+  EXPECT_FALSE(loads_openimageio("convert -q " + png + " " + at("p.exr")));
+  EXPECT_FALSE(loads_openimageio("convert -q " + at("p.exr") + " " + at("p.jpg")));
   EXPECT_FALSE(loads_openimageio("compress -q --bpp 2 " + exr + " " + at("f.pw")));
   EXPECT_FALSE(loads_openimageio("decompress -q " + at("f.pw") + " " + at("f.png")));
   for (const char* ext : {".exr", ".tif", ".jpg"}) {
