@@ -4,7 +4,8 @@
 #   `pupwave compress --report-psnr` at most 1.5x the same encode without it (bit-plane coder
 #   and the default coder, --bpp 1, from PPM);
 #   `pupwave convert` between PPM and PNG, EXR (half, as oiiotool writes it), TIFF (8-bit) and
-#   JPEG at most 2x the image's raw bytes (its samples in the input's type) plus the output's
+#   JPEG, and from EXR (whose attributes the PNG and TIFF writers store) to PNG and TIFF, at most
+#   2x the image's raw bytes (its samples in the input's type) plus the output's
 #   size (all read and written natively, without OpenImageIO). The fixed cost of loading the
 #   OpenImageIO plugin, which other formats still pay, is measured apart: a 16 x 16 BMP
 #   converted to PPM.
@@ -67,7 +68,7 @@ for coder in ebcot default; do
   echo "| compress --bpp 1 ($coder coder) --report-psnr | $(mib "$psnr") ($(ratio "$psnr" "$plain")x plain) | $(mib $((plain * 3 / 2))) (1.5x plain) | $(ratio "$psnr" $((plain * 3 / 2))) |"
 done
 base=$(rss "$pw" convert -q "$work/tiny.bmp" "$work/tiny.ppm")
-for pair in "png ppm" "ppm png" "exr ppm" "ppm exr" "exr exr" "tif ppm" "ppm tif" "jpg ppm" "ppm jpg"; do
+for pair in "png ppm" "ppm png" "exr ppm" "ppm exr" "exr exr" "exr png" "exr tif" "tif ppm" "ppm tif" "jpg ppm" "ppm jpg"; do
   read -r from to <<<"$pair"
   rm -f "$work/out.$to"
   used=$(rss "$pw" convert -q "$work/in.$from" "$work/out.$to")

@@ -229,9 +229,9 @@ SampleType write_image_rows(ImageRowReader& rows, const fs::path& path, const fs
     else if (exr_writable(format, target, rows.metadata()))
       write_exr_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
     else if (tiff_writable(format, rows.channels(), target, rows.metadata()))
-      write_tiff_rows(tmp, rows.width(), rows.height(), rows.channels(), target, next);
+      write_tiff_rows(tmp, rows.width(), rows.height(), rows.channels(), target, rows.metadata(), next);
     else if (jpeg_writable(format, rows.channels(), target, rows.metadata()))
-      write_jpeg_rows(tmp, rows.width(), rows.height(), rows.channels(), next);
+      write_jpeg_rows(tmp, rows.width(), rows.height(), rows.channels(), rows.metadata(), next);
     else
       oiio_module().write_rows(ImageShape{rows.width(), rows.height(), rows.channels(), target},
                                rows.metadata(), format, tmp, next);

@@ -1,5 +1,6 @@
 #include "tools/jpeg_io.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdint>
@@ -77,7 +78,7 @@ bool jpeg_step_read_row(JpegCall& call, jpeg_decompress_struct& info, JSAMPROW r
 }
 
 bool jpeg_step_write_header(JpegCall& call, jpeg_compress_struct& info, JDIMENSION width, JDIMENSION height,
-                            int components) {
+                            int components, bool square_pixels) {
   if (setjmp(call.jump)) return false;
   jpeg_create_compress(&info);
   jpeg_stdio_dest(&info, call.file);
@@ -87,6 +88,8 @@ bool jpeg_step_write_header(JpegCall& call, jpeg_compress_struct& info, JDIMENSI
   info.in_color_space = components == 1 ? JCS_GRAYSCALE : JCS_RGB;
   jpeg_set_defaults(&info);
   jpeg_set_quality(&info, kJpegQuality, TRUE);
+  // OpenImageIO's JFIF density for a pixel aspect ratio of 1: 72 x 72 without unit.
+  if (square_pixels) info.X_density = info.Y_density = 72;
   jpeg_start_compress(&info, TRUE);
   return true;
 }
@@ -173,21 +176,44 @@ class JpegRows final : public StripReader {
 };
 
 // Whether the image is one written here: 8-bit grey or RGB, nothing but samples.
+// Whether OpenImageIO 2.4's JPEG writer stores `attributes` as written here (found by writing
+// files through it): it drops screenWindowWidth and turns a pixel aspect ratio of 1 into a JFIF
+// density of 72 x 72; others go into its EXIF or IPTC blocks, not written here.
+bool jpeg_simple_attributes(const std::vector<ImageAttribute>& attributes) {
+  return std::all_of(attributes.begin(), attributes.end(), [](const ImageAttribute& a) {
+    return a.kind == ImageAttribute::Kind::real &&
+           (a.name == "screenWindowWidth" || (a.name == "PixelAspectRatio" && a.real == 1.0));
+  });
+}
+
+// Whether a pixel aspect ratio is given (jpeg_holds takes it only when 1).
+bool has_square_pixels(const ImageMetadata& metadata) {
+  return std::any_of(metadata.attributes.begin(), metadata.attributes.end(),
+                     [](const ImageAttribute& a) { return a.name == "PixelAspectRatio"; });
+}
+
+// 8-bit grey or RGB, default channel names, no windows, attributes jpeg_simple_attributes takes.
 bool jpeg_holds(std::size_t channels, SampleType type, const ImageMetadata& metadata) {
-  return (channels == 1 || channels == 3) && type == SampleType::u8 && metadata.empty();
+  ImageMetadata rest = metadata;
+  rest.attributes.clear();
+  return (channels == 1 || channels == 3) && type == SampleType::u8 && rest.empty() &&
+         jpeg_simple_attributes(metadata.attributes);
 }
 
 // A JPEG being written a scanline at a time.
 class JpegWriter {
  public:
-  JpegWriter(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels)
+  JpegWriter(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
+             const ImageMetadata& metadata)
       : file_(file), row_(width * channels) {
     call_.file = std::fopen(file.c_str(), "wb");
     if (!call_.file) throw_write_error(file);
     route_jpeg_errors(*reinterpret_cast<jpeg_common_struct*>(&info_), call_);
     created_ = true;
     errno = 0;
-    if (!jpeg_step_write_header(call_, info_, JDIMENSION(width), JDIMENSION(height), int(channels))) fail();
+    if (!jpeg_step_write_header(call_, info_, JDIMENSION(width), JDIMENSION(height), int(channels),
+                                has_square_pixels(metadata)))
+      fail();
   }
   ~JpegWriter() {
     if (created_) jpeg_destroy_compress(&info_);
@@ -237,15 +263,17 @@ bool jpeg_writable(const fs::path& path, std::size_t channels, SampleType type,
 
 void write_jpeg(const Image& image, const fs::path& file) {
   if (!jpeg_holds(image.channels, image.type, image.metadata))
-    throw std::invalid_argument("write_jpeg: needs 1 or 3 channels of 8-bit samples and no metadata");
-  JpegWriter writer(file, image.width, image.height, image.channels);
+    throw std::invalid_argument("write_jpeg: needs 1 or 3 channels of 8-bit samples and metadata JPEG holds");
+  JpegWriter writer(file, image.width, image.height, image.channels, image.metadata);
   writer.put(image);
   writer.finish();
 }
 
 void write_jpeg_rows(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
-                     const std::function<Image()>& next_strip) {
-  JpegWriter writer(file, width, height, channels);
+                     const ImageMetadata& metadata, const std::function<Image()>& next_strip) {
+  if (!jpeg_holds(channels, SampleType::u8, metadata))
+    throw std::invalid_argument("write_jpeg_rows: needs 1 or 3 channels and metadata JPEG holds");
+  JpegWriter writer(file, width, height, channels, metadata);
   write_strips(writer, width, height, channels, SampleType::u8, next_strip, "write_jpeg_rows");
 }
 

@@ -5,7 +5,8 @@
 // upsampling, as OpenImageIO decodes them, and gives the same Image (EXIF orientation is not
 // applied by either); CMYK/YCCK and other colour spaces go to OpenImageIO (tools/image_io.cpp),
 // which refuses CMYK. A file that ends before its last scanline is an error here (OpenImageIO
-// fills the rest with grey). Writing takes 8-bit grey or RGB images without metadata, at quality
+// fills the rest with grey). Writing takes 8-bit grey or RGB images without metadata but the
+// attributes jpeg_writable names, at quality
 // 95 with libjpeg's defaults (JFIF, 4:2:0 chroma), the quality the CLI asks OpenImageIO for; the
 // EXIF block OpenImageIO adds is not written.
 
@@ -32,7 +33,9 @@ std::unique_ptr<ImageRowReader> open_jpeg_rows(const std::filesystem::path& path
 std::optional<Image> read_jpeg(const std::filesystem::path& path);
 
 // Whether write_jpeg_rows handles an image of these channels, type and metadata at this path: a
-// JPEG name, 1 or 3 channels of 8-bit samples, empty metadata.
+// JPEG name, 1 or 3 channels of 8-bit samples, default channel names, no windows, and no
+// attributes but screenWindowWidth (OpenImageIO drops it) and a pixel aspect ratio of 1 (its JFIF
+// density of 72 x 72); OpenImageIO writes the others into EXIF or IPTC blocks.
 bool jpeg_writable(const std::filesystem::path& path, std::size_t channels, SampleType type,
                    const ImageMetadata& metadata);
 
@@ -42,6 +45,7 @@ void write_jpeg(const Image& image, const std::filesystem::path& file);
 // Writes a JPEG of width x height pixels to `file` whose rows come from successive calls of
 // next_strip (8-bit images of `width` columns and `channels` planes, top to bottom).
 void write_jpeg_rows(const std::filesystem::path& file, std::size_t width, std::size_t height,
-                     std::size_t channels, const std::function<Image()>& next_strip);
+                     std::size_t channels, const ImageMetadata& metadata,
+                     const std::function<Image()>& next_strip);
 
 }  // namespace pupwave::cli

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -65,14 +66,114 @@ bool png_step_read_row(PngCall& call, png_bytep row) {
   return true;
 }
 
+// The chunks OpenImageIO 2.4's PNG writer makes of an image's attributes (found by writing
+// files through it): each string a tEXt chunk, a few under PNG's own keywords; DateTime in EXIF's
+// form a tIME chunk; a pixel aspect ratio of 1 a 100x100 pHYs chunk without unit; the colour
+// space "Linear" a gAMA of 1 besides its text. It drops every other number.
+struct PngChunks {
+  std::vector<std::string> keywords, texts;
+  std::optional<png_time> time;
+  bool linear = false;
+  bool square_pixels = false;
+};
+
+bool same_name(const std::string& a, const char* b) {
+  return std::equal(a.begin(), a.end(), b, b + std::char_traits<char>::length(b), [](char x, char y) {
+    return std::tolower((unsigned char)x) == std::tolower((unsigned char)y);
+  });
+}
+
+// The keyword OpenImageIO gives a string attribute.
+std::string png_keyword(const std::string& name) {
+  if (same_name(name, "Artist")) return "Author";
+  if (same_name(name, "name") || same_name(name, "DocumentName")) return "Title";
+  if (same_name(name, "ImageDescription") || same_name(name, "description")) return "Description";
+  return name;
+}
+
+// A keyword libpng writes unchanged (it rewrites or refuses others): 1 to 79 printable ASCII
+// characters, no space at either end or twice in a row.
+bool plain_keyword(const std::string& k) {
+  if (k.empty() || k.size() > 79 || k.front() == ' ' || k.back() == ' ' || k.find("  ") != std::string::npos)
+    return false;
+  return std::all_of(k.begin(), k.end(), [](char c) { return c >= 32 && c <= 126; });
+}
+
+// OpenImageIO's reading of "YYYY:MM:DD HH:MM:SS"; nullopt if it does not parse (then dropped).
+std::optional<png_time> exif_time(const std::string& text) {
+  int year, month, day, hour, minute, second;
+  if (std::sscanf(text.c_str(), "%4d:%02d:%02d %2d:%02d:%02d", &year, &month, &day, &hour, &minute,
+                  &second) != 6)
+    return std::nullopt;
+  png_time t{};
+  t.year = png_uint_16(year);
+  t.month = png_byte(month);
+  t.day = png_byte(day);
+  t.hour = png_byte(hour);
+  t.minute = png_byte(minute);
+  t.second = png_byte(second);
+  return t;
+}
+
+// libpng's own check of a time it is given (it drops, with a warning, any other).
+bool valid_time(const png_time& t) {
+  return t.month >= 1 && t.month <= 12 && t.day >= 1 && t.day <= 31 && t.hour <= 23 && t.minute <= 59 &&
+         t.second <= 60;
+}
+
+// Adds one attribute's chunks; false when only OpenImageIO writes it as OpenImageIO does
+// (encoding settings, resolutions, other colour spaces, odd keywords or times).
+bool add_png_chunks(const ImageAttribute& a, PngChunks& chunks) {
+  using Kind = ImageAttribute::Kind;
+  if (same_name(a.name, "planarconfig")) return true;  // ignored by OpenImageIO's PNG writer
+  if (same_name(a.name, "compression") || same_name(a.name, "XResolution") ||
+      same_name(a.name, "YResolution") || same_name(a.name, "ResolutionUnit") ||
+      same_name(a.name.substr(0, 4), "png:"))
+    return false;
+  if (same_name(a.name, "oiio:ColorSpace")) {
+    if (a.kind != Kind::string || a.text != "Linear") return false;
+    chunks.linear = true;
+  } else if (same_name(a.name.substr(0, 5), "oiio:")) {
+    return false;
+  }
+  if (same_name(a.name, "PixelAspectRatio")) {
+    chunks.square_pixels = a.kind == Kind::real && a.real == 1.0;
+    return chunks.square_pixels;
+  }
+  if (a.kind != Kind::string) return true;  // other numbers: dropped
+  if (same_name(a.name, "DateTime")) {
+    const std::optional<png_time> t = exif_time(a.text);
+    if (t && !valid_time(*t)) return false;
+    if (t) chunks.time = t;
+    return true;
+  }
+  const std::string keyword = png_keyword(a.name);
+  if (!plain_keyword(keyword)) return false;
+  chunks.keywords.push_back(keyword);
+  chunks.texts.push_back(a.text);
+  return true;
+}
+
+// The chunks for `attributes`; nullopt when one of them is left to OpenImageIO.
+std::optional<PngChunks> png_chunks(const std::vector<ImageAttribute>& attributes) {
+  PngChunks chunks;
+  for (const ImageAttribute& a : attributes)
+    if (!add_png_chunks(a, chunks)) return std::nullopt;
+  return chunks;
+}
+
 bool png_step_write_header(PngCall& call, png_uint_32 width, png_uint_32 height, int depth, int color_type,
-                           const ImageMetadata& metadata) {
+                           const ImageMetadata& metadata, const PngChunks& chunks, png_text* texts) {
   if (setjmp(png_jmpbuf(call.png))) return false;
   png_set_IHDR(call.png, call.info, width, height, depth, color_type, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   // The data window origin, where OpenImageIO writes and reads it.
   if (metadata.x != 0 || metadata.y != 0)
     png_set_oFFs(call.png, call.info, metadata.x, metadata.y, PNG_OFFSET_PIXEL);
+  if (chunks.linear) png_set_gAMA_fixed(call.png, call.info, PNG_FP_1);
+  if (chunks.square_pixels) png_set_pHYs(call.png, call.info, 100, 100, PNG_RESOLUTION_UNKNOWN);
+  if (chunks.time) png_set_tIME(call.png, call.info, &*chunks.time);
+  if (!chunks.texts.empty()) png_set_text(call.png, call.info, texts, int(chunks.texts.size()));
   png_write_info(call.png, call.info);
   if constexpr (std::endian::native == std::endian::little) png_set_swap(call.png);
   return true;
@@ -107,10 +208,10 @@ int png_color_type(std::size_t channels) {
   return types[channels - 1];
 }
 
-// Grey, grey+alpha, RGB or RGBA of 8- or 16-bit samples, without attributes (OpenImageIO writes
-// those as text chunks).
+// Grey, grey+alpha, RGB or RGBA of 8- or 16-bit samples, with attributes stored as OpenImageIO
+// stores them (png_chunks).
 bool png_holds(std::size_t channels, SampleType type, const ImageMetadata& metadata) {
-  return channels >= 1 && channels <= 4 && is_integer(type) && metadata.attributes.empty();
+  return channels >= 1 && channels <= 4 && is_integer(type) && png_chunks(metadata.attributes).has_value();
 }
 
 std::size_t png_sample_bytes(SampleType type) { return type == SampleType::u16 ? 2 : 1; }
@@ -215,9 +316,18 @@ class PngWriter {
     if (call_.png) call_.info = png_create_info_struct(call_.png);
     if (!call_.info) throw std::bad_alloc();
     png_init_io(call_.png, call_.file);
+    const PngChunks chunks = png_chunks(metadata.attributes).value();
+    std::vector<png_text> texts(chunks.texts.size());
+    for (std::size_t i = 0; i < texts.size(); ++i) {
+      texts[i].compression = PNG_TEXT_COMPRESSION_NONE;
+      texts[i].key = const_cast<char*>(chunks.keywords[i].c_str());
+      texts[i].text = const_cast<char*>(chunks.texts[i].c_str());
+      texts[i].text_length = chunks.texts[i].size();
+    }
     errno = 0;
     if (!png_step_write_header(call_, png_uint_32(width), png_uint_32(height),
-                               int(8 * png_sample_bytes(type)), png_color_type(channels), metadata))
+                               int(8 * png_sample_bytes(type)), png_color_type(channels), metadata, chunks,
+                               texts.data()))
       fail();
   }
   ~PngWriter() {
@@ -270,7 +380,8 @@ bool png_writable(const fs::path& path, std::size_t channels, SampleType type,
 
 void write_png(const Image& image, const fs::path& file) {
   if (!png_holds(image.channels, image.type, image.metadata))
-    throw std::invalid_argument("write_png: needs 1 to 4 channels of 8- or 16-bit samples and no attributes");
+    throw std::invalid_argument(
+        "write_png: needs 1 to 4 channels of 8- or 16-bit samples and attributes PNG holds");
   PngWriter writer(file, image.width, image.height, image.channels, image.type, image.metadata);
   writer.put(image);
   writer.finish();
@@ -281,7 +392,7 @@ void write_png_rows(const fs::path& file, std::size_t width, std::size_t height,
                     const std::function<Image()>& next_strip) {
   if (!png_holds(channels, type, metadata))
     throw std::invalid_argument(
-        "write_png_rows: needs 1 to 4 channels of 8- or 16-bit samples and no attributes");
+        "write_png_rows: needs 1 to 4 channels of 8- or 16-bit samples and attributes PNG holds");
   PngWriter writer(file, width, height, channels, type, metadata);
   write_strips(writer, width, height, channels, type, next_strip, "write_png_rows");
 }

@@ -4,7 +4,9 @@
 // whose samples are stored as they are held (grey, grey+alpha, RGB, RGBA at 8 or 16 bits,
 // non-interlaced, no tRNS chunk) and gives the Image OpenImageIO gives for them; palette,
 // 1/2/4-bit, tRNS and interlaced files go to OpenImageIO (tools/image_io.cpp). Writing takes 1 to
-// 4 channels of 8- or 16-bit samples without attributes (OpenImageIO writes those as text chunks).
+// 4 channels of 8- or 16-bit samples whose attributes are stored as OpenImageIO stores them (text,
+// tIME, pHYs and gAMA chunks); an image with others (resolutions, colour spaces other than
+// "Linear", encoding settings) goes to OpenImageIO.
 
 #include <cstddef>
 #include <filesystem>
@@ -31,7 +33,8 @@ std::optional<Image> read_png(const std::filesystem::path& path);
 std::unique_ptr<ImageRowReader> open_png_rows(const std::filesystem::path& path);
 
 // Whether write_png handles an image of these channels, type and metadata at this path: a .png
-// name, 1 to 4 channels (grey, grey+alpha, RGB, RGBA), 8- or 16-bit samples, no attributes.
+// name, 1 to 4 channels (grey, grey+alpha, RGB, RGBA), 8- or 16-bit samples, attributes stored
+// as OpenImageIO stores them.
 bool png_writable(const std::filesystem::path& path, std::size_t channels, SampleType type,
                   const ImageMetadata& metadata);
 

@@ -2,13 +2,17 @@
 
 #include <tiffio.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "codec/image/image_view.h"
@@ -182,21 +186,61 @@ class TiffRows final : public StripReader {
   std::vector<std::uint8_t> row_;  // one scanline as libtiff gives it
 };
 
-// Whether the image is one written here: 1 to 4 channels, a type TIFF stores, default names.
+// The ASCII tags OpenImageIO 2.4's TIFF writer stores string attributes of these names in.
+struct TiffTextTag {
+  const char* name;
+  ttag_t tag;
+};
+constexpr TiffTextTag kTiffTextTags[] = {{"Artist", TIFFTAG_ARTIST},
+                                         {"Copyright", TIFFTAG_COPYRIGHT},
+                                         {"DateTime", TIFFTAG_DATETIME},
+                                         {"DocumentName", TIFFTAG_DOCUMENTNAME},
+                                         {"ImageDescription", TIFFTAG_IMAGEDESCRIPTION},
+                                         {"Software", TIFFTAG_SOFTWARE}};
+
+// The ASCII tags for `attributes`, as OpenImageIO writes them (found by writing files through
+// it): the strings of kTiffTextTags; Exif:ImageHistory, screenWindowWidth and a pixel aspect
+// ratio of 1 dropped; Orientation 1, the one written here. nullopt for any other attribute (OpenImageIO
+// writes many as tags or Exif blocks): the image goes to it.
+std::optional<std::vector<std::pair<ttag_t, std::string>>> tiff_text_tags(
+    const std::vector<ImageAttribute>& attributes) {
+  using Kind = ImageAttribute::Kind;
+  std::vector<std::pair<ttag_t, std::string>> tags;
+  for (const ImageAttribute& a : attributes) {
+    const auto known = std::find_if(std::begin(kTiffTextTags), std::end(kTiffTextTags),
+                                    [&](const TiffTextTag& t) { return a.name == t.name; });
+    if (known != std::end(kTiffTextTags) && a.kind == Kind::string)
+      tags.emplace_back(known->tag, a.text);
+    else if (!((a.name == "Exif:ImageHistory" && a.kind == Kind::string) ||
+               (a.name == "screenWindowWidth" && a.kind == Kind::real) ||
+               (a.name == "PixelAspectRatio" && a.kind == Kind::real && a.real == 1.0) ||
+               (a.name == "Orientation" && a.kind == Kind::integer && a.integer == 1)))
+      return std::nullopt;
+  }
+  return tags;
+}
+
+// Whether the image is one written here: 1 to 4 channels, a type TIFF stores, default names, no
+// windows, attributes stored as OpenImageIO stores them.
 bool tiff_holds(std::size_t channels, SampleType type, const ImageMetadata& metadata) {
-  return channels >= 1 && channels <= 4 && type != SampleType::f16 && metadata.empty();
+  ImageMetadata rest = metadata;
+  rest.attributes.clear();
+  return channels >= 1 && channels <= 4 && type != SampleType::f16 && rest.empty() &&
+         tiff_text_tags(metadata.attributes).has_value();
 }
 
 // A TIFF being written a scanline at a time.
 class TiffWriter {
  public:
   TiffWriter(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
-             SampleType type)
+             SampleType type, const ImageMetadata& metadata)
       : file_(file), type_(type) {
     errno = 0;
     tif_ = open_tiff(file, "w", message_);
     if (!tif_) fail();
     set_fields(width, height, channels);
+    const auto tags = tiff_text_tags(metadata.attributes).value();
+    for (const auto& [tag, text] : tags) TIFFSetField(tif_, tag, text.c_str());
     row_.resize(width * channels * std::size_t(bits_per_sample(type) / 8));
   }
   ~TiffWriter() {
@@ -278,15 +322,19 @@ bool tiff_writable(const fs::path& path, std::size_t channels, SampleType type,
 void write_tiff(const Image& image, const fs::path& file) {
   if (!tiff_holds(image.channels, image.type, image.metadata))
     throw std::invalid_argument(
-        "write_tiff: needs 1 to 4 channels of 8/16-bit or float samples, no metadata");
-  TiffWriter writer(file, image.width, image.height, image.channels, image.type);
+        "write_tiff: needs 1 to 4 channels of 8/16-bit or float samples, attributes TIFF holds");
+  TiffWriter writer(file, image.width, image.height, image.channels, image.type, image.metadata);
   writer.put(image);
   writer.finish();
 }
 
 void write_tiff_rows(const fs::path& file, std::size_t width, std::size_t height, std::size_t channels,
-                     SampleType type, const std::function<Image()>& next_strip) {
-  TiffWriter writer(file, width, height, channels, type);
+                     SampleType type, const ImageMetadata& metadata,
+                     const std::function<Image()>& next_strip) {
+  if (!tiff_holds(channels, type, metadata))
+    throw std::invalid_argument(
+        "write_tiff_rows: needs 1 to 4 channels of 8/16-bit or float samples, attributes TIFF holds");
+  TiffWriter writer(file, width, height, channels, type, metadata);
   write_strips(writer, width, height, channels, type, next_strip, "write_tiff_rows");
 }
 

@@ -6,7 +6,8 @@
 // position or display-size tags; it gives the Image OpenImageIO gives for them (its channel names
 // from ExtraSamples). Tiled, planar-separate, palette, 1-bit, YCbCr, JPEG-compressed, CMYK and
 // other TIFFs go to OpenImageIO (tools/image_io.cpp). Writing takes 1 to 4 channels of 8/16-bit
-// or float samples with the default channel names and no attributes or windows, written as
+// or float samples with the default channel names, no windows and only attributes it stores as
+// OpenImageIO does (tiff_writable), written as
 // OpenImageIO writes them by default: deflate (level 6) with a predictor, 32 rows a strip, alpha
 // (the second of two channels, the fourth of four) marked unassociated.
 
@@ -33,7 +34,9 @@ std::unique_ptr<ImageRowReader> open_tiff_rows(const std::filesystem::path& path
 std::optional<Image> read_tiff(const std::filesystem::path& path);
 
 // Whether write_tiff_rows handles an image of these channels, type and metadata at this path: a
-// .tif/.tiff name, 1 to 4 channels, 8/16-bit or float samples, empty metadata.
+// .tif/.tiff name, 1 to 4 channels, 8/16-bit or float samples, default channel names, no windows,
+// and only attributes stored as OpenImageIO stores them (Artist, Copyright, DateTime,
+// DocumentName, ImageDescription and Software as ASCII tags; those it drops).
 bool tiff_writable(const std::filesystem::path& path, std::size_t channels, SampleType type,
                    const ImageMetadata& metadata);
 
@@ -43,6 +46,7 @@ void write_tiff(const Image& image, const std::filesystem::path& file);
 // Writes a TIFF of width x height pixels to `file` whose rows come from successive calls of
 // next_strip (images of `width` columns, `channels` planes and `type`, top to bottom).
 void write_tiff_rows(const std::filesystem::path& file, std::size_t width, std::size_t height,
-                     std::size_t channels, SampleType type, const std::function<Image()>& next_strip);
+                     std::size_t channels, SampleType type, const ImageMetadata& metadata,
+                     const std::function<Image()>& next_strip);
 
 }  // namespace pupwave::cli

@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "cli/run_cli.h"
 #include "io/io_test_files.h"
@@ -24,6 +27,7 @@
 namespace pupwave::cli {
 namespace {
 using namespace pupwave::test;
+using namespace std::string_literals;
 
 Image photograph(const char* name) { return read_image(fs::path(PUPWAVE_TESTIMAGES_DIR) / name); }
 
@@ -200,7 +204,58 @@ TEST(TiffIo, RoundTripsKeepSamplesAndType) {
   }
 }
 
+// The tags of a little-endian TIFF's first directory, each as its number, type, count and value
+// (strip offsets and byte counts, which depend on where the writer puts things, left out).
+std::vector<std::string> tiff_tags_of(const fs::path& path) {
+  const std::string bytes = file_bytes(path);
+  const auto u = [&](std::size_t at, int n) {
+    std::uint32_t v = 0;
+    for (int i = n - 1; i >= 0; --i) v = v << 8 | std::uint8_t(bytes.at(at + std::size_t(i)));
+    return std::size_t(v);
+  };
+  EXPECT_EQ(bytes.substr(0, 2), "II") << path;
+  const std::size_t ifd = u(4, 4);
+  std::vector<std::string> tags;
+  for (std::size_t i = 0, n = u(ifd, 2); i < n; ++i) {
+    const std::size_t at = ifd + 2 + 12 * i, tag = u(at, 2), type = u(at + 2, 2), count = u(at + 4, 4);
+    if (tag == 273 || tag == 279) continue;
+    const std::size_t size = count * (type == 3 ? 2 : type == 4 || type == 11 ? 4 : type == 12 ? 8 : 1);
+    const std::string value = size <= 4 ? bytes.substr(at + 8, size) : bytes.substr(u(at + 8, 4), size);
+    tags.push_back(std::to_string(tag) + " " + std::to_string(type) + " " + std::to_string(count) + " " +
+                   value);
+  }
+  return tags;
+}
+
+TEST(TiffIo, AttributesAreWrittenAsOpenImageIoWritesThem) {
+  Image img = convert_sample_type(oiio_module().read(testimage("forest_hdr.exr")), SampleType::f32);
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"ImageDescription", "a forest"},
+                                   {"Artist", "A. Painter"},
+                                   {"Copyright", "(c) nobody"},
+                                   {"DocumentName", "forest"}})
+    img.metadata.attributes.push_back({name, ImageAttribute::Kind::string, text, 0, 0.0});
+  const fs::path dir = scratch_dir();
+  ASSERT_TRUE(tiff_writable(dir / "native.tif", 3, SampleType::f32, img.metadata));
+  write_tiff(img, dir / "native.tif");
+  oiio_module().write(img, dir / "oiio.tif", dir / "oiio.tif");
+  const std::vector<std::string> native = tiff_tags_of(dir / "native.tif");
+  EXPECT_EQ(native, tiff_tags_of(dir / "oiio.tif"));
+  // The comparison can fail: the six ASCII tags are there.
+  EXPECT_NE(std::find(native.begin(), native.end(), "315 2 11 A. Painter\0"s), native.end());
+  EXPECT_NE(std::find(native.begin(), native.end(), "306 2 20 2018:08:17 15:11:15\0"s), native.end());
+  expect_same_image(*read_tiff(dir / "native.tif"), oiio_module().read(dir / "oiio.tif"), "read back");
+}
+
 TEST(TiffIo, KindsLeftToOpenImageIoGoThere) {
+  for (const ImageAttribute& a :
+       {ImageAttribute{"HostComputer", ImageAttribute::Kind::string, "h", 0, 0},
+        ImageAttribute{"Orientation", ImageAttribute::Kind::integer, "", 3, 0},
+        ImageAttribute{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 2.0},
+        ImageAttribute{"Exif:ExposureTime", ImageAttribute::Kind::real, "", 0, 0.5}}) {
+    ImageMetadata m;
+    m.attributes.push_back(a);
+    EXPECT_FALSE(tiff_writable("a.tif", 3, SampleType::u8, m)) << a.name;
+  }
   EXPECT_FALSE(tiff_writable("a.tif", 3, SampleType::f16, {}));
   EXPECT_FALSE(tiff_writable("a.tif", 5, SampleType::u8, {}));
   ImageMetadata moved;
@@ -247,6 +302,34 @@ TEST(JpegIo, WrittenFilesReadBackCloseToTheImage) {
   }
 }
 
+// The JFIF segment (APP0, the file's first after its start marker) of a JPEG file.
+std::string jfif_segment(const fs::path& path) {
+  const std::string bytes = file_bytes(path);
+  EXPECT_EQ(bytes.substr(2, 2), "\xff\xe0") << path;
+  return bytes.substr(2, 18);
+}
+
+// An EXR's own attributes (screenWindowWidth, PixelAspectRatio 1) as OpenImageIO writes them.
+TEST(JpegIo, ExrAttributesAreWrittenAsOpenImageIoWritesThem) {
+  Image img = photograph("astronaut.png");
+  img.metadata.attributes = {{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 1.0},
+                             {"screenWindowWidth", ImageAttribute::Kind::real, "", 0, 1.0}};
+  const fs::path dir = scratch_dir();
+  ASSERT_TRUE(jpeg_writable(dir / "native.jpg", 3, SampleType::u8, img.metadata));
+  write_jpeg(img, dir / "native.jpg");
+  oiio_module().write(img, dir / "oiio.jpg", dir / "oiio.jpg");
+  EXPECT_EQ(jfif_segment(dir / "native.jpg"), jfif_segment(dir / "oiio.jpg"));
+  // The comparison can fail: a density of 72 x 72, not libjpeg's default of 1 x 1.
+  EXPECT_EQ(jfif_segment(dir / "native.jpg").substr(12, 4), "\0\x48\0\x48"s);
+  expect_same_image(*read_jpeg(dir / "native.jpg"), oiio_module().read(dir / "oiio.jpg"), "read back");
+  for (const ImageAttribute& a : {ImageAttribute{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 2.0},
+                                  ImageAttribute{"Software", ImageAttribute::Kind::string, "x", 0, 0}}) {
+    ImageMetadata m;
+    m.attributes.push_back(a);
+    EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, m)) << a.name;
+  }
+}
+
 TEST(JpegIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
   const fs::path path = scratch_dir() / "whole.jpg";
   write_jpeg(photograph("chelsea.png"), path);
@@ -261,8 +344,9 @@ TEST(JpegIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
 // --- the CLI ---
 
 bool loads_openimageio(const std::string& args) {
-  const auto result = test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " + args +
-                                             " 2>&1 >/dev/null </dev/null");
+  const auto result =
+      test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " +
+                                      args + " 2>&1 >/dev/null </dev/null");
   EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
   return result.output.find("pupwave_oiio") != std::string::npos;
 }
@@ -270,10 +354,22 @@ bool loads_openimageio(const std::string& args) {
 TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
   const fs::path dir = scratch_dir();
   const auto at = [&](const std::string& name) { return test::shell_quote((dir / name).string()); };
-  const std::string png = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png").string());
-  const std::string exr = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr").string());
+  const std::string png =
+      test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png").string());
+  const std::string exr =
+      test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr").string());
   EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.exr")));
   EXPECT_FALSE(loads_openimageio("convert -q " + at("f.exr") + " " + at("g.exr")));
+  // An EXR's attributes (PixelAspectRatio, screenWindowWidth, ...) keep no PNG or TIFF from the
+  // native writers.
+  EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.png")));
+  EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.tif")));
+  // forest_hdr.exr's DateTime and Software go into OpenImageIO's EXIF block: an EXR with only its
+  // own attributes is written natively as JPEG.
+  EXPECT_FALSE(loads_openimageio("convert -q " + png + " " + at("p.exr")));
+  EXPECT_FALSE(loads_openimageio("convert -q " + at("p.exr") + " " + at("p.jpg")));
+  EXPECT_FALSE(loads_openimageio("compress -q --bpp 2 " + exr + " " + at("f.pw")));
+  EXPECT_FALSE(loads_openimageio("decompress -q " + at("f.pw") + " " + at("f.png")));
   for (const char* ext : {".exr", ".tif", ".jpg"}) {
     EXPECT_FALSE(loads_openimageio("convert -q " + png + " " + at(std::string("a") + ext))) << ext;
     EXPECT_FALSE(loads_openimageio("info " + at(std::string("a") + ext))) << ext;

@@ -25,6 +25,7 @@
 namespace pupwave::cli {
 namespace {
 using namespace pupwave::test;
+using namespace std::string_literals;
 
 // --- PNG files built chunk by chunk, for the kinds a libpng writer here never makes ---
 
@@ -172,6 +173,80 @@ INSTANTIATE_TEST_SUITE_P(GreyToRgba, PngRoundTrip,
                          ::testing::Combine(::testing::Values(SampleType::u8, SampleType::u16),
                                             ::testing::Values(1, 2, 3, 4)));
 
+// The chunks of a PNG file other than its image data, each as its type and contents; a zero oFFs
+// (which OpenImageIO writes and the native writer leaves out, read alike) is skipped.
+std::vector<std::string> png_chunks_of(const fs::path& path) {
+  const std::string bytes = file_bytes(path);
+  std::vector<std::string> chunks;
+  for (std::size_t at = 8; at + 12 <= bytes.size();) {
+    const auto byte = [&](std::size_t i) { return std::uint32_t(std::uint8_t(bytes[at + i])); };
+    const std::size_t size = byte(0) << 24 | byte(1) << 16 | byte(2) << 8 | byte(3);
+    const std::string type = bytes.substr(at + 4, 4), data = bytes.substr(at + 8, size);
+    if (type != "IDAT" && !(type == "oFFs" && data == std::string(9, '\0')))
+      chunks.push_back(type + ":" + data);
+    at += 12 + size;
+  }
+  return chunks;
+}
+
+// forest_hdr.exr's attributes (as the module reads them) and the usual string ones, as 16-bit.
+Image forest_with_text() {
+  Image img = convert_sample_type(oiio_module().read(testimage("forest_hdr.exr")), SampleType::u16);
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"ImageDescription", "a forest"},
+                                   {"Artist", "A. Painter"},
+                                   {"Copyright", "(c) nobody"},
+                                   {"DocumentName", "forest"},
+                                   {"Exif:Comment", "text"}})
+    img.metadata.attributes.push_back({name, ImageAttribute::Kind::string, text, 0, 0.0});
+  return img;
+}
+
+TEST(PngIo, AttributesAreWrittenAsOpenImageIoWritesThem) {
+  const Image img = forest_with_text();
+  const fs::path dir = scratch_dir();
+  ASSERT_TRUE(png_writable(dir / "native.png", 3, SampleType::u16, img.metadata));
+  write_png(img, dir / "native.png");
+  oiio_module().write(img, dir / "oiio.png", dir / "oiio.png");
+  const std::vector<std::string> native = png_chunks_of(dir / "native.png");
+  EXPECT_EQ(native, png_chunks_of(dir / "oiio.png"));
+  // The comparison can fail: IHDR, pHYs (PixelAspectRatio), tIME (DateTime), seven tEXt, IEND.
+  EXPECT_EQ(native.size(), 11u);
+  EXPECT_NE(std::find(native.begin(), native.end(), "tIME:\x07\xe2\x08\x11\x0f\x0b\x0f"s), native.end());
+  EXPECT_NE(std::find(native.begin(), native.end(), "tEXt:Author\0A. Painter"s), native.end());
+  expect_same_image(read_image(dir / "native.png"), oiio_module().read(dir / "oiio.png"), "read back");
+}
+
+// The linear colour space (gAMA and text), an unreadable DateTime and numbers (both dropped).
+TEST(PngIo, ColourSpaceAndDroppedAttributesAreWrittenAsOpenImageIoWritesThem) {
+  Image img = random_image(13, 7, 4, SampleType::u8, 5);
+  img.metadata.attributes = {{"oiio:ColorSpace", ImageAttribute::Kind::string, "Linear", 0, 0},
+                             {"DateTime", ImageAttribute::Kind::string, "yesterday", 0, 0},
+                             {"planarconfig", ImageAttribute::Kind::string, "contig", 0, 0},
+                             {"Orientation", ImageAttribute::Kind::integer, "", 1, 0}};
+  const fs::path dir = scratch_dir();
+  ASSERT_TRUE(png_writable(dir / "native.png", 4, SampleType::u8, img.metadata));
+  write_png(img, dir / "native.png");
+  oiio_module().write(img, dir / "oiio.png", dir / "oiio.png");
+  const std::vector<std::string> native = png_chunks_of(dir / "native.png");
+  EXPECT_EQ(native, png_chunks_of(dir / "oiio.png"));
+  EXPECT_NE(std::find(native.begin(), native.end(), "gAMA:\0\x01\x86\xa0"s), native.end());
+}
+
+// Attributes OpenImageIO stores in ways not written here leave the image to it.
+TEST(PngIo, AttributesWrittenOtherwiseAreLeftToOpenImageIo) {
+  for (const ImageAttribute& a :
+       {ImageAttribute{"XResolution", ImageAttribute::Kind::real, "", 0, 72.0},
+        ImageAttribute{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 2.0},
+        ImageAttribute{"oiio:ColorSpace", ImageAttribute::Kind::string, "sRGB", 0, 0},
+        ImageAttribute{"png:compressionLevel", ImageAttribute::Kind::integer, "", 3, 0},
+        ImageAttribute{"DateTime", ImageAttribute::Kind::string, "2020:13:01 00:00:00", 0, 0},
+        ImageAttribute{" spaced", ImageAttribute::Kind::string, "x", 0, 0}}) {
+    ImageMetadata m;
+    m.attributes.push_back(a);
+    EXPECT_FALSE(png_writable("a.png", 3, SampleType::u8, m)) << a.name;
+  }
+}
+
 TEST(PngIo, RowWriterWritesWhatTheWholeImageWriterWrites) {
   const fs::path dir = scratch_dir();
   const Image whole = read_image(testimage("astronaut.png"));
@@ -257,8 +332,9 @@ TEST(PngIo, HostileHeadersAreRefused) {
 // Whether running the CLI with these arguments dlopens the OpenImageIO module (glibc's loader
 // names every file it loads under LD_DEBUG=files); the command must succeed.
 bool cli_loads_openimageio(const std::string& args) {
-  const auto result = test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " + args +
-                                             " 2>&1 >/dev/null </dev/null");
+  const auto result =
+      test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " +
+                                      args + " 2>&1 >/dev/null </dev/null");
   EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
   return result.output.find("pupwave_oiio") != std::string::npos;
 }
