@@ -344,9 +344,8 @@ TEST(JpegIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
 // --- the CLI ---
 
 bool loads_openimageio(const std::string& args) {
-  const auto result =
-      test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " +
-                                      args + " 2>&1 >/dev/null </dev/null");
+  const auto result = test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " + args +
+                                             " 2>&1 >/dev/null </dev/null");
   EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
   return result.output.find("pupwave_oiio") != std::string::npos;
 }
@@ -354,10 +353,8 @@ bool loads_openimageio(const std::string& args) {
 TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
   const fs::path dir = scratch_dir();
   const auto at = [&](const std::string& name) { return test::shell_quote((dir / name).string()); };
-  const std::string png =
-      test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png").string());
-  const std::string exr =
-      test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr").string());
+  const std::string png = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "astronaut.png").string());
+  const std::string exr = test::shell_quote((fs::path(PUPWAVE_TESTIMAGES_DIR) / "forest_hdr.exr").string());
   EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.exr")));
   EXPECT_FALSE(loads_openimageio("convert -q " + at("f.exr") + " " + at("g.exr")));
   // An EXR's attributes (PixelAspectRatio, screenWindowWidth, ...) keep no PNG or TIFF from the

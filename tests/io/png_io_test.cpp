@@ -332,9 +332,8 @@ TEST(PngIo, HostileHeadersAreRefused) {
 // Whether running the CLI with these arguments dlopens the OpenImageIO module (glibc's loader
 // names every file it loads under LD_DEBUG=files); the command must succeed.
 bool cli_loads_openimageio(const std::string& args) {
-  const auto result =
-      test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " +
-                                      args + " 2>&1 >/dev/null </dev/null");
+  const auto result = test::run_shell_output("LD_DEBUG=files " + test::shell_quote(PUPWAVE_CLI) + " " + args +
+                                             " 2>&1 >/dev/null </dev/null");
   EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
   return result.output.find("pupwave_oiio") != std::string::npos;
 }
