@@ -255,12 +255,13 @@ bool jpeg_attribute_held(const ImageAttribute& a) {
   return a.name == "screenWindowWidth" && a.kind == Kind::real;
 }
 
-// Whether every attribute is held, their text fits the blocks, and the density is one whose
-// rule was seen: a pixel aspect ratio with a YResolution but no XResolution was not.
+// Whether every attribute is held, once (OpenImageIO keeps the last of a repeated name), their
+// text fits the blocks, and the density is one whose rule was seen: a pixel aspect ratio with a
+// YResolution but no XResolution was not.
 bool jpeg_attributes_held(const ImageMetadata& metadata) {
   std::size_t text = 0;
   for (const ImageAttribute& a : metadata.attributes) {
-    if (!jpeg_attribute_held(a)) return false;
+    if (!jpeg_attribute_held(a) || find_attribute(metadata, a.name) != &a) return false;
     text += a.text.size();
   }
   const bool aspect_from_y = find_attribute(metadata, "PixelAspectRatio") &&

@@ -397,6 +397,10 @@ TEST(JpegIo, TextAndResolutionAttributesAreWrittenAsOpenImageIoWritesThem) {
   const auto history = std::find_if(attributes.begin(), attributes.end(),
                                     [](const std::string& a) { return a.starts_with("Exif:ImageHistory "); });
   EXPECT_NE(history, attributes.end());
+  // A grey image gets the same EXIF sub-directory.
+  Image grey = photograph("camera.png");
+  grey.metadata.attributes = {text_attribute("Exif:ImageHistory", "made"), text_attribute("Software", "odd")};
+  EXPECT_TRUE(has(expect_written_as_openimageio_writes(grey, "grey"), "Exif:ImageHistory string = \"made\""));
 }
 
 // The JFIF density OpenImageIO derives from pixel aspect ratios, resolutions and their unit.
@@ -438,6 +442,9 @@ TEST(JpegIo, AttributesStoredOtherwiseAreLeftToOpenImageIo) {
     m.attributes.push_back(a);
     EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, m)) << a.name;
   }
+  ImageMetadata twice;
+  twice.attributes = {text_attribute("Software", "a"), text_attribute("Software", "b")};
+  EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, twice));
   ImageMetadata aspect_from_y;
   aspect_from_y.attributes = {real_attribute("PixelAspectRatio", 2.0), real_attribute("YResolution", 100.0)};
   EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, aspect_from_y));
