@@ -1,13 +1,14 @@
 #include "tools/jpeg_io.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -270,8 +271,9 @@ bool jpeg_attributes_held(const ImageMetadata& metadata) {
   return text <= kMaxJpegText && !aspect_from_y;
 }
 
-// OpenImageIO's rounding of a density: to nearest, within 1..65535.
-std::uint16_t density_of(float v) { return std::uint16_t(std::clamp(int(v + 0.5f), 1, 65535)); }
+// OpenImageIO's rounding of a density: to nearest, within 1..65535 (clamped as a float, so that
+// the extreme ratios' values never overflow the conversion).
+std::uint16_t density_of(float v) { return std::uint16_t(std::clamp(v + 0.5f, 1.0f, 65535.0f)); }
 
 // The JFIF density OpenImageIO 2.4 writes: the unit named by ResolutionUnit ("in", "cm", else
 // none); with a pixel aspect ratio, XResolution by XResolution / ratio, or 72 and 72 x ratio
@@ -310,11 +312,16 @@ JfifDensity jfif_density(const ImageMetadata& metadata) {
 ExifEntry* add_exif_entry(ExifData& exif, ExifMem* mem, ExifIfd ifd, ExifTag tag, ExifFormat format,
                           unsigned long components, unsigned size) {
   ExifEntry* e = exif_entry_new_mem(mem);
+  if (!e) throw std::bad_alloc();
+  e->data = static_cast<unsigned char*>(exif_mem_alloc(mem, size));
+  if (!e->data) {
+    exif_entry_unref(e);
+    throw std::bad_alloc();
+  }
   e->tag = tag;
   e->format = format;
   e->components = components;
   e->size = size;
-  e->data = static_cast<unsigned char*>(exif_mem_alloc(mem, size));
   exif_content_add_entry(exif.ifd[ifd], e);
   exif_entry_unref(e);  // the directory holds it
   return e;
@@ -354,19 +361,21 @@ void add_exif_attributes(ExifData& exif, ExifMem* mem, const ImageMetadata& meta
 // The EXIF block ("Exif\0\0" and a little-endian TIFF structure) OpenImageIO writes into every
 // JPEG, with no entries when no attribute goes there.
 std::string exif_block(const ImageMetadata& metadata) {
-  ExifMem* mem = exif_mem_new_default();
-  ExifData* exif = exif_data_new_mem(mem);
+  // libexif's reference counts, released however this returns.
+  const auto unref_mem = [](ExifMem* m) { exif_mem_unref(m); };
+  const auto unref_data = [](ExifData* d) { exif_data_unref(d); };
+  const std::unique_ptr<ExifMem, decltype(unref_mem)> mem(exif_mem_new_default(), unref_mem);
+  if (!mem) throw std::bad_alloc();
+  const std::unique_ptr<ExifData, decltype(unref_data)> exif(exif_data_new_mem(mem.get()), unref_data);
   if (!exif) throw std::bad_alloc();
-  exif_data_set_byte_order(exif, EXIF_BYTE_ORDER_INTEL);
-  add_exif_attributes(*exif, mem, metadata);
+  exif_data_set_byte_order(exif.get(), EXIF_BYTE_ORDER_INTEL);
+  add_exif_attributes(*exif, mem.get(), metadata);
   unsigned char* bytes = nullptr;
   unsigned int size = 0;
-  exif_data_save_data(exif, &bytes, &size);
+  exif_data_save_data(exif.get(), &bytes, &size);
+  if (!bytes) throw std::bad_alloc();
   std::string block(reinterpret_cast<const char*>(bytes), size);
-  exif_mem_free(mem, bytes);
-  exif_data_unref(exif);
-  exif_mem_unref(mem);
-  if (block.empty()) throw std::bad_alloc();
+  exif_mem_free(mem.get(), bytes);
   return block;
 }
 
