@@ -120,9 +120,14 @@ if(PUPWAVE_BUILD_TOOLS)
   pupwave_require(PUPWAVE_BUILD_TOOLS libtiff-dev "libtiff" "${TIFF_FOUND}")
   find_package(JPEG QUIET)
   pupwave_require(PUPWAVE_BUILD_TOOLS libjpeg-dev "libjpeg" "${JPEG_FOUND}")
+  # Debian 12's libexif-dev ships no CMake config: found with pkg-config.
+  find_package(PkgConfig QUIET)
+  pupwave_require(PUPWAVE_BUILD_TOOLS pkg-config "pkg-config (to find libexif)" "${PkgConfig_FOUND}")
+  pkg_check_modules(LIBEXIF QUIET IMPORTED_TARGET libexif)
+  pupwave_require(PUPWAVE_BUILD_TOOLS libexif-dev "libexif" "${LIBEXIF_FOUND}")
 endif()
 pupwave_component(cli PUPWAVE_BUILD_TOOLS "the pupwave CLI"
-                  "OpenImageIO ${OpenImageIO_VERSION}, OpenEXR ${OpenEXR_VERSION}, libpng ${PNG_VERSION_STRING}, libtiff ${TIFF_VERSION}, libjpeg ${JPEG_VERSION}, CLI11 ${CLI11_VERSION}, nlohmann_json ${nlohmann_json_VERSION}")
+                  "OpenImageIO ${OpenImageIO_VERSION}, OpenEXR ${OpenEXR_VERSION}, libpng ${PNG_VERSION_STRING}, libtiff ${TIFF_VERSION}, libjpeg ${JPEG_VERSION}, libexif ${LIBEXIF_VERSION}, CLI11 ${CLI11_VERSION}, nlohmann_json ${nlohmann_json_VERSION}")
 
 # --- vdb: the CLI's OpenVDB module ------------------------------------------------------------
 if(PUPWAVE_BUILD_VDB)

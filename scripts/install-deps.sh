@@ -9,6 +9,8 @@ packages=(
   # libraries found by CMake with find_package
   libeigen3-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev python3-imath libopenvdb-dev
   libboost-iostreams-dev libzstd-dev libcli11-dev nlohmann-json3-dev libpng-dev libtiff-dev libjpeg-dev
+  # found by CMake with pkg-config
+  libexif-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # anchors and helpers for the rate-distortion harness and volume comparisons
   libopenjp2-tools libjxl-tools zfp libopenvdb-tools gnuplot-nox

@@ -5,10 +5,11 @@
 // upsampling, as OpenImageIO decodes them, and gives the same Image (EXIF orientation is not
 // applied by either); CMYK/YCCK and other colour spaces go to OpenImageIO (tools/image_io.cpp),
 // which refuses CMYK. A file that ends before its last scanline is an error here (OpenImageIO
-// fills the rest with grey). Writing takes 8-bit grey or RGB images without metadata but the
-// attributes jpeg_writable names, at quality
-// 95 with libjpeg's defaults (JFIF, 4:2:0 chroma), the quality the CLI asks OpenImageIO for; the
-// EXIF block OpenImageIO adds is not written.
+// fills the rest with grey). Writing takes 8-bit grey or RGB images whose attributes are those
+// jpeg_writable names, at quality 95 with libjpeg's defaults (JFIF, 4:2:0 chroma), the quality
+// the CLI asks OpenImageIO for, with the JFIF density, comment, EXIF block (libexif) and
+// Photoshop IPTC block OpenImageIO 2.4 writes for those attributes. Reading gives no attributes,
+// as the module's reading of a JPEG does.
 
 #include <cstddef>
 #include <filesystem>
@@ -33,9 +34,11 @@ std::unique_ptr<ImageRowReader> open_jpeg_rows(const std::filesystem::path& path
 std::optional<Image> read_jpeg(const std::filesystem::path& path);
 
 // Whether write_jpeg_rows handles an image of these channels, type and metadata at this path: a
-// JPEG name, 1 or 3 channels of 8-bit samples, default channel names, no windows, and no
-// attributes but screenWindowWidth (OpenImageIO drops it) and a pixel aspect ratio of 1 (its JFIF
-// density of 72 x 72); OpenImageIO writes the others into EXIF or IPTC blocks.
+// JPEG name, 1 or 3 channels of 8-bit samples, default channel names, no windows, and attributes
+// stored as OpenImageIO stores them: the text ones (ImageDescription, Make, Model, Software,
+// DateTime, Artist, Copyright, Exif:ImageHistory; not empty), Orientation 1-8, whole X/YResolution
+// of 1-65535, ResolutionUnit as text, a positive PixelAspectRatio (not with a YResolution alone),
+// and screenWindowWidth (dropped). Others leave the image to OpenImageIO.
 bool jpeg_writable(const std::filesystem::path& path, std::size_t channels, SampleType type,
                    const ImageMetadata& metadata);
 

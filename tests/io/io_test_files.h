@@ -1,15 +1,17 @@
 #pragma once
 // What the image I/O tests share: a scratch folder per test process, the bundled test images,
-// whole-file bytes, random images and the comparison of two read images.
+// whole-file bytes, a JPEG's header segments, random images and the comparison of two read images.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <Imath/half.h>
 
@@ -35,6 +37,19 @@ inline std::string file_bytes(const fs::path& path) {
 
 inline void put_bytes(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// The segments of a JPEG file from its first marker after the start of the image up to its first
+// quantization table (JFIF, comments, APPn), each with its marker and length bytes.
+inline std::vector<std::string> jpeg_header_segments(const fs::path& path) {
+  const std::string bytes = file_bytes(path);
+  std::vector<std::string> segments;
+  for (std::size_t at = 2; at + 4 <= bytes.size() && bytes[at] == '\xff' && bytes[at + 1] != '\xdb';) {
+    const std::size_t length = std::uint8_t(bytes[at + 2]) << 8 | std::uint8_t(bytes[at + 3]);
+    segments.push_back(bytes.substr(at, 2 + length));
+    at += 2 + length;
+  }
+  return segments;
 }
 
 // Random samples covering the whole range of the type (negative and large values for floats).

@@ -3,6 +3,7 @@
 // names and kept metadata on files OpenImageIO writes from the test photographs; round trips of
 // every sample type; the kinds left to OpenImageIO go there; corrupt and truncated files are
 // errors naming the file; and the CLI's commands on these formats do not load the module.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -309,25 +310,144 @@ std::string jfif_segment(const fs::path& path) {
   return bytes.substr(2, 18);
 }
 
+// The attributes OpenImageIO's reader gives for a file, each as "name type = value", sorted
+// (the order follows the file's layout, which libexif's differs from).
+std::vector<std::string> openimageio_attributes(const fs::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  EXPECT_TRUE(in) << path;
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<std::string> attributes;
+  for (const OIIO::ParamValue& p : spec.extra_attribs)
+    attributes.push_back(p.name().string() + " " + p.type().c_str() + " = " + spec.metadata_val(p));
+  std::sort(attributes.begin(), attributes.end());
+  return attributes;
+}
+
+// The header segments of a JPEG but its EXIF block, whose layout libexif's and OpenImageIO's
+// differ in (the attributes read from it are compared instead).
+std::vector<std::string> segments_but_exif(const fs::path& path) {
+  std::vector<std::string> segments = jpeg_header_segments(path);
+  std::erase_if(segments, [](const std::string& s) { return s.substr(0, 2) == "\xff\xe1"; });
+  return segments;
+}
+
+// Writes `image` natively and through OpenImageIO into dir/<name>_native.jpg and _oiio.jpg;
+// both read back as the same attributes, segments other than EXIF and image. The attributes.
+std::vector<std::string> expect_written_as_openimageio_writes(const Image& image, const std::string& name) {
+  const fs::path dir = scratch_dir(), native = dir / (name + "_native.jpg"),
+                 oiio = dir / (name + "_oiio.jpg");
+  EXPECT_TRUE(jpeg_writable(native, image.channels, image.type, image.metadata)) << name;
+  write_jpeg(image, native);
+  oiio_module().write(image, oiio, oiio);
+  const std::vector<std::string> attributes = openimageio_attributes(native);
+  EXPECT_EQ(attributes, openimageio_attributes(oiio)) << name;
+  EXPECT_EQ(segments_but_exif(native), segments_but_exif(oiio)) << name;
+  EXPECT_EQ(jpeg_header_segments(native).size(), jpeg_header_segments(oiio).size()) << name;
+  expect_same_image(*read_jpeg(native), oiio_module().read(oiio), name + " read back");
+  return attributes;
+}
+
+ImageAttribute text_attribute(const std::string& name, const std::string& text) {
+  return {name, ImageAttribute::Kind::string, text, 0, 0.0};
+}
+
+ImageAttribute real_attribute(const std::string& name, double value) {
+  return {name, ImageAttribute::Kind::real, "", 0, value};
+}
+
+bool has(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
 // An EXR's own attributes (screenWindowWidth, PixelAspectRatio 1) as OpenImageIO writes them.
 TEST(JpegIo, ExrAttributesAreWrittenAsOpenImageIoWritesThem) {
   Image img = photograph("astronaut.png");
-  img.metadata.attributes = {{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 1.0},
-                             {"screenWindowWidth", ImageAttribute::Kind::real, "", 0, 1.0}};
-  const fs::path dir = scratch_dir();
-  ASSERT_TRUE(jpeg_writable(dir / "native.jpg", 3, SampleType::u8, img.metadata));
-  write_jpeg(img, dir / "native.jpg");
-  oiio_module().write(img, dir / "oiio.jpg", dir / "oiio.jpg");
-  EXPECT_EQ(jfif_segment(dir / "native.jpg"), jfif_segment(dir / "oiio.jpg"));
+  img.metadata.attributes = {real_attribute("PixelAspectRatio", 1.0),
+                             real_attribute("screenWindowWidth", 1.0)};
+  expect_written_as_openimageio_writes(img, "exr_own");
   // The comparison can fail: a density of 72 x 72, not libjpeg's default of 1 x 1.
-  EXPECT_EQ(jfif_segment(dir / "native.jpg").substr(12, 4), "\0\x48\0\x48"s);
-  expect_same_image(*read_jpeg(dir / "native.jpg"), oiio_module().read(dir / "oiio.jpg"), "read back");
-  for (const ImageAttribute& a : {ImageAttribute{"PixelAspectRatio", ImageAttribute::Kind::real, "", 0, 2.0},
-                                  ImageAttribute{"Software", ImageAttribute::Kind::string, "x", 0, 0}}) {
+  EXPECT_EQ(jfif_segment(scratch_dir() / "exr_own_native.jpg").substr(12, 4), "\0\x48\0\x48"s);
+}
+
+// forest_hdr.exr's attributes (DateTime, Software, Orientation, Exif:ImageHistory...) and the
+// text and resolution ones photographs carry: the EXIF, IPTC, comment and JFIF OpenImageIO writes.
+TEST(JpegIo, TextAndResolutionAttributesAreWrittenAsOpenImageIoWritesThem) {
+  Image img = convert_sample_type(oiio_module().read(testimage("forest_hdr.exr")), SampleType::u8);
+  ASSERT_EQ(img.metadata.attributes.size(), 6u);
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"ImageDescription", "a forest"},
+                                   {"Artist", "A. Painter"},
+                                   {"Copyright", "(c) nobody"},
+                                   {"Make", "Canon"},
+                                   {"Model", "EOS 5D"}})
+    img.metadata.attributes.push_back(text_attribute(name, text));
+  img.metadata.attributes.push_back(real_attribute("XResolution", 300.0));
+  img.metadata.attributes.push_back(real_attribute("YResolution", 300.0));
+  img.metadata.attributes.push_back(text_attribute("ResolutionUnit", "in"));
+  const std::vector<std::string> attributes = expect_written_as_openimageio_writes(img, "forest");
+  // The comparison can fail: the EXIF, IPTC and JFIF values are there.
+  EXPECT_TRUE(has(attributes, "DateTime string = \"2018:08:17 15:11:15\""))
+      << ::testing::PrintToString(attributes);
+  EXPECT_TRUE(has(attributes, "Exif:FlashPixVersion string = \"0100\""));
+  EXPECT_TRUE(has(attributes, "IPTC:Creator string = \"A. Painter\""));
+  EXPECT_TRUE(has(attributes, "Model string = \"EOS 5D\""));
+  EXPECT_TRUE(has(attributes, "Orientation uint16 = 1"));
+  EXPECT_TRUE(has(attributes, "ResolutionUnit string = \"in\""));
+  EXPECT_TRUE(has(attributes, "XResolution float = 300"));
+  const auto history = std::find_if(attributes.begin(), attributes.end(),
+                                    [](const std::string& a) { return a.starts_with("Exif:ImageHistory "); });
+  EXPECT_NE(history, attributes.end());
+  // A grey image gets the same EXIF sub-directory.
+  Image grey = photograph("camera.png");
+  grey.metadata.attributes = {text_attribute("Exif:ImageHistory", "made"), text_attribute("Software", "odd")};
+  EXPECT_TRUE(has(expect_written_as_openimageio_writes(grey, "grey"), "Exif:ImageHistory string = \"made\""));
+}
+
+// The JFIF density OpenImageIO derives from pixel aspect ratios, resolutions and their unit.
+TEST(JpegIo, DensitiesAreWrittenAsOpenImageIoWritesThem) {
+  const Image plain = photograph("camera.png");
+  const std::vector<std::vector<ImageAttribute>> cases = {
+      {},
+      {real_attribute("PixelAspectRatio", 2.0)},
+      {real_attribute("PixelAspectRatio", 0.75)},
+      {real_attribute("PixelAspectRatio", 1.01)},
+      {real_attribute("PixelAspectRatio", 0.7), real_attribute("XResolution", 300.0)},
+      {real_attribute("PixelAspectRatio", 1.0), real_attribute("XResolution", 300.0),
+       real_attribute("YResolution", 150.0)},
+      {real_attribute("XResolution", 200.0), text_attribute("ResolutionUnit", "CM")},
+      {real_attribute("YResolution", 96.0), text_attribute("ResolutionUnit", "inch")},
+      {real_attribute("Orientation", 0.0)}};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    Image img = plain;
+    img.metadata.attributes = cases[i];
+    if (i + 1 == cases.size()) {  // the last is one left to OpenImageIO
+      EXPECT_FALSE(jpeg_writable("a.jpg", 1, SampleType::u8, img.metadata));
+      continue;
+    }
+    expect_written_as_openimageio_writes(img, "density" + std::to_string(i));
+  }
+  // The comparison can fail: 72 x 144 for a ratio of 2, 300 x 429 for 0.7 with a resolution of 300.
+  EXPECT_EQ(jfif_segment(scratch_dir() / "density1_native.jpg").substr(12, 4), "\0\x48\0\x90"s);
+  EXPECT_EQ(jfif_segment(scratch_dir() / "density4_native.jpg").substr(12, 4), "\x01\x2c\x01\xad"s);
+}
+
+TEST(JpegIo, AttributesStoredOtherwiseAreLeftToOpenImageIo) {
+  for (const ImageAttribute& a :
+       {text_attribute("HostComputer", "h"), text_attribute("Software", ""),
+        ImageAttribute{"Orientation", ImageAttribute::Kind::integer, "", 9, 0},
+        ImageAttribute{"ResolutionUnit", ImageAttribute::Kind::integer, "", 2, 0},
+        real_attribute("XResolution", 72.5), real_attribute("PixelAspectRatio", 0.0),
+        real_attribute("Exif:ExposureTime", 0.5), text_attribute("Software", std::string(70000, 's'))}) {
     ImageMetadata m;
     m.attributes.push_back(a);
     EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, m)) << a.name;
   }
+  ImageMetadata twice;
+  twice.attributes = {text_attribute("Software", "a"), text_attribute("Software", "b")};
+  EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, twice));
+  ImageMetadata aspect_from_y;
+  aspect_from_y.attributes = {real_attribute("PixelAspectRatio", 2.0), real_attribute("YResolution", 100.0)};
+  EXPECT_FALSE(jpeg_writable("a.jpg", 3, SampleType::u8, aspect_from_y));
 }
 
 TEST(JpegIo, CorruptAndTruncatedFilesAreErrorsNamingTheFile) {
@@ -361,8 +481,8 @@ TEST(NativeFormatsCli, ConvertInfoCompressAndDecompressDoNotLoadOpenImageIo) {
   // native writers.
   EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.png")));
   EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.tif")));
-  // forest_hdr.exr's DateTime and Software go into OpenImageIO's EXIF block: an EXR with only its
-  // own attributes is written natively as JPEG.
+  // forest_hdr.exr's DateTime, Software and Exif:ImageHistory go into the EXIF block written here.
+  EXPECT_FALSE(loads_openimageio("convert -q " + exr + " " + at("f.jpg")));
   EXPECT_FALSE(loads_openimageio("convert -q " + png + " " + at("p.exr")));
   EXPECT_FALSE(loads_openimageio("convert -q " + at("p.exr") + " " + at("p.jpg")));
   EXPECT_FALSE(loads_openimageio("compress -q --bpp 2 " + exr + " " + at("f.pw")));
