@@ -18,7 +18,7 @@ reps=${2:-10}
 large_reps=${3:-2}
 pw=$build/tools/pupwave
 out=${OUT:-/tmp/coder_census.md}
-coders=${CODERS:-ebcot pc lc ht zstd}
+coders=${CODERS:-ebcot pc lc ht}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
