@@ -223,7 +223,7 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
     cmd->add_option(
            "--entropy", o.entropy,
            "comma list of pupwave entropy coders (compress --entropy names), each a curve per transform "
-           "(SPEC+CODER): auto (the default choice), ebcot, pc, lc, ht or zstd")
+           "(SPEC+CODER): auto (the default choice), ebcot, pc, lc or ht")
         ->capture_default_str();
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();

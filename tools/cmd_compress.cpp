@@ -337,7 +337,7 @@ void add_compress_command(CLI::App& app) {
          "Mpixel: one pass per band with parent contexts, chroma from luma and rate-distortion optimised "
          "quantization; about 10% fewer bits than ebcot at equal PSNR on photographs; holds the "
          "transformed image), ebcot (bit-plane, the default for larger images: encodes 8-bit "
-         "PGM/PPM by strips in bounded memory), ht (high-throughput, no arithmetic coding), zstd, or lc "
+         "PGM/PPM by strips in bounded memory), ht (high-throughput, no arithmetic coding), or lc "
          "(lossless only, the default with --lossless: weighted prediction and context modelling, the "
          "smallest lossless files)")
       ->transform(coder_option());

@@ -227,7 +227,7 @@ pupwave_status pupwave_coder_from_name(const char* name, pupwave_coder* coder) {
 
 const char* pupwave_coder_name(pupwave_coder coder) {
   // The C enumerators are the C++ ones (static_asserts below); names are string literals.
-  if (int(coder) < int(PUPWAVE_CODER_AUTO) || int(coder) > int(PUPWAVE_CODER_ZSTD)) return nullptr;
+  if (int(coder) < int(PUPWAVE_CODER_AUTO) || int(coder) > int(PUPWAVE_CODER_HT)) return nullptr;
   return pupwave::api::coder_name(pupwave::api::Coder(coder)).data();
 }
 
@@ -235,8 +235,7 @@ static_assert(int(PUPWAVE_CODER_AUTO) == int(pupwave::api::Coder::automatic) &&
               int(PUPWAVE_CODER_EBCOT) == int(pupwave::api::Coder::ebcot) &&
               int(PUPWAVE_CODER_PC) == int(pupwave::api::Coder::pc) &&
               int(PUPWAVE_CODER_LC) == int(pupwave::api::Coder::lc) &&
-              int(PUPWAVE_CODER_HT) == int(pupwave::api::Coder::ht) &&
-              int(PUPWAVE_CODER_ZSTD) == int(pupwave::api::Coder::zstd));
+              int(PUPWAVE_CODER_HT) == int(pupwave::api::Coder::ht));
 
 pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort) {
   return guarded([&] {

@@ -17,13 +17,12 @@ struct CoderRow {
 
 // One row per coder, in the order of enum Coder (and of the C API's PUPWAVE_CODER_*); the names
 // are the stream's (codec/entropy/coder_traits.h), and "auto" for the default choice.
-constexpr std::array<CoderRow, 6> kCoders{{
+constexpr std::array<CoderRow, 5> kCoders{{
     {Coder::automatic, std::nullopt},
     {Coder::ebcot, EntropyCoder::ebcot},
     {Coder::pc, EntropyCoder::pc},
     {Coder::lc, EntropyCoder::lc},
     {Coder::ht, EntropyCoder::ht},
-    {Coder::zstd, EntropyCoder::zstd},
 }};
 
 const CoderRow& row(Coder coder) {

@@ -8,9 +8,10 @@
 
 namespace pupwave {
 
-// ebcot: bit-plane (block_encoder.h); zstd: zstd_blocks.h; ht: high-throughput (ht_blocks.h);
-// lc: lossless context coder (lc_blocks.h); pc: parent-context coefficient coder (pc_blocks.h).
-enum class EntropyCoder : std::uint8_t { ebcot = 0, zstd = 1, ht = 2, lc = 3, pc = 4 };
+// ebcot: bit-plane (block_encoder.h); ht: high-throughput (ht_blocks.h); lc: lossless context
+// coder (lc_blocks.h); pc: parent-context coefficient coder (pc_blocks.h). Byte 1 is retired
+// (retired_coder_name): no coder takes it, so no stream can mean two things.
+enum class EntropyCoder : std::uint8_t { ebcot = 0, ht = 2, lc = 3, pc = 4 };
 
 struct CoderTraits {
   EntropyCoder coder;
@@ -26,6 +27,8 @@ struct CoderTraits {
 const CoderTraits& coder_traits(EntropyCoder coder);
 // The coder a stream's entropy byte names, or nullopt for a byte no coder has.
 std::optional<EntropyCoder> coder_from_byte(std::uint32_t byte);
+// The name of the retired coder an entropy byte named ("zstd" for 1), or nullptr for any other byte.
+const char* retired_coder_name(std::uint32_t byte);
 const char* to_string(EntropyCoder coder);
 
 }  // namespace pupwave

@@ -1,6 +1,6 @@
 #pragma once
 // Image compression and decompression: colour transform, separable wavelet transform,
-// dead-zone quantization, code-blocks coded by the bit-plane coder (or the ht, lc, pc or zstd
+// dead-zone quantization, code-blocks coded by the bit-plane coder (or the ht, lc or pc
 // coder), rate control (PCRD for the bit-plane coder), and the .pw container. The CLI
 // (tools/cmd_compress.cpp) is a thin layer over this.
 

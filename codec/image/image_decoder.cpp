@@ -10,7 +10,6 @@
 #include "codec/entropy/block_decoder.h"
 #include "codec/entropy/ht_blocks.h"
 #include "codec/entropy/lc_blocks.h"
-#include "codec/entropy/zstd_blocks.h"
 #include "codec/error.h"
 #include "codec/image/image_codec.h"
 #include "codec/image/image_components.h"
@@ -39,10 +38,7 @@ std::vector<T> block_values(const ParsedStream& s, std::size_t i) {
     throw std::logic_error(std::string(to_string(h.entropy)) + " blocks decode with their parent bands");
   if (h.entropy != EntropyCoder::ebcot) {
     std::vector<std::int32_t> q(b.count());
-    if (h.entropy == EntropyCoder::zstd)
-      q = zstd_decode_block(s.codeword(i), b.count());
-    else
-      ht_decode_block(s.codeword(i), b.size[0], b.size[1], e.planes, q.data());
+    ht_decode_block(s.codeword(i), b.size[0], b.size[1], e.planes, q.data());
     for (std::size_t k = 0; k < q.size(); ++k) {
       const double offset = (h.reversible || q[k] == 0) ? 0.0 : (q[k] < 0 ? -h.delta : h.delta);
       values[k] = T(double(q[k]) + offset);

@@ -836,7 +836,6 @@ struct CodedDomain {
 // rate target (lc codes lossless only).
 EncodeResult encode_not_embedded(const ImageView& image, ImagePlan& plan, const EncodeOptions& options) {
   switch (options.entropy) {
-    case EntropyCoder::zstd: return encode_zstd(image, plan, options);
     case EntropyCoder::ht: return encode_ht(image, plan, options);
     case EntropyCoder::lc: return encode_lc(image, plan);
     case EntropyCoder::pc: return encode_pc(image, plan, options);
@@ -871,8 +870,7 @@ EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& opt
 
 EncodeResult encode_in_domain(const ImageView& image, const EncodeOptions& options,
                               const CodedDomain& domain) {
-  if (options.levels >= 0 || options.entropy == EntropyCoder::zstd)
-    return encode_with_levels(image, options, domain);
+  if (options.levels >= 0) return encode_with_levels(image, options, domain);
   // The lc coder's default is no wavelet levels: its predictor on the samples themselves codes
   // the test photographs 2.5-5.5% smaller than on a 5-level cdf53 decomposition.
   if (options.entropy == EntropyCoder::lc) {
@@ -907,9 +905,7 @@ std::optional<EncodeResult> encode_exact(const ImageView& image, const EncodeOpt
   if (!coder_traits(exact.entropy).lossless) exact.entropy = EntropyCoder::ebcot;
   ImagePlan plan = plan_image(image, exact);
   EncodeResult r;
-  if (exact.entropy == EntropyCoder::zstd) {
-    r = encode_zstd(image, plan, exact);
-  } else if (exact.entropy == EntropyCoder::ht) {
+  if (exact.entropy == EntropyCoder::ht) {
     r = encode_ht(image, plan, exact, byte_limit);
     if (r.bytes.empty()) return std::nullopt;
   } else {

@@ -1,7 +1,7 @@
 #pragma once
 // Internal to the image encoder: an image after colour and wavelet transform, partitioned
 // into code-blocks, with the container header being built. Shared by the encoding paths of
-// every entropy coder (image_encoder.cpp, image_encoder_ht/lc/pc/zstd.cpp) and the decoder.
+// every entropy coder (image_encoder.cpp, image_encoder_ht/lc/pc.cpp) and the decoder.
 
 #include <cstdint>
 #include <optional>
@@ -112,8 +112,5 @@ EncodeResult make_encode_result(const ImageView& image, const ImagePlan& plan,
 // Whether `r` meets the rate target of `options` for an image of `pixels` pixels
 // (EncodeResult::target_met): a bpp budget as the encoders round it, a PSNR target measured.
 bool meets_target(const EncodeResult& r, const EncodeOptions& options, std::size_t pixels);
-
-// Encodes with the zstd back end (rate control by the base step only).
-EncodeResult encode_zstd(const ImageView& image, ImagePlan& plan, const EncodeOptions& options);
 
 }  // namespace pupwave

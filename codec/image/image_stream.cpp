@@ -82,6 +82,9 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
   h.channels = r.u8();
   validate_shape(h);
   const std::uint32_t type = r.u8(), colour = r.u8(), entropy = r.u8(), reversible = r.u8();
+  if (const char* retired = retired_coder_name(entropy))
+    throw DecodeError("entropy coder " + std::to_string(entropy) + " (" + retired +
+                      ") is not supported: it was retired from the format and no decoder reads it");
   const auto coder = coder_from_byte(entropy);
   require_stream(type <= 3 && colour <= 2 && coder && reversible <= 1, "sample type, colour or coder field");
   h.type = SampleType(type);

@@ -1,7 +1,8 @@
 // Each row of the coder traits table (codec/entropy/coder_traits.cpp) says what the coder does on
 // a real photograph: it codes lossy and lossless streams exactly when the row says so, a stream's
 // blocks decode strip by strip exactly when they decode alone, whole-band coders code each band as
-// one block, and the entropy byte and name come back from the stream.
+// one block, and the entropy byte and name come back from the stream. A stream naming the retired
+// coder byte is refused with its name.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include "cli_codec/photo_crops.h"
 #include "codec/entropy/coder_traits.h"
 #include "codec/error.h"
+#include "codec/format/crc32.h"
 #include "codec/image/image_strips.h"
 #include "transforms/executor.h"
 
@@ -20,8 +22,7 @@ namespace {
 using test::crop;
 using test::photo;
 
-constexpr EntropyCoder kEvery[] = {EntropyCoder::ebcot, EntropyCoder::zstd, EntropyCoder::ht,
-                                   EntropyCoder::lc, EntropyCoder::pc};
+constexpr EntropyCoder kEvery[] = {EntropyCoder::ebcot, EntropyCoder::ht, EntropyCoder::lc, EntropyCoder::pc};
 
 std::vector<std::uint8_t> encode(const Image& image, EntropyCoder coder, RateMode mode) {
   EncodeOptions o;
@@ -65,6 +66,34 @@ TEST(CoderTraits, EachRowIsWhatTheCoderDoes) {
     }
   }
   EXPECT_FALSE(coder_from_byte(5).has_value());
+}
+
+// `bytes` with the HEAD chunk's entropy byte set to `byte` and the chunk's CRC fixed, so only the
+// field check can refuse it. HEAD is the first chunk (after the 5-byte signature): 4-byte tag,
+// u32 length, payload, CRC-32 of tag, length and payload; the entropy byte is payload byte 15.
+std::vector<std::uint8_t> with_entropy_byte(std::vector<std::uint8_t> bytes, std::uint8_t byte) {
+  const std::size_t head = 5, payload = head + 8;
+  const std::size_t length = bytes[head + 4] | (bytes[head + 5] << 8);
+  bytes[payload + 15] = byte;
+  const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bytes).subspan(head, 8 + length));
+  for (int i = 0; i < 4; ++i) bytes[payload + length + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
+  return bytes;
+}
+
+// Entropy byte 1 (zstd) is retired: no coder takes it, and a stream naming it is refused by name.
+TEST(CoderTraits, RetiredCoderByteIsRefusedByName) {
+  EXPECT_FALSE(coder_from_byte(1).has_value());
+  EXPECT_STREQ(retired_coder_name(1), "zstd");
+  for (EntropyCoder coder : kEvery) EXPECT_EQ(retired_coder_name(std::uint32_t(coder)), nullptr);
+  const auto good = encode(crop(photo("astronaut.png"), 96, 80), EntropyCoder::ebcot, RateMode::bpp);
+  ASSERT_NO_THROW(decode_image(with_entropy_byte(good, 0)));  // the edit alone breaks nothing
+  try {
+    (void)decode_image(with_entropy_byte(good, 1));
+    ADD_FAILURE() << "a stream naming entropy coder 1 was decoded";
+  } catch (const DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("entropy coder 1 (zstd) is not supported"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The container refuses a stream whose coder cannot code its kind of stream, naming the coder.

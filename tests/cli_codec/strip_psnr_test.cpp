@@ -1,6 +1,6 @@
 // The encoder's PSNR check decoded by strips (strip_psnr, codec/image/image_strips.h) gives the
 // figure of the whole-plane decode (full_planes_psnr) on the test photographs: integer and
-// float images, lossy and lossless, the bit-plane, ht and zstd coders, images narrower and wider
+// float images, lossy and lossless, the bit-plane and ht coders, images narrower and wider
 // than its column tiles; lc and pc streams are left to the whole-plane route.
 #include <gtest/gtest.h>
 
@@ -52,7 +52,7 @@ TEST(StripPsnr, IntegerPhotographsEveryBlockCoder) {
   for (const char* name : {"astronaut.png", "camera.png", "coffee.png", "chelsea.png"}) {
     const Image image = photo(name);
     const ImageView view = view_of(image);
-    for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::ht, EntropyCoder::zstd}) {
+    for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::ht}) {
       const std::string what = std::string(name) + " " + to_string(coder);
       const auto bytes = encode(view, coder, RateMode::bpp, 1.0);
       expect_strip_psnr_matches(view, bytes, what + " 1 bpp");
@@ -115,7 +115,7 @@ void expect_float_matches(const Image& image, const std::string& what) {
   const CodedDomainImage coded = to_coded_domain(view_of(image), Transfer::log2, false);
   ImageView view = view_of(coded.image);
   view.peak = 1.0;  // log-PSNR, as encode_image measures it
-  for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::ht, EntropyCoder::zstd}) {
+  for (EntropyCoder coder : {EntropyCoder::ebcot, EntropyCoder::ht}) {
     EncodeOptions o;
     o.entropy = coder;
     o.mode = RateMode::bpp;

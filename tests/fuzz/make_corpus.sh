@@ -72,7 +72,6 @@ enc() {  # enc INPUT ARGS...: one image seed
 }
 enc "$tmp/grey.pgm" --lossless --entropy ebcot
 enc "$tmp/grey.pgm" --bpp 1.5
-enc "$tmp/grey.pgm" --bpp 2 --entropy zstd
 enc "$tmp/grey.pgm" --bpp 2 --transform pups:chaikin-ext
 enc "$tmp/grey.pgm" --bpp 2 --transform kobbelt:k4pt --levels 2
 enc "$tmp/rgb.ppm" --lossless --entropy ebcot
@@ -108,10 +107,10 @@ done
 # A sparse box volume (MASK chunk) and HDF5 chunks: library writers only.
 "$seeds" "$out"
 
-cp "$out"/image/seed-1.pw "$out"/image/seed-6.pw "$out"/volume/seed-dense.pw "$out"/mesh/seed-u.pwm "$out/info/"
+cp "$out"/image/seed-1.pw "$out"/image/seed-5.pw "$out"/volume/seed-dense.pw "$out"/mesh/seed-u.pwm "$out/info/"
 
 # C API: first byte level (bits 0-1) and decode-into (bit 2), then an image or volume stream.
-for f in "$out"/image/seed-1.pw "$out"/image/seed-6.pw "$out"/volume/seed-*.pw; do
+for f in "$out"/image/seed-1.pw "$out"/image/seed-5.pw "$out"/volume/seed-*.pw; do
   name=$(basename "$(dirname "$f")")-$(basename "$f" .pw)
   { printf '\x04'; cat "$f"; } > "$out/c_api/$name-level0"
   { printf '\x05'; cat "$f"; } > "$out/c_api/$name-level1"

@@ -79,17 +79,16 @@ pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick)
  * to 4 Mpixel, EBCOT on larger ones), EBCOT (bit-plane coder: embedded, bounded
  * memory from 8-bit PGM/PPM files), PC (parent-context coder: the smallest lossy files; lossy
  * only), LC (lossless context coder; lossless only), HT (high-throughput block coder: no
- * arithmetic coding, faster, larger files), ZSTD. */
+ * arithmetic coding, faster, larger files). */
 typedef enum pupwave_coder {
   PUPWAVE_CODER_AUTO = 0,
   PUPWAVE_CODER_EBCOT = 1,
   PUPWAVE_CODER_PC = 2,
   PUPWAVE_CODER_LC = 3,
-  PUPWAVE_CODER_HT = 4,
-  PUPWAVE_CODER_ZSTD = 5
+  PUPWAVE_CODER_HT = 4
 } pupwave_coder;
 pupwave_status pupwave_options_set_coder(pupwave_options* options, pupwave_coder coder);
-/* The coder named NAME ("auto", "ebcot", "pc", "lc", "ht", "zstd"; any case) into *coder;
+/* The coder named NAME ("auto", "ebcot", "pc", "lc", "ht"; any case) into *coder;
  * PUPWAVE_ERROR_ARGUMENT for another name. */
 pupwave_status pupwave_coder_from_name(const char* name, pupwave_coder* coder);
 /* CODER's name, or NULL when CODER is not a pupwave_coder value. */

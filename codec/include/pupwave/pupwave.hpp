@@ -89,11 +89,10 @@ enum class ImageRate : std::uint8_t {
 //   pc     parent-context coder: the smallest lossy files; lossy only, holds the transformed image
 //   lc     lossless context coder: the smallest lossless files; lossless only
 //   ht     high-throughput block coder: no arithmetic coding, fastest, larger files
-//   zstd   quantized coefficients through zstd
-enum class Coder : std::uint8_t { automatic, ebcot, pc, lc, ht, zstd };
+enum class Coder : std::uint8_t { automatic, ebcot, pc, lc, ht };
 std::string_view coder_name(Coder coder);                     // "auto", "ebcot", ...
 std::optional<Coder> coder_from_name(std::string_view name);  // any case; nullopt when unknown
-std::string coder_names();                                    // "auto, ebcot, pc, lc, ht, zstd"
+std::string coder_names();                                    // "auto, ebcot, pc, lc, ht"
 
 struct ImageOptions {
   ImageRate rate = ImageRate::psnr;

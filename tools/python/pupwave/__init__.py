@@ -74,7 +74,7 @@ def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=No
     effort: 2 (with entropy="ebcot") makes bpp targets search three base steps per band (about
         1% smaller, up to 1.9x slower).
     entropy: auto (pc for rate targets on images up to 4 Mpixel, else ebcot; lc for lossless),
-        ebcot, pc, lc, ht or zstd (the CLI's --entropy names).
+        ebcot, pc, lc or ht (the CLI's --entropy names).
     threads: None or 0 all cores, 1 the calling thread, n at most n (the bytes do not depend on it).
     strict: raise PupwaveTargetError instead of warning when the bpp or psnr target is missed.
 
