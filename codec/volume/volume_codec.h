@@ -138,6 +138,28 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
                                              int level, const Executor& executor, const DecodeLimits& limits,
                                              const std::function<VolumeOutput(const VolumeGrid&)>& allocate);
 
+// A box of full-resolution voxels: [lo[a], hi[a]) along x, y and z (half-open).
+struct VoxelBox {
+  Extent lo{0, 0, 0};
+  Extent hi{0, 0, 0};
+};
+// "[x0,x1) x [y0,y1) x [z0,z1)", for messages.
+std::string to_string(const VoxelBox& box);
+
+// Decodes the voxels of `box` of one box grid (`name`; "": the only one) at 1/2^level
+// resolution, decoding only the bricks the box touches (one executor task per such brick; the
+// stream is still parsed and checked whole). The result holds the level-`level` voxels whose
+// full-resolution footprint [c 2^level, (c + 1) 2^level) meets the box: along each axis c runs
+// from floor(lo / 2^level) to floor((hi - 1) / 2^level), volume.dims counts them, and origin is
+// the grid's level-`level` origin plus the first. Its values, active mask and inactive values
+// equal that crop of decode_volumes at the level, bit for bit (a sparse grid's box is its dense
+// bounding box). The decode limit counts the box's voxels at full resolution, not the grid's.
+// Throws std::invalid_argument for a box that is empty, inverted or outside the grid (naming
+// the box and the grid's dims), no such grid, an empty name with several grids, a sparse-native
+// or opaque grid (no box to cut), a level past the stream's; DecodeError like decode_volumes.
+VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_view name, const VoxelBox& box,
+                             int level, const Executor& executor, const DecodeLimits& limits);
+
 // True when bytes start with the volume stream signature (cheap; validates nothing else).
 bool is_volume_stream(std::span<const std::uint8_t> bytes);
 

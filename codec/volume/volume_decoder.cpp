@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -486,6 +487,113 @@ class OutputSlabs {
   std::unique_ptr<std::atomic<std::size_t>[]> left_;  // per slab; null: nothing to report
 };
 
+// The level-`level` voxels [first, first + dims) whose full-resolution footprint meets a box.
+struct LevelBox {
+  Extent first{0, 0, 0};
+  Extent dims{0, 0, 0};
+};
+
+LevelBox level_box(const VoxelBox& box, int level) {
+  LevelBox out;
+  for (std::size_t a = 0; a < 3; ++a) {
+    out.first[a] = box.lo[a] >> level;
+    out.dims[a] = ((box.hi[a] - 1) >> level) + 1 - out.first[a];
+  }
+  return out;
+}
+
+// Throws std::invalid_argument unless `box` is non-empty and inside the grid.
+void check_box(const VoxelBox& box, const VolumeGrid& grid) {
+  const Extent& d = grid.volume.dims;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (box.lo[a] >= box.hi[a] || box.hi[a] > d[a])
+      throw std::invalid_argument("box " + to_string(box) + " is empty, inverted or outside grid '" +
+                                  grid.name + "' of dims " + std::to_string(d[0]) + "x" +
+                                  std::to_string(d[1]) + "x" + std::to_string(d[2]));
+}
+
+// The grid decode_volume_box decodes: the one named, or the only one.
+std::size_t box_grid(const VolumeStreamHeader& h, std::string_view name) {
+  if (name.empty()) {
+    if (h.grids.size() != 1)
+      throw std::invalid_argument("the stream holds " + std::to_string(h.grids.size()) +
+                                  " grids; name the one to decode a box of");
+    return 0;
+  }
+  for (std::size_t g = 0; g < h.grids.size(); ++g)
+    if (h.grids[g].name == name) return g;
+  throw std::invalid_argument("the stream has no grid named '" + std::string(name) + "'");
+}
+
+// Whether a brick decoded at a level (level offset `at`, extent `part`) meets `crop`.
+bool meets(const LevelBox& crop, const Extent& at, const Extent& part) {
+  for (std::size_t a = 0; a < 3; ++a)
+    if (at[a] >= crop.first[a] + crop.dims[a] || at[a] + part[a] <= crop.first[a]) return false;
+  return true;
+}
+
+// Writes the part inside `crop` of a brick decoded at a level (level offset `at`, extent `part`)
+// into `out`, whose voxel 0 is crop.first.
+void place_cropped(Volume& out, const LevelBox& crop, const Extent& at, const Extent& part,
+                   const std::vector<double>& values) {
+  Extent from, to;
+  for (std::size_t a = 0; a < 3; ++a) {
+    from[a] = std::max(at[a], crop.first[a]);
+    to[a] = std::min(at[a] + part[a], crop.first[a] + crop.dims[a]);
+  }
+  for (std::size_t z = from[2]; z < to[2]; ++z)
+    for (std::size_t y = from[1]; y < to[1]; ++y) {
+      const double* src = values.data() + (from[0] - at[0]) + part[0] * ((y - at[1]) + part[1] * (z - at[2]));
+      std::copy(src, src + (to[0] - from[0]),
+                out.samples.begin() +
+                    std::ptrdiff_t(out.index(from[0] - crop.first[0], y - crop.first[1], z - crop.first[2])));
+    }
+}
+
+// The sparse restore of decode_volumes (restore_mask at level 0, restore_coarse_box above) for
+// the voxels of `crop` only: the states are streamed up to the last row of its footprint, and
+// inactive_other values before it are skipped to find those inside. Sums run in voxel order
+// over the same children as the whole restore, so the means are the same bits.
+void restore_box_crop(Volume& out, const Extent& fine, const BoxMask& mask, int level, const LevelBox& crop) {
+  Extent lo, hi;  // full-resolution footprint of the crop
+  for (std::size_t a = 0; a < 3; ++a) {
+    lo[a] = crop.first[a] << level;
+    hi[a] = std::min((crop.first[a] + crop.dims[a]) << level, fine[a]);
+  }
+  out.active.assign(out.count(), 0);
+  std::vector<double> sum(level > 0 ? out.count() : 0, 0.0);
+  std::vector<std::uint32_t> n(sum.size(), 0);
+  const std::size_t end_row = (hi[1] - 1) + fine[1] * (hi[2] - 1) + 1;
+  std::size_t other = 0, first = 0;
+  const std::uint8_t* states = nullptr;
+  MaskRows rows(mask.frame, fine);
+  for (std::size_t count = 0; (count = rows.next(first, states)) > 0 && first < end_row;)
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::size_t y = (first + r) % fine[1], z = (first + r) / fine[1];
+      const std::uint8_t* row = states + r * fine[0];
+      const bool inside = y >= lo[1] && y < hi[1] && z >= lo[2] && z < hi[2];
+      for (std::size_t x = 0; x < fine[0]; ++x) {
+        if (!inside || x < lo[0] || x >= hi[0]) {
+          other += row[x] == std::uint8_t(VoxelState::inactive_other) ? 1 : 0;
+          continue;
+        }
+        const std::size_t c = out.index((x >> level) - crop.first[0], (y >> level) - crop.first[1],
+                                        (z >> level) - crop.first[2]);
+        const bool active = row[x] == std::uint8_t(VoxelState::active);
+        const double value = inactive_value(row[x], out.background, mask.other_values, other);
+        if (active) out.active[c] = 1;
+        if (level > 0) {
+          sum[c] += value;
+          ++n[c];
+        } else if (!active) {
+          out.samples[c] = value;
+        }
+      }
+    }
+  for (std::size_t c = 0; c < sum.size(); ++c)
+    if (!out.active[c]) out.samples[c] = sum[c] / double(n[c]);
+}
+
 }  // namespace
 
 bool is_volume_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kVolumeSignature); }
@@ -594,6 +702,61 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
                     values.data() + k, part[0]);
   });
   if (sparse) restore_output_states(out, grid.volume.background, grid.volume.type, s.masks[g]);
+  return grid;
+}
+
+std::string to_string(const VoxelBox& box) {
+  std::string out;
+  for (std::size_t a = 0; a < 3; ++a)
+    out += (a ? " x [" : "[") + std::to_string(box.lo[a]) + "," + std::to_string(box.hi[a]) + ")";
+  return out;
+}
+
+VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_view name, const VoxelBox& box,
+                             int level, const Executor& ex, const DecodeLimits& limits) {
+  // The limit is the box's (checked below); the whole stream is only bounded by the format's caps.
+  const ParsedVolumeStream s =
+      parse_volume_stream(bytes, DecodeLimits{std::numeric_limits<std::size_t>::max()});
+  const VolumeStreamHeader& h = s.header;
+  if (level < 0 || level > h.levels)
+    throw std::invalid_argument("level " + std::to_string(level) + " exceeds the stream's " +
+                                std::to_string(h.levels) + " levels");
+  const std::size_t g = box_grid(h, name);
+  if (h.blocked[g] != 0)
+    throw std::invalid_argument("grid '" + h.grids[g].name +
+                                "' is stored as sparse blocks or OpenVDB bytes, not a box: a box decode "
+                                "needs a box grid");
+  const Volume& whole = h.grids[g].volume;
+  check_box(box, h.grids[g]);
+  check_decode_limit((box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) * (box.hi[2] - box.lo[2]), limits,
+                     "volume box: voxels");
+  const auto t = stream_transform(h);
+  const BrickCoding coding{t.get(), h.levels,     std::size_t(1) << h.block_log2,
+                           h.delta, h.reversible, h.coder == 1};
+  const auto bricks = grid_bricks(s);
+  check_brick_set(s, bricks);
+  const LevelBox crop = level_box(box, level);
+  VolumeGrid grid = h.grids[g];
+  if (level > 0) scale_placement(grid, level);
+  for (std::size_t a = 0; a < 3; ++a) grid.origin[a] += std::int64_t(crop.first[a]);
+  grid.volume.dims = crop.dims;
+  grid.volume.active.clear();
+  grid.volume.samples.assign(grid.volume.count(), whole.background);
+  std::vector<std::size_t> touched;  // BRIK chunks of the grid's bricks that meet the box
+  for (std::size_t i = 0; i < s.bricks.size(); ++i) {
+    if (s.bricks[i].grid != g) continue;
+    const BrickBox b = bricks[g].at(s.bricks[i].brick);
+    const Extent at{b.offset[0] >> level, b.offset[1] >> level, b.offset[2] >> level};
+    if (meets(crop, at, level_extent(b.size, level))) touched.push_back(i);
+  }
+  ex.run(touched.size(), [&](std::size_t k) {
+    const BrickChunk& b = s.bricks[touched[k]];
+    const BrickBox brick = bricks[g].at(b.brick);
+    const Extent at{brick.offset[0] >> level, brick.offset[1] >> level, brick.offset[2] >> level};
+    place_cropped(grid.volume, crop, at, level_extent(brick.size, level),
+                  brick_values(s, coding, b, brick, level));
+  });
+  if (whole.is_sparse()) restore_box_crop(grid.volume, whole.dims, s.masks[g], level, crop);
   return grid;
 }
 
