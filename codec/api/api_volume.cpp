@@ -32,6 +32,26 @@ void store(const std::vector<double>& in, std::byte* out) {
   for (std::size_t i = 0; i < in.size(); ++i) dst[i] = T(in[i]);
 }
 
+// A decoded box grid as the API's Volume: samples stored as the grid's own type.
+Volume typed_volume(VolumeGrid&& g) {
+  Volume v;
+  v.name = g.name;
+  v.origin = g.origin;
+  v.dims = {g.volume.dims[0], g.volume.dims[1], g.volume.dims[2]};
+  v.type = VoxelType(g.volume.type);  // same numbering (volume.h)
+  v.background = g.volume.background;
+  v.attributes = detail::text_attributes(g.metadata);
+  v.active = std::move(g.volume.active);
+  v.data.resize(g.volume.count() * bytes_per_voxel(v.type));
+  switch (v.type) {
+    case VoxelType::u8: store<std::uint8_t>(g.volume.samples, v.data.data()); break;
+    case VoxelType::u16: store<std::uint16_t>(g.volume.samples, v.data.data()); break;
+    case VoxelType::f32: store<float>(g.volume.samples, v.data.data()); break;
+    case VoxelType::f64: store<double>(g.volume.samples, v.data.data()); break;
+  }
+  return v;
+}
+
 std::size_t checked_count(const std::array<std::size_t, 3>& dims) {
   std::size_t n = 1;
   for (std::size_t d : dims) {
@@ -257,24 +277,20 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
       } catch (const std::runtime_error& e) {  // a box over the decode limit
         throw Error(Status::unsupported, e.what());
       }
-      Volume v;
-      v.name = g.name;
-      v.origin = g.origin;
-      v.dims = {g.volume.dims[0], g.volume.dims[1], g.volume.dims[2]};
-      v.type = VoxelType(g.volume.type);  // same numbering (volume.h)
-      v.background = g.volume.background;
-      v.attributes = detail::text_attributes(g.metadata);
-      v.active = std::move(g.volume.active);
-      v.data.resize(g.volume.count() * bytes_per_voxel(v.type));
-      switch (v.type) {
-        case VoxelType::u8: store<std::uint8_t>(g.volume.samples, v.data.data()); break;
-        case VoxelType::u16: store<std::uint16_t>(g.volume.samples, v.data.data()); break;
-        case VoxelType::f32: store<float>(g.volume.samples, v.data.data()); break;
-        case VoxelType::f64: store<double>(g.volume.samples, v.data.data()); break;
-      }
-      out.push_back(std::move(v));
+      out.push_back(typed_volume(std::move(g)));
     }
     return out;
+  });
+}
+
+Volume decompress_volume_box(std::span<const std::uint8_t> stream, const VoxelBox& box, int level,
+                             unsigned threads, std::string_view grid) {
+  return detail::translate_errors([&] {
+    if (level < 0) detail::fail("level must be >= 0, got " + std::to_string(level));
+    if (!is_volume_stream(stream)) throw DecodeError("not a Pupwave volume stream (no PUPV signature)");
+    const std::unique_ptr<Executor> executor = make_pool_executor(threads);
+    const pupwave::VoxelBox voxels{{box.lo[0], box.lo[1], box.lo[2]}, {box.hi[0], box.hi[1], box.hi[2]}};
+    return typed_volume(decode_volume_box(stream, grid, voxels, level, *executor, DecodeLimits{}));
   });
 }
 

@@ -12,6 +12,8 @@
 
 #include "codec/error.h"
 #include "codec/volume/volume_codec.h"
+#include "pupwave/pupwave.h"
+#include "pupwave/pupwave.hpp"
 
 namespace pupwave {
 namespace {
@@ -196,6 +198,57 @@ TEST(VolumeBoxDecode, DecodeLimitCountsTheBoxNotTheVolume) {
       1000u);
   EXPECT_THROW(decode_volume_box(bytes, "", {{0, 0, 0}, {11, 10, 10}}, 0, default_executor(), limits),
                DecodeError);
+}
+
+// The bytes of the level-`level` voxels of a decoded grid whose footprint meets `box`.
+std::vector<std::byte> crop_bytes(const api::Volume& whole, const VoxelBox& box, int level) {
+  const std::size_t size = api::bytes_per_voxel(whole.type);
+  std::vector<std::byte> out;
+  for (std::size_t z = box.lo[2] >> level; z <= (box.hi[2] - 1) >> level; ++z)
+    for (std::size_t y = box.lo[1] >> level; y <= (box.hi[1] - 1) >> level; ++y) {
+      const auto row =
+          whole.data.begin() +
+          std::ptrdiff_t(size * ((box.lo[0] >> level) + whole.dims[0] * (y + whole.dims[1] * z)));
+      out.insert(out.end(), row,
+                 row + std::ptrdiff_t(size * (((box.hi[0] - 1) >> level) + 1 - (box.lo[0] >> level))));
+    }
+  return out;
+}
+
+// The C++ and C APIs give the crop of decompress_volume in the stored type, and refuse a bad box.
+TEST(VolumeBoxDecode, CppAndCApisGiveTheCropOfTheWholeDecode) {
+  const auto bytes = encode(wmag91_grid(VoxelType::f32), VolumeRateMode::max_error, 1e-3);
+  const VoxelBox box{{10, 20, 5}, {40, 30, 33}};
+  const api::VoxelBox api_box{{10, 20, 5}, {40, 30, 33}};
+  for (int level : {0, 1}) {
+    const api::Volume whole = api::decompress_volume(bytes, level)[0];
+    const api::Volume part = api::decompress_volume_box(bytes, api_box, level);
+    EXPECT_EQ(part.data, crop_bytes(whole, box, level)) << level;
+    EXPECT_EQ(part.origin[0], whole.origin[0] + std::int64_t(box.lo[0] >> level)) << level;
+    pupwave_decoded* d = nullptr;
+    ASSERT_EQ(
+        pupwave_decompress_volume_box(bytes.data(), bytes.size(), box.lo.data(), box.hi.data(), level, 1, &d),
+        PUPWAVE_OK)
+        << pupwave_last_error();
+    const auto* data = static_cast<const std::byte*>(pupwave_decoded_data(d));
+    EXPECT_EQ(std::vector<std::byte>(data, data + pupwave_decoded_size(d)), part.data) << level;
+    EXPECT_EQ(pupwave_decoded_dim(d, 2), part.dims[2]) << level;
+    pupwave_decoded_destroy(d);
+  }
+  try {
+    api::decompress_volume_box(bytes, {{0, 0, 0}, {62, 1, 1}});
+    ADD_FAILURE() << "a box past x = 61 was decoded";
+  } catch (const api::Error& e) {
+    EXPECT_EQ(e.status(), api::Status::invalid_argument);
+    EXPECT_NE(std::string(e.what()).find("61x45x37"), std::string::npos) << e.what();
+  }
+  const std::size_t lo[3] = {3, 3, 3}, hi[3] = {3, 9, 9};
+  pupwave_decoded* d = nullptr;
+  EXPECT_EQ(pupwave_decompress_volume_box(bytes.data(), bytes.size(), lo, hi, 0, 1, &d),
+            PUPWAVE_ERROR_ARGUMENT);
+  EXPECT_EQ(d, nullptr);
+  EXPECT_NE(std::string(pupwave_last_error()).find("[3,3) x [3,9) x [3,9)"), std::string::npos)
+      << pupwave_last_error();
 }
 
 }  // namespace
