@@ -32,24 +32,22 @@ void store(const std::vector<double>& in, std::byte* out) {
   for (std::size_t i = 0; i < in.size(); ++i) dst[i] = T(in[i]);
 }
 
-// A decoded box grid as the API's Volume: samples stored as the grid's own type.
-Volume typed_volume(VolumeGrid&& g) {
-  Volume v;
-  v.name = g.name;
-  v.origin = g.origin;
-  v.dims = {g.volume.dims[0], g.volume.dims[1], g.volume.dims[2]};
-  v.type = VoxelType(g.volume.type);  // same numbering (volume.h)
-  v.background = g.volume.background;
-  v.attributes = detail::text_attributes(g.metadata);
-  v.active = std::move(g.volume.active);
-  v.data.resize(g.volume.count() * bytes_per_voxel(v.type));
-  switch (v.type) {
-    case VoxelType::u8: store<std::uint8_t>(g.volume.samples, v.data.data()); break;
-    case VoxelType::u16: store<std::uint16_t>(g.volume.samples, v.data.data()); break;
-    case VoxelType::f32: store<float>(g.volume.samples, v.data.data()); break;
-    case VoxelType::f64: store<double>(g.volume.samples, v.data.data()); break;
-  }
-  return v;
+// The typed buffer (and mask) of `typed` for grid `g`, as the decoders' output.
+pupwave::VolumeOutput typed_output(Volume& typed, const VolumeGrid& g) {
+  typed.type = VoxelType(g.volume.type);  // same numbering (volume.h)
+  typed.data.resize(g.volume.count() * bytes_per_voxel(typed.type));
+  pupwave::VolumeOutput o = contiguous_output(typed.data.data(), g.volume.dims, g.volume.type);
+  if (g.volume.is_sparse()) typed.active.resize(g.volume.count()), o.active = typed.active.data();
+  return o;
+}
+
+// Name, placement, dims, background and attributes of a grid decoded by typed_output.
+void describe(Volume& typed, const VolumeGrid& grid) {
+  typed.name = grid.name;
+  typed.origin = grid.origin;
+  typed.dims = {grid.volume.dims[0], grid.volume.dims[1], grid.volume.dims[2]};
+  typed.background = grid.volume.background;
+  typed.attributes = detail::text_attributes(grid.metadata);
 }
 
 std::size_t checked_count(const std::array<std::size_t, 3>& dims) {
@@ -249,20 +247,10 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
     if (!is_volume_stream(stream)) throw DecodeError("not a Pupwave volume stream (no PUPV signature)");
     const std::unique_ptr<Executor> executor = make_pool_executor(threads);
     Volume typed;  // a single box grid, decoded straight into its own type
-    const auto grid =
-        decode_volume_into(stream, "", level, *executor, DecodeLimits{}, [&](const VolumeGrid& g) {
-          typed.type = VoxelType(g.volume.type);  // same numbering (volume.h)
-          typed.data.resize(g.volume.count() * bytes_per_voxel(typed.type));
-          pupwave::VolumeOutput o = contiguous_output(typed.data.data(), g.volume.dims, g.volume.type);
-          if (g.volume.is_sparse()) typed.active.resize(g.volume.count()), o.active = typed.active.data();
-          return o;
-        });
+    const auto grid = decode_volume_into(stream, "", level, *executor, DecodeLimits{},
+                                         [&](const VolumeGrid& g) { return typed_output(typed, g); });
     if (grid) {
-      typed.name = grid->name;
-      typed.origin = grid->origin;
-      typed.dims = {grid->volume.dims[0], grid->volume.dims[1], grid->volume.dims[2]};
-      typed.background = grid->volume.background;
-      typed.attributes = detail::text_attributes(grid->metadata);
+      describe(typed, *grid);
       return std::vector<Volume>{std::move(typed)};
     }
     std::vector<VolumeGrid> grids = decode_volumes(stream, level, *executor);
@@ -277,7 +265,22 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
       } catch (const std::runtime_error& e) {  // a box over the decode limit
         throw Error(Status::unsupported, e.what());
       }
-      out.push_back(typed_volume(std::move(g)));
+      Volume v;
+      v.name = g.name;
+      v.origin = g.origin;
+      v.dims = {g.volume.dims[0], g.volume.dims[1], g.volume.dims[2]};
+      v.type = VoxelType(g.volume.type);  // same numbering (volume.h)
+      v.background = g.volume.background;
+      v.attributes = detail::text_attributes(g.metadata);
+      v.active = std::move(g.volume.active);
+      v.data.resize(g.volume.count() * bytes_per_voxel(v.type));
+      switch (v.type) {
+        case VoxelType::u8: store<std::uint8_t>(g.volume.samples, v.data.data()); break;
+        case VoxelType::u16: store<std::uint16_t>(g.volume.samples, v.data.data()); break;
+        case VoxelType::f32: store<float>(g.volume.samples, v.data.data()); break;
+        case VoxelType::f64: store<double>(g.volume.samples, v.data.data()); break;
+      }
+      out.push_back(std::move(v));
     }
     return out;
   });
@@ -290,7 +293,12 @@ Volume decompress_volume_box(std::span<const std::uint8_t> stream, const VoxelBo
     if (!is_volume_stream(stream)) throw DecodeError("not a Pupwave volume stream (no PUPV signature)");
     const std::unique_ptr<Executor> executor = make_pool_executor(threads);
     const pupwave::VoxelBox voxels{{box.lo[0], box.lo[1], box.lo[2]}, {box.hi[0], box.hi[1], box.hi[2]}};
-    return typed_volume(decode_volume_box(stream, grid, voxels, level, *executor, DecodeLimits{}));
+    Volume typed;  // decoded straight into its own type
+    const VolumeGrid described =
+        decode_volume_box_into(stream, grid, voxels, level, *executor, DecodeLimits{},
+                               [&](const VolumeGrid& g) { return typed_output(typed, g); });
+    describe(typed, described);
+    return typed;
   });
 }
 

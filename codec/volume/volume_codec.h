@@ -159,6 +159,15 @@ std::string to_string(const VoxelBox& box);
 // or opaque grid (no box to cut), a level past the stream's; DecodeError like decode_volumes.
 VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_view name, const VoxelBox& box,
                              int level, const Executor& executor, const DecodeLimits& limits);
+// The same straight into the caller's typed buffer (as decode_volume_into): `allocate` is called
+// once with the box grid's description (name, placement, volume.dims of the box at `level`,
+// type, background; no samples; volume.is_sparse() tells a sparse grid) and returns where to
+// write (dims equal to the described ones; `active`, if set, receives a sparse grid's mask).
+// Values are stored as VolumeOutput::set stores them. Returns the description.
+VolumeGrid decode_volume_box_into(std::span<const std::uint8_t> bytes, std::string_view name,
+                                  const VoxelBox& box, int level, const Executor& executor,
+                                  const DecodeLimits& limits,
+                                  const std::function<VolumeOutput(const VolumeGrid&)>& allocate);
 
 // True when bytes start with the volume stream signature (cheap; validates nothing else).
 bool is_volume_stream(std::span<const std::uint8_t> bytes);

@@ -424,13 +424,45 @@ struct IntoScratch {
   }
 };
 
+// Level voxels [first, first + dims) of a grid: what a VolumeOutput holds (its voxel 0 is first).
+struct LevelBox {
+  Extent first{0, 0, 0};
+  Extent dims{0, 0, 0};
+};
+
+// The level-`level` voxels whose full-resolution footprint meets `box`.
+LevelBox level_box(const VoxelBox& box, int level) {
+  LevelBox out;
+  for (std::size_t a = 0; a < 3; ++a) {
+    out.first[a] = box.lo[a] >> level;
+    out.dims[a] = ((box.hi[a] - 1) >> level) + 1 - out.first[a];
+  }
+  return out;
+}
+
+// Stores row (y, z) of a brick (level offset `at`; n values from x = at[0]) into `out`, which
+// holds the voxels of `window`; the part outside the window is dropped.
+void set_window_row(const VolumeOutput& out, const LevelBox& window, const Extent& at, std::size_t y,
+                    std::size_t z, const double* row, std::size_t n) {
+  const std::size_t gy = at[1] + y, gz = at[2] + z;
+  if (gy < window.first[1] || gy >= window.first[1] + window.dims[1] || gz < window.first[2] ||
+      gz >= window.first[2] + window.dims[2])
+    return;
+  const std::size_t x0 = std::max(at[0], window.first[0]);
+  const std::size_t x1 = std::min(at[0] + n, window.first[0] + window.dims[0]);
+  if (x0 < x1)
+    out.set_row(x0 - window.first[0], gy - window.first[1], gz - window.first[2], row + (x0 - at[0]),
+                x1 - x0);
+}
+
 // Writes a brick decoded at full resolution (`values`, the decoder's own element type, x fastest)
-// into `out` row by row: each value widened, its outlier correction applied (`outliers` in index
-// order), rounded to the stored type; as brick_values computes it, without a double brick.
+// into `out` (holding `window`) row by row: each value widened, its outlier correction applied
+// (`outliers` in index order), rounded to the stored type; as brick_values computes it, without a
+// double brick.
 template <class T>
-void write_full_brick(const VolumeOutput& out, const BrickBox& box, const std::vector<T>& values,
-                      std::span<const Outlier> outliers, double bound, VoxelType type,
-                      std::vector<double>& row) {
+void write_full_brick(const VolumeOutput& out, const LevelBox& window, const BrickBox& box,
+                      const std::vector<T>& values, std::span<const Outlier> outliers, double bound,
+                      VoxelType type, std::vector<double>& row) {
   row.resize(box.size[0]);
   std::size_t k = 0, next = 0;
   for (std::size_t z = 0; z < box.size[2]; ++z)
@@ -441,13 +473,13 @@ void write_full_brick(const VolumeOutput& out, const BrickBox& box, const std::v
           v = to_stored(v + double(outliers[next++].k) * bound, type);
         row[x] = to_stored(v, type);
       }
-      out.set_row(box.offset[0], box.offset[1] + y, box.offset[2] + z, row.data(), box.size[0]);
+      set_window_row(out, window, box.offset, y, z, row.data(), box.size[0]);
     }
 }
 
-// One brick of decode_volume_into at full resolution, through per-thread buffers.
+// One brick at full resolution into `out` (holding `window`), through per-thread buffers.
 void decode_full_brick(const ParsedVolumeStream& s, const BrickCoding& coding, const BrickChunk& b,
-                       const BrickBox& box, const VolumeOutput& out) {
+                       const BrickBox& box, const VolumeOutput& out, const LevelBox& window) {
   thread_local IntoScratch scratch;
   const VoxelType type = s.header.grids[b.grid].volume.type;
   const double bound = s.header.max_error;
@@ -455,12 +487,24 @@ void decode_full_brick(const ParsedVolumeStream& s, const BrickCoding& coding, c
       bound > 0.0 ? decode_outliers(b.outliers, box.count()) : std::vector<Outlier>{};
   if (coding.reversible) {
     decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.exact);
-    write_full_brick(out, box, scratch.exact, outliers, bound, type, scratch.row);
+    write_full_brick(out, window, box, scratch.exact, outliers, bound, type, scratch.row);
   } else {
     decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.approximate);
-    write_full_brick(out, box, scratch.approximate, outliers, bound, type, scratch.row);
+    write_full_brick(out, window, box, scratch.approximate, outliers, bound, type, scratch.row);
   }
   scratch.trim();
+}
+
+// One brick at `level` into `out` (holding `window`): at full resolution without a double brick.
+void decode_brick_window(const ParsedVolumeStream& s, const BrickCoding& coding, const BrickChunk& b,
+                         const BrickBox& box, int level, const VolumeOutput& out, const LevelBox& window) {
+  if (level == 0) return decode_full_brick(s, coding, b, box, out, window);
+  const auto values = brick_values(s, coding, b, box, level);
+  const Extent at{box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level};
+  const Extent part = level_extent(box.size, level);
+  for (std::size_t z = 0, k = 0; z < part[2]; ++z)
+    for (std::size_t y = 0; y < part[1]; ++y, k += part[0])
+      set_window_row(out, window, at, y, z, values.data() + k, part[0]);
 }
 
 // Counts the bricks of each z-slab of a dense output still to write, and reports a slab to
@@ -486,21 +530,6 @@ class OutputSlabs {
   int log2_;
   std::unique_ptr<std::atomic<std::size_t>[]> left_;  // per slab; null: nothing to report
 };
-
-// The level-`level` voxels [first, first + dims) whose full-resolution footprint meets a box.
-struct LevelBox {
-  Extent first{0, 0, 0};
-  Extent dims{0, 0, 0};
-};
-
-LevelBox level_box(const VoxelBox& box, int level) {
-  LevelBox out;
-  for (std::size_t a = 0; a < 3; ++a) {
-    out.first[a] = box.lo[a] >> level;
-    out.dims[a] = ((box.hi[a] - 1) >> level) + 1 - out.first[a];
-  }
-  return out;
-}
 
 // Throws std::invalid_argument unless `box` is non-empty and inside the grid.
 void check_box(const VoxelBox& box, const VolumeGrid& grid) {
@@ -532,36 +561,21 @@ bool meets(const LevelBox& crop, const Extent& at, const Extent& part) {
   return true;
 }
 
-// Writes the part inside `crop` of a brick decoded at a level (level offset `at`, extent `part`)
-// into `out`, whose voxel 0 is crop.first.
-void place_cropped(Volume& out, const LevelBox& crop, const Extent& at, const Extent& part,
-                   const std::vector<double>& values) {
-  Extent from, to;
-  for (std::size_t a = 0; a < 3; ++a) {
-    from[a] = std::max(at[a], crop.first[a]);
-    to[a] = std::min(at[a] + part[a], crop.first[a] + crop.dims[a]);
-  }
-  for (std::size_t z = from[2]; z < to[2]; ++z)
-    for (std::size_t y = from[1]; y < to[1]; ++y) {
-      const double* src = values.data() + (from[0] - at[0]) + part[0] * ((y - at[1]) + part[1] * (z - at[2]));
-      std::copy(src, src + (to[0] - from[0]),
-                out.samples.begin() +
-                    std::ptrdiff_t(out.index(from[0] - crop.first[0], y - crop.first[1], z - crop.first[2])));
-    }
-}
-
 // The sparse restore of decode_volumes (restore_mask at level 0, restore_coarse_box above) for
-// the voxels of `crop` only: the states are streamed up to the last row of its footprint, and
-// inactive_other values before it are skipped to find those inside. Sums run in voxel order
-// over the same children as the whole restore, so the means are the same bits.
-void restore_box_crop(Volume& out, const Extent& fine, const BoxMask& mask, int level, const LevelBox& crop) {
+// the voxels of `crop` only, into `out` (holding `crop`; its `active`, if set, gets the mask):
+// the states are streamed up to the last row of the crop's footprint, and inactive_other values
+// before it are skipped to find those inside. Sums run in voxel order over the same children as
+// the whole restore, so the means are the same bits.
+void restore_box_crop(const VolumeOutput& out, double background, const Extent& fine, const BoxMask& mask,
+                      int level, const LevelBox& crop) {
   Extent lo, hi;  // full-resolution footprint of the crop
   for (std::size_t a = 0; a < 3; ++a) {
     lo[a] = crop.first[a] << level;
     hi[a] = std::min((crop.first[a] + crop.dims[a]) << level, fine[a]);
   }
-  out.active.assign(out.count(), 0);
-  std::vector<double> sum(level > 0 ? out.count() : 0, 0.0);
+  const Extent& d = crop.dims;
+  std::vector<std::uint8_t> active(d[0] * d[1] * d[2], 0);
+  std::vector<double> sum(level > 0 ? active.size() : 0, 0.0);
   std::vector<std::uint32_t> n(sum.size(), 0);
   const std::size_t end_row = (hi[1] - 1) + fine[1] * (hi[2] - 1) + 1;
   std::size_t other = 0, first = 0;
@@ -577,21 +591,23 @@ void restore_box_crop(Volume& out, const Extent& fine, const BoxMask& mask, int 
           other += row[x] == std::uint8_t(VoxelState::inactive_other) ? 1 : 0;
           continue;
         }
-        const std::size_t c = out.index((x >> level) - crop.first[0], (y >> level) - crop.first[1],
-                                        (z >> level) - crop.first[2]);
-        const bool active = row[x] == std::uint8_t(VoxelState::active);
-        const double value = inactive_value(row[x], out.background, mask.other_values, other);
-        if (active) out.active[c] = 1;
+        const Extent c{(x >> level) - crop.first[0], (y >> level) - crop.first[1],
+                       (z >> level) - crop.first[2]};
+        const std::size_t i = c[0] + d[0] * (c[1] + d[1] * c[2]);
+        const bool is_active = row[x] == std::uint8_t(VoxelState::active);
+        const double value = inactive_value(row[x], background, mask.other_values, other);
+        if (is_active) active[i] = 1;
         if (level > 0) {
-          sum[c] += value;
-          ++n[c];
-        } else if (!active) {
-          out.samples[c] = value;
+          sum[i] += value;
+          ++n[i];
+        } else if (!is_active) {
+          out.set(c[0], c[1], c[2], value);
         }
       }
     }
-  for (std::size_t c = 0; c < sum.size(); ++c)
-    if (!out.active[c]) out.samples[c] = sum[c] / double(n[c]);
+  for (std::size_t i = 0; i < sum.size(); ++i)
+    if (!active[i]) out.set(i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]), sum[i] / double(n[i]));
+  if (out.active != nullptr) std::copy(active.begin(), active.end(), out.active);
 }
 
 }  // namespace
@@ -685,21 +701,13 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
   // Slabs are reported only for a dense grid at full resolution, every brick of which is coded.
   const bool report = !sparse && level == 0;
   OutputSlabs slabs(report ? out : VolumeOutput{}, bricks[g].box);
+  const LevelBox whole{{0, 0, 0}, grid.volume.dims};
   run_in_index_order(ex, s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
     if (b.grid != g) return;
     const BrickBox box = bricks[g].at(b.brick);
-    if (level == 0) {
-      decode_full_brick(s, coding, b, box, out);
-      slabs.done(box);
-      return;
-    }
-    const auto values = brick_values(s, coding, b, box, level);
-    const Extent part = level_extent(box.size, level);
-    for (std::size_t z = 0, k = 0; z < part[2]; ++z)
-      for (std::size_t y = 0; y < part[1]; ++y, k += part[0])
-        out.set_row(box.offset[0] >> level, (box.offset[1] >> level) + y, (box.offset[2] >> level) + z,
-                    values.data() + k, part[0]);
+    decode_brick_window(s, coding, b, box, level, out, whole);
+    if (level == 0) slabs.done(box);
   });
   if (sparse) restore_output_states(out, grid.volume.background, grid.volume.type, s.masks[g]);
   return grid;
@@ -712,8 +720,10 @@ std::string to_string(const VoxelBox& box) {
   return out;
 }
 
-VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_view name, const VoxelBox& box,
-                             int level, const Executor& ex, const DecodeLimits& limits) {
+VolumeGrid decode_volume_box_into(std::span<const std::uint8_t> bytes, std::string_view name,
+                                  const VoxelBox& box, int level, const Executor& ex,
+                                  const DecodeLimits& limits,
+                                  const std::function<VolumeOutput(const VolumeGrid&)>& allocate) {
   // The limit is the box's (checked below); the whole stream is only bounded by the format's caps.
   const ParsedVolumeStream s =
       parse_volume_stream(bytes, DecodeLimits{std::numeric_limits<std::size_t>::max()});
@@ -739,9 +749,10 @@ VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_vi
   VolumeGrid grid = h.grids[g];
   if (level > 0) scale_placement(grid, level);
   for (std::size_t a = 0; a < 3; ++a) grid.origin[a] += std::int64_t(crop.first[a]);
-  grid.volume.dims = crop.dims;
-  grid.volume.active.clear();
-  grid.volume.samples.assign(grid.volume.count(), whole.background);
+  grid.volume.dims = crop.dims;  // volume.active: the header's sparse marker
+  const VolumeOutput out = allocate(grid);
+  if (out.data == nullptr || out.dims != grid.volume.dims)
+    throw std::invalid_argument("decode_volume_box_into: the output does not match the box's dims");
   std::vector<std::size_t> touched;  // BRIK chunks of the grid's bricks that meet the box
   for (std::size_t i = 0; i < s.bricks.size(); ++i) {
     if (s.bricks[i].grid != g) continue;
@@ -751,12 +762,26 @@ VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_vi
   }
   ex.run(touched.size(), [&](std::size_t k) {
     const BrickChunk& b = s.bricks[touched[k]];
-    const BrickBox brick = bricks[g].at(b.brick);
-    const Extent at{brick.offset[0] >> level, brick.offset[1] >> level, brick.offset[2] >> level};
-    place_cropped(grid.volume, crop, at, level_extent(brick.size, level),
-                  brick_values(s, coding, b, brick, level));
+    decode_brick_window(s, coding, b, bricks[g].at(b.brick), level, out, crop);
   });
-  if (whole.is_sparse()) restore_box_crop(grid.volume, whole.dims, s.masks[g], level, crop);
+  if (whole.is_sparse()) restore_box_crop(out, whole.background, whole.dims, s.masks[g], level, crop);
+  return grid;
+}
+
+VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_view name, const VoxelBox& box,
+                             int level, const Executor& ex, const DecodeLimits& limits) {
+  Volume volume;
+  VolumeGrid grid = decode_volume_box_into(bytes, name, box, level, ex, limits, [&](const VolumeGrid& g) {
+    volume = Volume(g.volume.dims, g.volume.type);
+    volume.background = g.volume.background;
+    VolumeOutput out = contiguous_output(volume.samples.data(), volume.dims, VoxelType::f64);
+    if (g.volume.is_sparse()) {
+      volume.active.assign(volume.count(), 0);
+      out.active = volume.active.data();
+    }
+    return out;
+  });
+  grid.volume = std::move(volume);
   return grid;
 }
 

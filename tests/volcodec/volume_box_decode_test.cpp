@@ -235,6 +235,20 @@ TEST(VolumeBoxDecode, CppAndCApisGiveTheCropOfTheWholeDecode) {
     EXPECT_EQ(pupwave_decoded_dim(d, 2), part.dims[2]) << level;
     pupwave_decoded_destroy(d);
   }
+  // A sparse grid: values and mask, at full and half resolution.
+  const auto sparse = encode(sparse_wmag91(), VolumeRateMode::max_error, 1e-3);
+  for (int level : {0, 1}) {
+    const api::Volume whole = api::decompress_volume(sparse, level)[0];
+    const api::Volume part = api::decompress_volume_box(sparse, api_box, level);
+    EXPECT_EQ(part.data, crop_bytes(whole, box, level)) << level;
+    api::Volume mask = whole;  // the mask as one byte per voxel, cropped alike
+    mask.type = api::VoxelType::u8;
+    mask.data.assign(reinterpret_cast<const std::byte*>(whole.active.data()),
+                     reinterpret_cast<const std::byte*>(whole.active.data() + whole.active.size()));
+    const auto expected_mask = crop_bytes(mask, box, level);
+    ASSERT_EQ(part.active.size(), expected_mask.size()) << level;
+    EXPECT_EQ(std::memcmp(part.active.data(), expected_mask.data(), expected_mask.size()), 0) << level;
+  }
   try {
     api::decompress_volume_box(bytes, {{0, 0, 0}, {62, 1, 1}});
     ADD_FAILURE() << "a box past x = 61 was decoded";
