@@ -137,24 +137,31 @@ bool decompress_raw_in_place(const std::vector<std::uint8_t>& bytes, const Decom
   return true;
 }
 
-// --box: only the box of one grid (--grid, or the only one): raw output decoded straight into its
-// stored type (never held as double), .vdb through a VolumeGrid.
+// --box: only the box of one grid (--grid, or the only one): raw output decoded straight into the
+// output file mapped under its temporary name (write_output), in its stored type; .vdb through a
+// VolumeGrid.
 void decompress_volume_box(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
   const VoxelBox box = parse_box(opt.box);
   const auto start = std::chrono::steady_clock::now();
   std::vector<VolumeGrid> grids(1);
-  std::vector<std::uint8_t> raw;  // raw output: the box's voxels in the stored type
+  const auto ex = make_pool_executor(opt.threads);
+  const auto decode_raw = [&](const std::filesystem::path& tmp) {
+    std::unique_ptr<MappedOutput> file;
+    grids[0] =
+        decode_volume_box_into(bytes, opt.grid, box, opt.level, *ex, opt.limits, [&](const VolumeGrid& g) {
+          file = std::make_unique<MappedOutput>(tmp, g.volume.count() * bytes_per_voxel(g.volume.type),
+                                                opt.output);
+          return contiguous_output(file->bytes().data(), g.volume.dims, g.volume.type);
+        });
+    swap_to_little_endian(file->bytes(), grids[0].volume.type);
+    file->finish();
+  };
   try {
     ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
-    const auto ex = make_pool_executor(opt.threads);
     if (wants_vdb(opt))
       grids[0] = decode_volume_box(bytes, opt.grid, box, opt.level, *ex, opt.limits);
     else
-      grids[0] =
-          decode_volume_box_into(bytes, opt.grid, box, opt.level, *ex, opt.limits, [&](const VolumeGrid& g) {
-            raw.resize(g.volume.count() * bytes_per_voxel(g.volume.type));
-            return contiguous_output(raw.data(), g.volume.dims, g.volume.type);
-          });
+      write_output(opt.output, decode_raw);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(opt.input + ": " + e.what());
   }
@@ -164,10 +171,7 @@ void decompress_volume_box(const std::vector<std::uint8_t>& bytes, const Decompr
                            std::to_string(opt.level) + ", " + std::to_string(g.volume.dims[0]) + "x" +
                            std::to_string(g.volume.dims[1]) + "x" + std::to_string(g.volume.dims[2]) + ", " +
                            to_string(g.volume.type);
-  if (wants_vdb(opt))
-    write_volume_output(std::move(grids), opt);
-  else
-    write_raw_bytes(std::move(raw), g.volume.type, opt.output);
+  if (wants_vdb(opt)) write_volume_output(std::move(grids), opt);
   if (std::FILE* status = opt.verbosity.stream())
     std::fprintf(status, "%s: %s, decoded in %.3f s\n", opt.output.c_str(), line.c_str(), seconds);
 }
