@@ -250,43 +250,61 @@ std::int64_t coarse(std::int64_t o, int level) {
 
 // Blocks (at 1/2^level resolution, filled with background) and tiles of a sparse-native grid.
 // Blocks start on OpenVDB leaves (multiples of 8), so levels above 3 would misplace them.
-void allocate_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
+// Origin of block `b` of grid `g` at 1/2^level resolution.
+std::array<std::int64_t, 3> level_origin(const VolumeGrid& g, const VolumeBlock& b, int level) {
   const std::int64_t f = std::int64_t(1) << level;
-  for (const VolumeBlock& b : layout.blocks) {
-    VolumeBlock out;
-    for (std::size_t a = 0; a < 3; ++a) {
-      if (b.origin[a] % f != 0)
-        throw std::invalid_argument("level " + std::to_string(level) + " of grid '" + g.name +
-                                    "': a block does not start on a multiple of 2^level (sparse grids decode "
-                                    "at levels up to 3)");
-      out.origin[a] = b.origin[a] / f;
-    }
-    out.volume = Volume(level_extent(b.volume.dims, level), g.volume.type);
-    out.volume.background = g.volume.background;
-    std::fill(out.volume.samples.begin(), out.volume.samples.end(), g.volume.background);
-    g.blocks.push_back(std::move(out));
+  std::array<std::int64_t, 3> origin{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (b.origin[a] % f != 0)
+      throw std::invalid_argument("level " + std::to_string(level) + " of grid '" + g.name +
+                                  "': a block does not start on a multiple of 2^level (sparse grids decode "
+                                  "at levels up to 3)");
+    origin[a] = b.origin[a] / f;
   }
-  for (VolumeTile t : layout.tiles) {
-    for (std::int64_t& o : t.origin) o = coarse(o, level);
-    t.edge = std::uint32_t((std::int64_t(t.edge) + f - 1) / f);
-    g.tiles.push_back(t);
-  }
+  return origin;
+}
+
+// Block `b` of grid `g` at 1/2^level resolution, filled with background.
+VolumeBlock level_block(const VolumeGrid& g, const VolumeBlock& b, int level) {
+  VolumeBlock out;
+  out.origin = level_origin(g, b, level);
+  out.volume = Volume(level_extent(b.volume.dims, level), g.volume.type);
+  out.volume.background = g.volume.background;
+  std::fill(out.volume.samples.begin(), out.volume.samples.end(), g.volume.background);
+  return out;
+}
+
+// Tile `t` at 1/2^level resolution (origin floor-divided, edge rounded up).
+VolumeTile level_tile(VolumeTile t, int level) {
+  const std::int64_t f = std::int64_t(1) << level;
+  for (std::int64_t& o : t.origin) o = coarse(o, level);
+  t.edge = std::uint32_t((std::int64_t(t.edge) + f - 1) / f);
+  return t;
+}
+
+void allocate_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
+  for (const VolumeBlock& b : layout.blocks) g.blocks.push_back(level_block(g, b, level));
+  for (const VolumeTile& t : layout.tiles) g.tiles.push_back(level_tile(t, level));
 }
 
 // Active masks and exact inactive values of each block (coarsened at level > 0).
+// Active mask and exact inactive values of one block (`out`, at `level`) from its full-resolution
+// states (`fine_dims` voxels; `other` indexes the layout's inactive_other values).
+void restore_block(Volume& out, const Extent& fine_dims, const std::uint8_t* states, const MaskChunk& mask,
+                   int level, std::size_t& other) {
+  if (level == 0) return restore_states(out, states, mask, other);
+  Volume fine(fine_dims, out.type);
+  fine.background = out.background;
+  restore_states(fine, states, mask, other);
+  restore_coarse_mask(out, fine, level);
+}
+
 void restore_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
   std::size_t at = 0, other = 0;
   for (std::size_t k = 0; k < layout.blocks.size(); ++k) {
-    const std::uint8_t* states = layout.mask.states.data() + at;
+    restore_block(g.blocks[k].volume, layout.blocks[k].volume.dims, layout.mask.states.data() + at,
+                  layout.mask, level, other);
     at += layout.blocks[k].volume.count();
-    if (level == 0) {
-      restore_states(g.blocks[k].volume, states, layout.mask, other);
-      continue;
-    }
-    Volume fine(layout.blocks[k].volume.dims, g.volume.type);
-    fine.background = g.volume.background;
-    restore_states(fine, states, layout.mask, other);
-    restore_coarse_mask(g.blocks[k].volume, fine, level);
   }
   require_stream(other == layout.mask.other_values.size(), "volume stream: extra inactive values");
 }
@@ -610,6 +628,91 @@ void restore_box_crop(const VolumeOutput& out, double background, const Extent& 
   if (out.active != nullptr) std::copy(active.begin(), active.end(), out.active);
 }
 
+// The level index-space box [lo, hi) of a grid described for decode_volume_box_into.
+struct IndexBox {
+  std::array<std::int64_t, 3> lo{}, hi{};
+  bool meets(const std::array<std::int64_t, 3>& at, const Extent& size) const {
+    for (std::size_t a = 0; a < 3; ++a)
+      if (at[a] >= hi[a] || at[a] + std::int64_t(size[a]) <= lo[a]) return false;
+    return true;
+  }
+};
+
+// A sparse-native grid's part of decode_volume_box: `grid` arrives described (placement at the
+// level, the crop's dims) and leaves as the crop of its dense bounding box, what decode_volumes
+// and make_dense_box give, from the blocks meeting the crop and only their bricks meeting it
+// (the inactive_other values of the blocks before each are skipped to find its own).
+void decode_blocked_box(VolumeGrid& grid, const ParsedVolumeStream& s, std::size_t g,
+                        const BrickCoding& coding, const GridBricks& bricks, int level, const Executor& ex) {
+  const BlocksChunk& layout = s.layouts[g];
+  IndexBox region;
+  for (std::size_t a = 0; a < 3; ++a) {
+    region.lo[a] = grid.origin[a];
+    region.hi[a] = grid.origin[a] + std::int64_t(grid.volume.dims[a]);
+  }
+  std::vector<std::ptrdiff_t> slot(layout.blocks.size(), -1);  // block k's place in grid.blocks
+  for (std::size_t k = 0; k < layout.blocks.size(); ++k)
+    if (region.meets(level_origin(grid, layout.blocks[k], level),
+                     level_extent(layout.blocks[k].volume.dims, level))) {
+      slot[k] = std::ptrdiff_t(grid.blocks.size());
+      grid.blocks.push_back(level_block(grid, layout.blocks[k], level));
+    }
+  for (const VolumeTile& t : layout.tiles) grid.tiles.push_back(level_tile(t, level));
+  const auto block_of = [&](const BrickChunk& b) -> VolumeBlock* {
+    const std::ptrdiff_t k = slot[bricks.block[b.brick]];
+    return k < 0 ? nullptr : &grid.blocks[std::size_t(k)];
+  };
+  std::vector<std::size_t> touched;  // BRIK chunks of those blocks' bricks that meet the crop
+  for (std::size_t i = 0; i < s.bricks.size(); ++i) {
+    const VolumeBlock* block = s.bricks[i].grid == g ? block_of(s.bricks[i]) : nullptr;
+    if (block == nullptr) continue;
+    const BrickBox box = bricks.at(s.bricks[i].brick);
+    std::array<std::int64_t, 3> at{};
+    for (std::size_t a = 0; a < 3; ++a) at[a] = block->origin[a] + std::int64_t(box.offset[a] >> level);
+    if (region.meets(at, level_extent(box.size, level))) touched.push_back(i);
+  }
+  ex.run(touched.size(), [&](std::size_t k) {
+    const BrickChunk& b = s.bricks[touched[k]];
+    const BrickBox box = bricks.at(b.brick);
+    place(block_of(b)->volume, {box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level},
+          level_extent(box.size, level), brick_values(s, coding, b, box, level));
+  });
+  std::size_t at = 0, other = 0;
+  for (std::size_t k = 0; k < layout.blocks.size(); ++k) {
+    const std::uint8_t* states = layout.mask.states.data() + at;
+    const std::size_t n = layout.blocks[k].volume.count();
+    if (slot[k] >= 0)
+      restore_block(grid.blocks[std::size_t(slot[k])].volume, layout.blocks[k].volume.dims, states,
+                    layout.mask, level, other);
+    else
+      other += std::size_t(std::count(states, states + n, std::uint8_t(VoxelState::inactive_other)));
+    at += n;
+  }
+  if (grid.is_blocked()) return make_dense_box(grid, std::numeric_limits<std::size_t>::max());
+  grid.volume = Volume(grid.volume.dims, grid.volume.type);  // nothing but background in the crop
+  grid.volume.background = s.header.grids[g].volume.background;
+  std::fill(grid.volume.samples.begin(), grid.volume.samples.end(), grid.volume.background);
+  grid.volume.active.assign(grid.volume.count(), 0);
+}
+
+// decode_blocked_box into the caller's output: `grid` (described) is returned as a sparse box.
+VolumeGrid blocked_box_into(VolumeGrid grid, const ParsedVolumeStream& s, std::size_t g,
+                            const BrickCoding& coding, const GridBricks& bricks, int level,
+                            const Executor& ex,
+                            const std::function<VolumeOutput(const VolumeGrid&)>& allocate) {
+  VolumeGrid dense = grid;
+  decode_blocked_box(dense, s, g, coding, bricks, level, ex);
+  grid.volume.active.assign(1, 1);  // the marker of a sparse box
+  const VolumeOutput out = allocate(grid);
+  if (out.data == nullptr || out.dims != grid.volume.dims)
+    throw std::invalid_argument("decode_volume_box_into: the output does not match the box's dims");
+  const Volume& v = dense.volume;
+  for (std::size_t z = 0; z < v.dims[2]; ++z)
+    for (std::size_t y = 0; y < v.dims[1]; ++y) out.set_row(0, y, z, &v.samples[v.index(0, y, z)], v.dims[0]);
+  if (out.active != nullptr) std::copy(v.active.begin(), v.active.end(), out.active);
+  return grid;
+}
+
 }  // namespace
 
 bool is_volume_stream(std::span<const std::uint8_t> bytes) { return has_signature(bytes, kVolumeSignature); }
@@ -732,10 +835,9 @@ VolumeGrid decode_volume_box_into(std::span<const std::uint8_t> bytes, std::stri
     throw std::invalid_argument("level " + std::to_string(level) + " exceeds the stream's " +
                                 std::to_string(h.levels) + " levels");
   const std::size_t g = box_grid(h, name);
-  if (h.blocked[g] != 0)
+  if (h.blocked[g] == 2)
     throw std::invalid_argument("grid '" + h.grids[g].name +
-                                "' is stored as sparse blocks or OpenVDB bytes, not a box: a box decode "
-                                "needs a box grid");
+                                "' is carried as OpenVDB bytes only: it has no voxels to decode a box of");
   const Volume& whole = h.grids[g].volume;
   check_box(box, h.grids[g]);
   check_decode_limit((box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) * (box.hi[2] - box.lo[2]), limits,
@@ -750,6 +852,7 @@ VolumeGrid decode_volume_box_into(std::span<const std::uint8_t> bytes, std::stri
   if (level > 0) scale_placement(grid, level);
   for (std::size_t a = 0; a < 3; ++a) grid.origin[a] += std::int64_t(crop.first[a]);
   grid.volume.dims = crop.dims;  // volume.active: the header's sparse marker
+  if (h.blocked[g] == 1) return blocked_box_into(grid, s, g, coding, bricks[g], level, ex, allocate);
   const VolumeOutput out = allocate(grid);
   if (out.data == nullptr || out.dims != grid.volume.dims)
     throw std::invalid_argument("decode_volume_box_into: the output does not match the box's dims");

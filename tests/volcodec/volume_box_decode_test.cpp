@@ -169,6 +169,72 @@ TEST(VolumeBoxDecode, DecodesOnlyTheBricksTheBoxTouches) {
   EXPECT_EQ(bricks_decoded(sparse, {{48, 0, 0}, {61, 45, 37}}, 0), 0u);
 }
 
+// wmag91 as a sparse-native grid (as a .vdb gives): four blocks of it (8^3 and 16^3, on multiples
+// of 8) with the states of sparse_wmag91's mask rule, an active tile and an inactive one.
+VolumeGrid blocked_wmag91() {
+  const std::vector<float> raw = read_wmag91();
+  VolumeGrid g;
+  g.name = "wmag";
+  g.volume.type = VoxelType::f32;
+  g.volume.background = 0.5;
+  const auto block = [&](std::array<std::int64_t, 3> origin, std::size_t edge) {
+    VolumeBlock b;
+    b.origin = origin;
+    b.volume = Volume({edge, edge, edge}, VoxelType::f32);
+    b.volume.background = 0.5;
+    b.volume.active.assign(b.volume.count(), 0);
+    for (std::size_t z = 0; z < edge; ++z)
+      for (std::size_t y = 0; y < edge; ++y)
+        for (std::size_t x = 0; x < edge; ++x) {
+          const std::size_t i = b.volume.index(x, y, z);
+          const double v =
+              raw[(x + std::size_t(origin[0] + 8)) + 91 * ((y + std::size_t(origin[1])) + 91 * z)];
+          b.volume.samples[i] = v > 50.0 ? v : x % 7 == 0 ? -0.5 : x % 3 != 0 ? 0.5 : v;
+          b.volume.active[i] = v > 50.0 ? 1 : 0;
+        }
+    g.blocks.push_back(std::move(b));
+  };
+  block({-8, 0, 16}, 16);
+  block({8, 0, 16}, 8);
+  block({24, 8, 24}, 16);
+  block({56, 40, 16}, 8);
+  g.tiles.push_back({{8, 8, 16}, 8, 1.5, true});
+  g.tiles.push_back({{40, 0, 40}, 8, -0.5, false});
+  g.origin = {-8, 0, 16};
+  g.volume.dims = {72, 48, 32};  // the bounding box of the blocks and tiles
+  return g;
+}
+
+TEST(VolumeBoxDecode, SparseNativeBoxEqualsCropOfItsDenseBoundingBox) {
+  VolumeEncodeOptions o;
+  o.target = 1e-2;
+  o.brick = 8;
+  o.levels = 2;
+  const auto bytes = encode_volumes({blocked_wmag91()}, o).bytes;
+  const std::vector<VoxelBox> boxes = {{{0, 0, 0}, {72, 48, 32}},
+                                       {{3, 5, 1}, {30, 20, 9}},
+                                       {{20, 10, 12}, {72, 48, 32}},
+                                       {{40, 20, 0}, {48, 30, 8}}};
+  for (int level = 0; level <= 2; ++level) {
+    VolumeGrid whole = decode_volumes(bytes, level)[0];
+    make_dense_box(whole, std::size_t(1) << 24);
+    for (const VoxelBox& box : boxes) {
+      const VolumeGrid expected = crop(whole, box, level);
+      const VolumeGrid got = decode_volume_box(bytes, "", box, level, default_executor(), DecodeLimits{});
+      const std::string where = "level " + std::to_string(level) + " box " + to_string(box);
+      ASSERT_EQ(got.volume.dims, expected.volume.dims) << where;
+      EXPECT_EQ(got.origin, expected.origin) << where;
+      EXPECT_EQ(got.volume.active, expected.volume.active) << where;
+      EXPECT_EQ(got.volume.samples, expected.volume.samples) << where;
+    }
+  }
+  // Only the bricks of the blocks under the box: index space [32,40) x [12,20) x [24,32) meets
+  // the 16^3 block at (24, 8, 24) in two of its eight 8^3 bricks and no other block.
+  CountingExecutor ex;
+  decode_volume_box(bytes, "", {{40, 12, 8}, {48, 20, 16}}, 0, ex, DecodeLimits{});
+  EXPECT_EQ(ex.tasks, 2u);
+}
+
 TEST(VolumeBoxDecode, BadBoxesAreRefusedNamingTheBoxAndTheDims) {
   const auto bytes = encode(wmag91_grid(VoxelType::f32), VolumeRateMode::max_error, 1e-2);
   for (const VoxelBox& box : {VoxelBox{{5, 5, 5}, {5, 6, 6}}, VoxelBox{{9, 5, 5}, {4, 6, 6}},

@@ -225,11 +225,11 @@ struct VoxelBox {
 // bricks the box touches: the level-`level` voxels whose full-resolution footprint
 // [c 2^level, (c + 1) 2^level) meets the box (c from lo / 2^level to (hi - 1) / 2^level, rounded
 // down); `origin` is the first one's index-space position. Equal to that box cropped out of
-// decompress_volume at the level (a sparse grid's box is its dense bounding box, `active` and
-// inactive values included). The decode limit counts the box's voxels, not the grid's.
-// Status::invalid_argument for a box that is empty, inverted or outside the grid (the message
-// names the box and the grid's dims), no such grid, several grids and no name, or a grid the
-// stream holds as sparse blocks (a .vdb's; use decompress_volume).
+// decompress_volume at the level (a sparse grid's box is its dense bounding box, a .vdb grid's
+// its active bounding box; `active` and inactive values included). The decode limit counts the
+// box's voxels, not the grid's. Status::invalid_argument for a box that is empty, inverted or
+// outside the grid (the message names the box and the grid's dims), no such grid, several grids
+// and no name, or a grid carried as OpenVDB bytes only.
 Volume decompress_volume_box(std::span<const std::uint8_t> stream, const VoxelBox& box, int level = 0,
                              unsigned threads = 0, std::string_view grid = {});
 
