@@ -1,6 +1,8 @@
 // `pupwave decompress IN.pw OUT`: decode a stream (optionally at reduced resolution) and
 // write the image in the format OUT's extension (or --format) names, decided before decoding;
-// a volume stream is written as .vdb (all grids) or as a dense raw file of its stored type.
+// a volume stream is written as .vdb (all grids) or as a dense raw file of its stored type;
+// --box decodes only a box of a volume grid, from the bricks it touches.
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -34,6 +36,7 @@ struct DecompressOptions {
   int level = 0;
   unsigned threads = 0;
   std::string grid;
+  std::string box;                  // --box x0,y0,z0:x1,y1,z1; empty: the whole grid
   std::string format;               // --format: overrides OUT's extension
   std::filesystem::path format_as;  // the name whose extension picks the output format
   DecodeLimits limits;              // --max-pixels
@@ -41,6 +44,35 @@ struct DecompressOptions {
 };
 
 bool wants_vdb(const DecompressOptions& opt) { return is_vdb_path(opt.format_as); }
+
+// --box "x0,y0,z0:x1,y1,z1" (full-resolution voxels, half-open); what decode_volume_box checks
+// against the grid is left to it.
+VoxelBox parse_box(const std::string& text) {
+  const auto bad = [&] {
+    return std::invalid_argument("invalid --box '" + text +
+                                 "' (expected x0,y0,z0:x1,y1,z1 with non-negative integers, the upper "
+                                 "corner excluded)");
+  };
+  VoxelBox box;
+  const char* at = text.data();
+  const char* const end = text.data() + text.size();
+  for (std::size_t i = 0; i < 6; ++i) {
+    Extent& corner = i < 3 ? box.lo : box.hi;
+    const auto [next, ec] = std::from_chars(at, end, corner[i % 3]);
+    const char separator = i == 2 ? ':' : ',';
+    if (ec != std::errc() || (i < 5 && (next == end || *next != separator))) throw bad();
+    at = i < 5 ? next + 1 : next;
+  }
+  if (at != end) throw bad();
+  return box;
+}
+
+// Refuses --box for an image stream.
+void check_no_box(const DecompressOptions& opt) {
+  if (!opt.box.empty())
+    throw std::invalid_argument(opt.input +
+                                ": --box applies to volume streams only, and this is an image stream");
+}
 
 // Grids of a volume stream to .vdb, or one grid (--grid, or the only one) to raw.
 void write_volume_output(std::vector<VolumeGrid> grids, const DecompressOptions& opt) {
@@ -105,7 +137,47 @@ bool decompress_raw_in_place(const std::vector<std::uint8_t>& bytes, const Decom
   return true;
 }
 
+// --box: only the box of one grid (--grid, or the only one): raw output decoded straight into the
+// output file mapped under its temporary name (write_output), in its stored type; .vdb through a
+// VolumeGrid.
+void decompress_volume_box(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
+  const VoxelBox box = parse_box(opt.box);
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<VolumeGrid> grids(1);
+  const auto ex = make_pool_executor(opt.threads);
+  const auto decode_raw = [&](const std::filesystem::path& tmp) {
+    std::unique_ptr<MappedOutput> file;
+    grids[0] =
+        decode_volume_box_into(bytes, opt.grid, box, opt.level, *ex, opt.limits, [&](const VolumeGrid& g) {
+          file = std::make_unique<MappedOutput>(tmp, g.volume.count() * bytes_per_voxel(g.volume.type),
+                                                opt.output);
+          return contiguous_output(file->bytes().data(), g.volume.dims, g.volume.type);
+        });
+    swap_to_little_endian(file->bytes(), grids[0].volume.type);
+    file->finish();
+  };
+  try {
+    ElapsedLine line("pupwave: decompressing " + opt.input, !opt.verbosity.quiet);
+    if (wants_vdb(opt))
+      grids[0] = decode_volume_box(bytes, opt.grid, box, opt.level, *ex, opt.limits);
+    else
+      write_output(opt.output, decode_raw);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(opt.input + ": " + e.what());
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const VolumeGrid& g = grids[0];
+  const std::string line = "grid '" + g.name + "' box " + to_string(box) + " at level " +
+                           std::to_string(opt.level) + ", " + std::to_string(g.volume.dims[0]) + "x" +
+                           std::to_string(g.volume.dims[1]) + "x" + std::to_string(g.volume.dims[2]) + ", " +
+                           to_string(g.volume.type);
+  if (wants_vdb(opt)) write_volume_output(std::move(grids), opt);
+  if (std::FILE* status = opt.verbosity.stream())
+    std::fprintf(status, "%s: %s, decoded in %.3f s\n", opt.output.c_str(), line.c_str(), seconds);
+}
+
 void run_decompress_volume(const std::vector<std::uint8_t>& bytes, const DecompressOptions& opt) {
+  if (!opt.box.empty()) return decompress_volume_box(bytes, opt);
   if (decompress_raw_in_place(bytes, opt)) return;
   const auto start = std::chrono::steady_clock::now();
   auto grids = [&] {
@@ -174,13 +246,17 @@ void run_decompress(const DecompressOptions& opt) {
   const bool mappable = !is_stdio(opt.input) && std::filesystem::is_regular_file(opt.input, ec);
   if (mappable) {
     const MappedFile input(opt.input);  // the strip decoder reads only the pages it needs
-    if (!is_volume_stream(input.bytes())) check_image_output(opt);
+    if (!is_volume_stream(input.bytes())) {
+      check_no_box(opt);
+      check_image_output(opt);
+    }
     if (decompress_strips(input.bytes(), opt)) return;
   }
   // stdin, a FIFO or a device is read to its end.
   const auto bytes = read_file_bytes(opt.input);
   if (is_volume_stream(bytes)) return run_decompress_volume(bytes, opt);
   if (!opt.grid.empty()) throw std::invalid_argument("--grid applies to volume streams only");
+  check_no_box(opt);
   check_image_output(opt);
   const auto start = std::chrono::steady_clock::now();
   const Image image = [&] {
@@ -215,6 +291,10 @@ void add_decompress_command(CLI::App& app) {
       ->check(non_negative_number());
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_option("--grid", opt->grid, "volume streams: only the grids of this name");
+  cmd->add_option("--box", opt->box,
+                  "volume streams: decode only the voxels [x0,x1) x [y0,y1) x [z0,z1) (full-resolution "
+                  "coordinates, given as x0,y0,z0:x1,y1,z1) of one grid, from the bricks they touch; with "
+                  "--level k, the level-k voxels whose footprint meets the box");
   cmd->add_option("--max-pixels", opt->limits.max_pixels,
                   "refuse a stream whose decoded pixels (images, at --level) or voxels (volumes, all grids) "
                   "exceed this (default 2^28)")

@@ -156,6 +156,17 @@ pupwave::api::Volume single_grid(const void* stream, std::size_t size, int level
   return std::move(grids[0]);
 }
 
+// A decoded volume handed to C callers.
+std::unique_ptr<pupwave_decoded> decoded_volume(pupwave::api::Volume&& v) {
+  auto d = std::make_unique<pupwave_decoded>();
+  d->type = c_type(v.type);
+  std::copy(v.dims.begin(), v.dims.end(), d->dims);
+  std::copy(v.origin.begin(), v.origin.end(), d->origin);
+  d->data = std::move(v.data);
+  d->active = std::move(v.active);
+  return d;
+}
+
 }  // namespace
 
 extern "C" {
@@ -350,14 +361,22 @@ pupwave_status pupwave_decompress_volume(const void* stream, size_t size, int le
   return guarded([&] {
     require(out != nullptr, "out is null");
     *out = nullptr;
-    pupwave::api::Volume v = single_grid(stream, size, level, threads);
-    auto d = std::make_unique<pupwave_decoded>();
-    d->type = c_type(v.type);
-    std::copy(v.dims.begin(), v.dims.end(), d->dims);
-    std::copy(v.origin.begin(), v.origin.end(), d->origin);
-    d->data = std::move(v.data);
-    d->active = std::move(v.active);
-    *out = d.release();
+    *out = decoded_volume(single_grid(stream, size, level, threads)).release();
+  });
+}
+
+pupwave_status pupwave_decompress_volume_box(const void* stream, size_t size, const size_t lo[3],
+                                             const size_t hi[3], int level, unsigned threads,
+                                             pupwave_decoded** out) {
+  return guarded([&] {
+    require(out != nullptr, "out is null");
+    *out = nullptr;
+    require(stream != nullptr, "stream is null");
+    require(lo != nullptr && hi != nullptr, "box is null");
+    const pupwave::api::VoxelBox box{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+    *out = decoded_volume(pupwave::api::decompress_volume_box(
+                              {static_cast<const std::uint8_t*>(stream), size}, box, level, threads))
+               .release();
   });
 }
 

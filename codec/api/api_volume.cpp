@@ -32,6 +32,24 @@ void store(const std::vector<double>& in, std::byte* out) {
   for (std::size_t i = 0; i < in.size(); ++i) dst[i] = T(in[i]);
 }
 
+// The typed buffer (and mask) of `typed` for grid `g`, as the decoders' output.
+pupwave::VolumeOutput typed_output(Volume& typed, const VolumeGrid& g) {
+  typed.type = VoxelType(g.volume.type);  // same numbering (volume.h)
+  typed.data.resize(g.volume.count() * bytes_per_voxel(typed.type));
+  pupwave::VolumeOutput o = contiguous_output(typed.data.data(), g.volume.dims, g.volume.type);
+  if (g.volume.is_sparse()) typed.active.resize(g.volume.count()), o.active = typed.active.data();
+  return o;
+}
+
+// Name, placement, dims, background and attributes of a grid decoded by typed_output.
+void describe(Volume& typed, const VolumeGrid& grid) {
+  typed.name = grid.name;
+  typed.origin = grid.origin;
+  typed.dims = {grid.volume.dims[0], grid.volume.dims[1], grid.volume.dims[2]};
+  typed.background = grid.volume.background;
+  typed.attributes = detail::text_attributes(grid.metadata);
+}
+
 std::size_t checked_count(const std::array<std::size_t, 3>& dims) {
   std::size_t n = 1;
   for (std::size_t d : dims) {
@@ -229,20 +247,10 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
     if (!is_volume_stream(stream)) throw DecodeError("not a Pupwave volume stream (no PUPV signature)");
     const std::unique_ptr<Executor> executor = make_pool_executor(threads);
     Volume typed;  // a single box grid, decoded straight into its own type
-    const auto grid =
-        decode_volume_into(stream, "", level, *executor, DecodeLimits{}, [&](const VolumeGrid& g) {
-          typed.type = VoxelType(g.volume.type);  // same numbering (volume.h)
-          typed.data.resize(g.volume.count() * bytes_per_voxel(typed.type));
-          pupwave::VolumeOutput o = contiguous_output(typed.data.data(), g.volume.dims, g.volume.type);
-          if (g.volume.is_sparse()) typed.active.resize(g.volume.count()), o.active = typed.active.data();
-          return o;
-        });
+    const auto grid = decode_volume_into(stream, "", level, *executor, DecodeLimits{},
+                                         [&](const VolumeGrid& g) { return typed_output(typed, g); });
     if (grid) {
-      typed.name = grid->name;
-      typed.origin = grid->origin;
-      typed.dims = {grid->volume.dims[0], grid->volume.dims[1], grid->volume.dims[2]};
-      typed.background = grid->volume.background;
-      typed.attributes = detail::text_attributes(grid->metadata);
+      describe(typed, *grid);
       return std::vector<Volume>{std::move(typed)};
     }
     std::vector<VolumeGrid> grids = decode_volumes(stream, level, *executor);
@@ -275,6 +283,22 @@ std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int 
       out.push_back(std::move(v));
     }
     return out;
+  });
+}
+
+Volume decompress_volume_box(std::span<const std::uint8_t> stream, const VoxelBox& box, int level,
+                             unsigned threads, std::string_view grid) {
+  return detail::translate_errors([&] {
+    if (level < 0) detail::fail("level must be >= 0, got " + std::to_string(level));
+    if (!is_volume_stream(stream)) throw DecodeError("not a Pupwave volume stream (no PUPV signature)");
+    const std::unique_ptr<Executor> executor = make_pool_executor(threads);
+    const pupwave::VoxelBox voxels{{box.lo[0], box.lo[1], box.lo[2]}, {box.hi[0], box.hi[1], box.hi[2]}};
+    Volume typed;  // decoded straight into its own type
+    const VolumeGrid described =
+        decode_volume_box_into(stream, grid, voxels, level, *executor, DecodeLimits{},
+                               [&](const VolumeGrid& g) { return typed_output(typed, g); });
+    describe(typed, described);
+    return typed;
   });
 }
 

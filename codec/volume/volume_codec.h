@@ -138,6 +138,39 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
                                              int level, const Executor& executor, const DecodeLimits& limits,
                                              const std::function<VolumeOutput(const VolumeGrid&)>& allocate);
 
+// A box of full-resolution voxels: [lo[a], hi[a]) along x, y and z (half-open).
+struct VoxelBox {
+  Extent lo{0, 0, 0};
+  Extent hi{0, 0, 0};
+};
+// "[x0,x1) x [y0,y1) x [z0,z1)", for messages.
+std::string to_string(const VoxelBox& box);
+
+// Decodes the voxels of `box` of one grid (`name`; "": the only one) at 1/2^level resolution,
+// decoding only the bricks the box touches (one executor task per such brick; the stream is
+// still parsed and checked whole). The box is in the grid's box: its volume, a sparse grid's
+// dense bounding box (a sparse-native grid's: its active bounding box, as make_dense_box). The
+// result holds the level-`level` voxels whose full-resolution footprint
+// [c 2^level, (c + 1) 2^level) meets the box: along each axis c runs from floor(lo / 2^level) to
+// floor((hi - 1) / 2^level), volume.dims counts them, and origin is the grid's level-`level`
+// origin plus the first. Its values, active mask and inactive values equal that crop of
+// decode_volumes at the level (then make_dense_box for a sparse-native grid), bit for bit. The
+// decode limit counts the box's voxels at full resolution, not the grid's. Throws
+// std::invalid_argument for a box that is empty, inverted or outside the grid (naming the box
+// and the grid's dims), no such grid, an empty name with several grids, an opaque grid, a level
+// past the stream's (or above 3 for a sparse-native grid); DecodeError like decode_volumes.
+VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_view name, const VoxelBox& box,
+                             int level, const Executor& executor, const DecodeLimits& limits);
+// The same straight into the caller's typed buffer (as decode_volume_into): `allocate` is called
+// once with the box grid's description (name, placement, volume.dims of the box at `level`,
+// type, background; no samples; volume.is_sparse() tells a sparse grid) and returns where to
+// write (dims equal to the described ones; `active`, if set, receives a sparse grid's mask).
+// Values are stored as VolumeOutput::set stores them. Returns the description.
+VolumeGrid decode_volume_box_into(std::span<const std::uint8_t> bytes, std::string_view name,
+                                  const VoxelBox& box, int level, const Executor& executor,
+                                  const DecodeLimits& limits,
+                                  const std::function<VolumeOutput(const VolumeGrid&)>& allocate);
+
 // True when bytes start with the volume stream signature (cheap; validates nothing else).
 bool is_volume_stream(std::span<const std::uint8_t> bytes);
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -249,43 +250,61 @@ std::int64_t coarse(std::int64_t o, int level) {
 
 // Blocks (at 1/2^level resolution, filled with background) and tiles of a sparse-native grid.
 // Blocks start on OpenVDB leaves (multiples of 8), so levels above 3 would misplace them.
-void allocate_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
+// Origin of block `b` of grid `g` at 1/2^level resolution.
+std::array<std::int64_t, 3> level_origin(const VolumeGrid& g, const VolumeBlock& b, int level) {
   const std::int64_t f = std::int64_t(1) << level;
-  for (const VolumeBlock& b : layout.blocks) {
-    VolumeBlock out;
-    for (std::size_t a = 0; a < 3; ++a) {
-      if (b.origin[a] % f != 0)
-        throw std::invalid_argument("level " + std::to_string(level) + " of grid '" + g.name +
-                                    "': a block does not start on a multiple of 2^level (sparse grids decode "
-                                    "at levels up to 3)");
-      out.origin[a] = b.origin[a] / f;
-    }
-    out.volume = Volume(level_extent(b.volume.dims, level), g.volume.type);
-    out.volume.background = g.volume.background;
-    std::fill(out.volume.samples.begin(), out.volume.samples.end(), g.volume.background);
-    g.blocks.push_back(std::move(out));
+  std::array<std::int64_t, 3> origin{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (b.origin[a] % f != 0)
+      throw std::invalid_argument("level " + std::to_string(level) + " of grid '" + g.name +
+                                  "': a block does not start on a multiple of 2^level (sparse grids decode "
+                                  "at levels up to 3)");
+    origin[a] = b.origin[a] / f;
   }
-  for (VolumeTile t : layout.tiles) {
-    for (std::int64_t& o : t.origin) o = coarse(o, level);
-    t.edge = std::uint32_t((std::int64_t(t.edge) + f - 1) / f);
-    g.tiles.push_back(t);
-  }
+  return origin;
+}
+
+// Block `b` of grid `g` at 1/2^level resolution, filled with background.
+VolumeBlock level_block(const VolumeGrid& g, const VolumeBlock& b, int level) {
+  VolumeBlock out;
+  out.origin = level_origin(g, b, level);
+  out.volume = Volume(level_extent(b.volume.dims, level), g.volume.type);
+  out.volume.background = g.volume.background;
+  std::fill(out.volume.samples.begin(), out.volume.samples.end(), g.volume.background);
+  return out;
+}
+
+// Tile `t` at 1/2^level resolution (origin floor-divided, edge rounded up).
+VolumeTile level_tile(VolumeTile t, int level) {
+  const std::int64_t f = std::int64_t(1) << level;
+  for (std::int64_t& o : t.origin) o = coarse(o, level);
+  t.edge = std::uint32_t((std::int64_t(t.edge) + f - 1) / f);
+  return t;
+}
+
+void allocate_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
+  for (const VolumeBlock& b : layout.blocks) g.blocks.push_back(level_block(g, b, level));
+  for (const VolumeTile& t : layout.tiles) g.tiles.push_back(level_tile(t, level));
 }
 
 // Active masks and exact inactive values of each block (coarsened at level > 0).
+// Active mask and exact inactive values of one block (`out`, at `level`) from its full-resolution
+// states (`fine_dims` voxels; `other` indexes the layout's inactive_other values).
+void restore_block(Volume& out, const Extent& fine_dims, const std::uint8_t* states, const MaskChunk& mask,
+                   int level, std::size_t& other) {
+  if (level == 0) return restore_states(out, states, mask, other);
+  Volume fine(fine_dims, out.type);
+  fine.background = out.background;
+  restore_states(fine, states, mask, other);
+  restore_coarse_mask(out, fine, level);
+}
+
 void restore_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
   std::size_t at = 0, other = 0;
   for (std::size_t k = 0; k < layout.blocks.size(); ++k) {
-    const std::uint8_t* states = layout.mask.states.data() + at;
+    restore_block(g.blocks[k].volume, layout.blocks[k].volume.dims, layout.mask.states.data() + at,
+                  layout.mask, level, other);
     at += layout.blocks[k].volume.count();
-    if (level == 0) {
-      restore_states(g.blocks[k].volume, states, layout.mask, other);
-      continue;
-    }
-    Volume fine(layout.blocks[k].volume.dims, g.volume.type);
-    fine.background = g.volume.background;
-    restore_states(fine, states, layout.mask, other);
-    restore_coarse_mask(g.blocks[k].volume, fine, level);
   }
   require_stream(other == layout.mask.other_values.size(), "volume stream: extra inactive values");
 }
@@ -423,13 +442,45 @@ struct IntoScratch {
   }
 };
 
+// Level voxels [first, first + dims) of a grid: what a VolumeOutput holds (its voxel 0 is first).
+struct LevelBox {
+  Extent first{0, 0, 0};
+  Extent dims{0, 0, 0};
+};
+
+// The level-`level` voxels whose full-resolution footprint meets `box`.
+LevelBox level_box(const VoxelBox& box, int level) {
+  LevelBox out;
+  for (std::size_t a = 0; a < 3; ++a) {
+    out.first[a] = box.lo[a] >> level;
+    out.dims[a] = ((box.hi[a] - 1) >> level) + 1 - out.first[a];
+  }
+  return out;
+}
+
+// Stores row (y, z) of a brick (level offset `at`; n values from x = at[0]) into `out`, which
+// holds the voxels of `window`; the part outside the window is dropped.
+void set_window_row(const VolumeOutput& out, const LevelBox& window, const Extent& at, std::size_t y,
+                    std::size_t z, const double* row, std::size_t n) {
+  const std::size_t gy = at[1] + y, gz = at[2] + z;
+  if (gy < window.first[1] || gy >= window.first[1] + window.dims[1] || gz < window.first[2] ||
+      gz >= window.first[2] + window.dims[2])
+    return;
+  const std::size_t x0 = std::max(at[0], window.first[0]);
+  const std::size_t x1 = std::min(at[0] + n, window.first[0] + window.dims[0]);
+  if (x0 < x1)
+    out.set_row(x0 - window.first[0], gy - window.first[1], gz - window.first[2], row + (x0 - at[0]),
+                x1 - x0);
+}
+
 // Writes a brick decoded at full resolution (`values`, the decoder's own element type, x fastest)
-// into `out` row by row: each value widened, its outlier correction applied (`outliers` in index
-// order), rounded to the stored type; as brick_values computes it, without a double brick.
+// into `out` (holding `window`) row by row: each value widened, its outlier correction applied
+// (`outliers` in index order), rounded to the stored type; as brick_values computes it, without a
+// double brick.
 template <class T>
-void write_full_brick(const VolumeOutput& out, const BrickBox& box, const std::vector<T>& values,
-                      std::span<const Outlier> outliers, double bound, VoxelType type,
-                      std::vector<double>& row) {
+void write_full_brick(const VolumeOutput& out, const LevelBox& window, const BrickBox& box,
+                      const std::vector<T>& values, std::span<const Outlier> outliers, double bound,
+                      VoxelType type, std::vector<double>& row) {
   row.resize(box.size[0]);
   std::size_t k = 0, next = 0;
   for (std::size_t z = 0; z < box.size[2]; ++z)
@@ -440,13 +491,13 @@ void write_full_brick(const VolumeOutput& out, const BrickBox& box, const std::v
           v = to_stored(v + double(outliers[next++].k) * bound, type);
         row[x] = to_stored(v, type);
       }
-      out.set_row(box.offset[0], box.offset[1] + y, box.offset[2] + z, row.data(), box.size[0]);
+      set_window_row(out, window, box.offset, y, z, row.data(), box.size[0]);
     }
 }
 
-// One brick of decode_volume_into at full resolution, through per-thread buffers.
+// One brick at full resolution into `out` (holding `window`), through per-thread buffers.
 void decode_full_brick(const ParsedVolumeStream& s, const BrickCoding& coding, const BrickChunk& b,
-                       const BrickBox& box, const VolumeOutput& out) {
+                       const BrickBox& box, const VolumeOutput& out, const LevelBox& window) {
   thread_local IntoScratch scratch;
   const VoxelType type = s.header.grids[b.grid].volume.type;
   const double bound = s.header.max_error;
@@ -454,12 +505,24 @@ void decode_full_brick(const ParsedVolumeStream& s, const BrickCoding& coding, c
       bound > 0.0 ? decode_outliers(b.outliers, box.count()) : std::vector<Outlier>{};
   if (coding.reversible) {
     decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.exact);
-    write_full_brick(out, box, scratch.exact, outliers, bound, type, scratch.row);
+    write_full_brick(out, window, box, scratch.exact, outliers, bound, type, scratch.row);
   } else {
     decode_brick_into(coding, box.size, b.base_step, b.entries, b.codewords, scratch.approximate);
-    write_full_brick(out, box, scratch.approximate, outliers, bound, type, scratch.row);
+    write_full_brick(out, window, box, scratch.approximate, outliers, bound, type, scratch.row);
   }
   scratch.trim();
+}
+
+// One brick at `level` into `out` (holding `window`): at full resolution without a double brick.
+void decode_brick_window(const ParsedVolumeStream& s, const BrickCoding& coding, const BrickChunk& b,
+                         const BrickBox& box, int level, const VolumeOutput& out, const LevelBox& window) {
+  if (level == 0) return decode_full_brick(s, coding, b, box, out, window);
+  const auto values = brick_values(s, coding, b, box, level);
+  const Extent at{box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level};
+  const Extent part = level_extent(box.size, level);
+  for (std::size_t z = 0, k = 0; z < part[2]; ++z)
+    for (std::size_t y = 0; y < part[1]; ++y, k += part[0])
+      set_window_row(out, window, at, y, z, values.data() + k, part[0]);
 }
 
 // Counts the bricks of each z-slab of a dense output still to write, and reports a slab to
@@ -485,6 +548,170 @@ class OutputSlabs {
   int log2_;
   std::unique_ptr<std::atomic<std::size_t>[]> left_;  // per slab; null: nothing to report
 };
+
+// Throws std::invalid_argument unless `box` is non-empty and inside the grid.
+void check_box(const VoxelBox& box, const VolumeGrid& grid) {
+  const Extent& d = grid.volume.dims;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (box.lo[a] >= box.hi[a] || box.hi[a] > d[a])
+      throw std::invalid_argument("box " + to_string(box) + " is empty, inverted or outside grid '" +
+                                  grid.name + "' of dims " + std::to_string(d[0]) + "x" +
+                                  std::to_string(d[1]) + "x" + std::to_string(d[2]));
+}
+
+// The grid decode_volume_box decodes: the one named, or the only one.
+std::size_t box_grid(const VolumeStreamHeader& h, std::string_view name) {
+  if (name.empty()) {
+    if (h.grids.size() != 1)
+      throw std::invalid_argument("the stream holds " + std::to_string(h.grids.size()) +
+                                  " grids; name the one to decode a box of");
+    return 0;
+  }
+  for (std::size_t g = 0; g < h.grids.size(); ++g)
+    if (h.grids[g].name == name) return g;
+  throw std::invalid_argument("the stream has no grid named '" + std::string(name) + "'");
+}
+
+// Whether a brick decoded at a level (level offset `at`, extent `part`) meets `crop`.
+bool meets(const LevelBox& crop, const Extent& at, const Extent& part) {
+  for (std::size_t a = 0; a < 3; ++a)
+    if (at[a] >= crop.first[a] + crop.dims[a] || at[a] + part[a] <= crop.first[a]) return false;
+  return true;
+}
+
+// The sparse restore of decode_volumes (restore_mask at level 0, restore_coarse_box above) for
+// the voxels of `crop` only, into `out` (holding `crop`; its `active`, if set, gets the mask):
+// the states are streamed up to the last row of the crop's footprint, and inactive_other values
+// before it are skipped to find those inside. Sums run in voxel order over the same children as
+// the whole restore, so the means are the same bits.
+void restore_box_crop(const VolumeOutput& out, double background, const Extent& fine, const BoxMask& mask,
+                      int level, const LevelBox& crop) {
+  Extent lo, hi;  // full-resolution footprint of the crop
+  for (std::size_t a = 0; a < 3; ++a) {
+    lo[a] = crop.first[a] << level;
+    hi[a] = std::min((crop.first[a] + crop.dims[a]) << level, fine[a]);
+  }
+  const Extent& d = crop.dims;
+  std::vector<std::uint8_t> active(d[0] * d[1] * d[2], 0);
+  std::vector<double> sum(level > 0 ? active.size() : 0, 0.0);
+  std::vector<std::uint32_t> n(sum.size(), 0);
+  const std::size_t end_row = (hi[1] - 1) + fine[1] * (hi[2] - 1) + 1;
+  std::size_t other = 0, first = 0;
+  const std::uint8_t* states = nullptr;
+  MaskRows rows(mask.frame, fine);
+  for (std::size_t count = 0; (count = rows.next(first, states)) > 0 && first < end_row;)
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::size_t y = (first + r) % fine[1], z = (first + r) / fine[1];
+      const std::uint8_t* row = states + r * fine[0];
+      const bool inside = y >= lo[1] && y < hi[1] && z >= lo[2] && z < hi[2];
+      for (std::size_t x = 0; x < fine[0]; ++x) {
+        if (!inside || x < lo[0] || x >= hi[0]) {
+          other += row[x] == std::uint8_t(VoxelState::inactive_other) ? 1 : 0;
+          continue;
+        }
+        const Extent c{(x >> level) - crop.first[0], (y >> level) - crop.first[1],
+                       (z >> level) - crop.first[2]};
+        const std::size_t i = c[0] + d[0] * (c[1] + d[1] * c[2]);
+        const bool is_active = row[x] == std::uint8_t(VoxelState::active);
+        const double value = inactive_value(row[x], background, mask.other_values, other);
+        if (is_active) active[i] = 1;
+        if (level > 0) {
+          sum[i] += value;
+          ++n[i];
+        } else if (!is_active) {
+          out.set(c[0], c[1], c[2], value);
+        }
+      }
+    }
+  for (std::size_t i = 0; i < sum.size(); ++i)
+    if (!active[i]) out.set(i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]), sum[i] / double(n[i]));
+  if (out.active != nullptr) std::copy(active.begin(), active.end(), out.active);
+}
+
+// The level index-space box [lo, hi) of a grid described for decode_volume_box_into.
+struct IndexBox {
+  std::array<std::int64_t, 3> lo{}, hi{};
+  bool meets(const std::array<std::int64_t, 3>& at, const Extent& size) const {
+    for (std::size_t a = 0; a < 3; ++a)
+      if (at[a] >= hi[a] || at[a] + std::int64_t(size[a]) <= lo[a]) return false;
+    return true;
+  }
+};
+
+// A sparse-native grid's part of decode_volume_box: `grid` arrives described (placement at the
+// level, the crop's dims) and leaves as the crop of its dense bounding box, what decode_volumes
+// and make_dense_box give, from the blocks meeting the crop and only their bricks meeting it
+// (the inactive_other values of the blocks before each are skipped to find its own).
+void decode_blocked_box(VolumeGrid& grid, const ParsedVolumeStream& s, std::size_t g,
+                        const BrickCoding& coding, const GridBricks& bricks, int level, const Executor& ex) {
+  const BlocksChunk& layout = s.layouts[g];
+  IndexBox region;
+  for (std::size_t a = 0; a < 3; ++a) {
+    region.lo[a] = grid.origin[a];
+    region.hi[a] = grid.origin[a] + std::int64_t(grid.volume.dims[a]);
+  }
+  std::vector<std::ptrdiff_t> slot(layout.blocks.size(), -1);  // block k's place in grid.blocks
+  for (std::size_t k = 0; k < layout.blocks.size(); ++k)
+    if (region.meets(level_origin(grid, layout.blocks[k], level),
+                     level_extent(layout.blocks[k].volume.dims, level))) {
+      slot[k] = std::ptrdiff_t(grid.blocks.size());
+      grid.blocks.push_back(level_block(grid, layout.blocks[k], level));
+    }
+  for (const VolumeTile& t : layout.tiles) grid.tiles.push_back(level_tile(t, level));
+  const auto block_of = [&](const BrickChunk& b) -> VolumeBlock* {
+    const std::ptrdiff_t k = slot[bricks.block[b.brick]];
+    return k < 0 ? nullptr : &grid.blocks[std::size_t(k)];
+  };
+  std::vector<std::size_t> touched;  // BRIK chunks of those blocks' bricks that meet the crop
+  for (std::size_t i = 0; i < s.bricks.size(); ++i) {
+    const VolumeBlock* block = s.bricks[i].grid == g ? block_of(s.bricks[i]) : nullptr;
+    if (block == nullptr) continue;
+    const BrickBox box = bricks.at(s.bricks[i].brick);
+    std::array<std::int64_t, 3> at{};
+    for (std::size_t a = 0; a < 3; ++a) at[a] = block->origin[a] + std::int64_t(box.offset[a] >> level);
+    if (region.meets(at, level_extent(box.size, level))) touched.push_back(i);
+  }
+  ex.run(touched.size(), [&](std::size_t k) {
+    const BrickChunk& b = s.bricks[touched[k]];
+    const BrickBox box = bricks.at(b.brick);
+    place(block_of(b)->volume, {box.offset[0] >> level, box.offset[1] >> level, box.offset[2] >> level},
+          level_extent(box.size, level), brick_values(s, coding, b, box, level));
+  });
+  std::size_t at = 0, other = 0;
+  for (std::size_t k = 0; k < layout.blocks.size(); ++k) {
+    const std::uint8_t* states = layout.mask.states.data() + at;
+    const std::size_t n = layout.blocks[k].volume.count();
+    if (slot[k] >= 0)
+      restore_block(grid.blocks[std::size_t(slot[k])].volume, layout.blocks[k].volume.dims, states,
+                    layout.mask, level, other);
+    else
+      other += std::size_t(std::count(states, states + n, std::uint8_t(VoxelState::inactive_other)));
+    at += n;
+  }
+  if (grid.is_blocked()) return make_dense_box(grid, std::numeric_limits<std::size_t>::max());
+  grid.volume = Volume(grid.volume.dims, grid.volume.type);  // nothing but background in the crop
+  grid.volume.background = s.header.grids[g].volume.background;
+  std::fill(grid.volume.samples.begin(), grid.volume.samples.end(), grid.volume.background);
+  grid.volume.active.assign(grid.volume.count(), 0);
+}
+
+// decode_blocked_box into the caller's output: `grid` (described) is returned as a sparse box.
+VolumeGrid blocked_box_into(VolumeGrid grid, const ParsedVolumeStream& s, std::size_t g,
+                            const BrickCoding& coding, const GridBricks& bricks, int level,
+                            const Executor& ex,
+                            const std::function<VolumeOutput(const VolumeGrid&)>& allocate) {
+  VolumeGrid dense = grid;
+  decode_blocked_box(dense, s, g, coding, bricks, level, ex);
+  grid.volume.active.assign(1, 1);  // the marker of a sparse box
+  const VolumeOutput out = allocate(grid);
+  if (out.data == nullptr || out.dims != grid.volume.dims)
+    throw std::invalid_argument("decode_volume_box_into: the output does not match the box's dims");
+  const Volume& v = dense.volume;
+  for (std::size_t z = 0; z < v.dims[2]; ++z)
+    for (std::size_t y = 0; y < v.dims[1]; ++y) out.set_row(0, y, z, &v.samples[v.index(0, y, z)], v.dims[0]);
+  if (out.active != nullptr) std::copy(v.active.begin(), v.active.end(), out.active);
+  return grid;
+}
 
 }  // namespace
 
@@ -577,23 +804,87 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
   // Slabs are reported only for a dense grid at full resolution, every brick of which is coded.
   const bool report = !sparse && level == 0;
   OutputSlabs slabs(report ? out : VolumeOutput{}, bricks[g].box);
+  const LevelBox whole{{0, 0, 0}, grid.volume.dims};
   run_in_index_order(ex, s.bricks.size(), [&](std::size_t i) {
     const BrickChunk& b = s.bricks[i];
     if (b.grid != g) return;
     const BrickBox box = bricks[g].at(b.brick);
-    if (level == 0) {
-      decode_full_brick(s, coding, b, box, out);
-      slabs.done(box);
-      return;
-    }
-    const auto values = brick_values(s, coding, b, box, level);
-    const Extent part = level_extent(box.size, level);
-    for (std::size_t z = 0, k = 0; z < part[2]; ++z)
-      for (std::size_t y = 0; y < part[1]; ++y, k += part[0])
-        out.set_row(box.offset[0] >> level, (box.offset[1] >> level) + y, (box.offset[2] >> level) + z,
-                    values.data() + k, part[0]);
+    decode_brick_window(s, coding, b, box, level, out, whole);
+    if (level == 0) slabs.done(box);
   });
   if (sparse) restore_output_states(out, grid.volume.background, grid.volume.type, s.masks[g]);
+  return grid;
+}
+
+std::string to_string(const VoxelBox& box) {
+  std::string out;
+  for (std::size_t a = 0; a < 3; ++a)
+    out += (a ? " x [" : "[") + std::to_string(box.lo[a]) + "," + std::to_string(box.hi[a]) + ")";
+  return out;
+}
+
+VolumeGrid decode_volume_box_into(std::span<const std::uint8_t> bytes, std::string_view name,
+                                  const VoxelBox& box, int level, const Executor& ex,
+                                  const DecodeLimits& limits,
+                                  const std::function<VolumeOutput(const VolumeGrid&)>& allocate) {
+  // The limit is the box's (checked below); the whole stream is only bounded by the format's caps.
+  const ParsedVolumeStream s =
+      parse_volume_stream(bytes, DecodeLimits{std::numeric_limits<std::size_t>::max()});
+  const VolumeStreamHeader& h = s.header;
+  if (level < 0 || level > h.levels)
+    throw std::invalid_argument("level " + std::to_string(level) + " exceeds the stream's " +
+                                std::to_string(h.levels) + " levels");
+  const std::size_t g = box_grid(h, name);
+  if (h.blocked[g] == 2)
+    throw std::invalid_argument("grid '" + h.grids[g].name +
+                                "' is carried as OpenVDB bytes only: it has no voxels to decode a box of");
+  const Volume& whole = h.grids[g].volume;
+  check_box(box, h.grids[g]);
+  check_decode_limit((box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) * (box.hi[2] - box.lo[2]), limits,
+                     "volume box: voxels");
+  const auto t = stream_transform(h);
+  const BrickCoding coding{t.get(), h.levels,     std::size_t(1) << h.block_log2,
+                           h.delta, h.reversible, h.coder == 1};
+  const auto bricks = grid_bricks(s);
+  check_brick_set(s, bricks);
+  const LevelBox crop = level_box(box, level);
+  VolumeGrid grid = h.grids[g];
+  if (level > 0) scale_placement(grid, level);
+  for (std::size_t a = 0; a < 3; ++a) grid.origin[a] += std::int64_t(crop.first[a]);
+  grid.volume.dims = crop.dims;  // volume.active: the header's sparse marker
+  if (h.blocked[g] == 1) return blocked_box_into(grid, s, g, coding, bricks[g], level, ex, allocate);
+  const VolumeOutput out = allocate(grid);
+  if (out.data == nullptr || out.dims != grid.volume.dims)
+    throw std::invalid_argument("decode_volume_box_into: the output does not match the box's dims");
+  std::vector<std::size_t> touched;  // BRIK chunks of the grid's bricks that meet the box
+  for (std::size_t i = 0; i < s.bricks.size(); ++i) {
+    if (s.bricks[i].grid != g) continue;
+    const BrickBox b = bricks[g].at(s.bricks[i].brick);
+    const Extent at{b.offset[0] >> level, b.offset[1] >> level, b.offset[2] >> level};
+    if (meets(crop, at, level_extent(b.size, level))) touched.push_back(i);
+  }
+  ex.run(touched.size(), [&](std::size_t k) {
+    const BrickChunk& b = s.bricks[touched[k]];
+    decode_brick_window(s, coding, b, bricks[g].at(b.brick), level, out, crop);
+  });
+  if (whole.is_sparse()) restore_box_crop(out, whole.background, whole.dims, s.masks[g], level, crop);
+  return grid;
+}
+
+VolumeGrid decode_volume_box(std::span<const std::uint8_t> bytes, std::string_view name, const VoxelBox& box,
+                             int level, const Executor& ex, const DecodeLimits& limits) {
+  Volume volume;
+  VolumeGrid grid = decode_volume_box_into(bytes, name, box, level, ex, limits, [&](const VolumeGrid& g) {
+    volume = Volume(g.volume.dims, g.volume.type);
+    volume.background = g.volume.background;
+    VolumeOutput out = contiguous_output(volume.samples.data(), volume.dims, VoxelType::f64);
+    if (g.volume.is_sparse()) {
+      volume.active.assign(volume.count(), 0);
+      out.active = volume.active.data();
+    }
+    return out;
+  });
+  grid.volume = std::move(volume);
   return grid;
 }
 

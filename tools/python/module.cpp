@@ -11,6 +11,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -250,13 +251,20 @@ py::tuple compress_volume(const py::object& obj, std::optional<double> max_error
   return py::make_tuple(to_bytes(out), miss);
 }
 
-py::tuple decompress_volume(const py::object& data, int level, std::optional<int> threads) {
+// box: x0, y0, z0, x1, y1, z1 (the package turns the array-order pairs it is given into these).
+py::tuple decompress_volume(const py::object& data, int level, std::optional<int> threads,
+                            std::optional<std::array<std::size_t, 6>> box) {
   const unsigned workers = thread_count(threads);
   std::vector<api::Volume> grids;
   {
     const ByteView bytes(data);
     py::gil_scoped_release release;
-    grids = api::decompress_volume(bytes.bytes(), level, workers);
+    if (box)
+      grids.push_back(api::decompress_volume_box(
+          bytes.bytes(), {{(*box)[0], (*box)[1], (*box)[2]}, {(*box)[3], (*box)[4], (*box)[5]}}, level,
+          workers));
+    else
+      grids = api::decompress_volume(bytes.bytes(), level, workers);
   }
   if (grids.size() != 1)
     throw py::value_error("the stream holds " + std::to_string(grids.size()) +
@@ -336,7 +344,7 @@ PYBIND11_MODULE(_pupwave, m) {
         "pupwave.compress_volume on a uint8/uint16/float32/float64 array; attributes (str -> str) are "
         "stored as the grid's metadata. Returns (bytes, miss) as compress does.");
   m.def("decompress_volume", &decompress_volume, py::arg("data"), py::arg("level") = 0,
-        py::arg("threads") = py::none(),
-        "(array of the stored dtype, the grid's text attributes as a dict).");
+        py::arg("threads") = py::none(), py::arg("box") = py::none(),
+        "(array of the stored dtype, the grid's text attributes as a dict); box: (x0, y0, z0, x1, y1, z1).");
   m.def("info", &info, py::arg("data"), "Describe .pw bytes (every checksum verified) as a dict.");
 }

@@ -171,6 +171,15 @@ pupwave_status pupwave_decompress_volume(const void* stream, size_t size, int le
  * exactly (dims from pupwave_describe_dims, type as stored); for filters (HDF5). */
 pupwave_status pupwave_decompress_volume_into(const void* stream, size_t size, int level, unsigned threads,
                                               void* buffer, size_t capacity);
+/* Decodes the voxels of the box [lo[a], hi[a]) (full-resolution x, y, z; half-open) of the
+ * (single) grid of a volume stream at level, decoding only the bricks the box touches: the
+ * level voxels whose full-resolution footprint meets the box (their counts are
+ * pupwave_decoded_dim, the first one's position pupwave_decoded_origin), equal to that box
+ * cropped out of pupwave_decompress_volume. A box that is empty, inverted or outside the grid
+ * is PUPWAVE_ERROR_ARGUMENT, the message naming the box and the grid's dims. */
+pupwave_status pupwave_decompress_volume_box(const void* stream, size_t size, const size_t lo[3],
+                                             const size_t hi[3], int level, unsigned threads,
+                                             pupwave_decoded** out);
 
 /* Stream header: kind (0 image, 1 volume), dims (width, height, 1 or x, y, z of the first
  * grid), sample type and levels; every checksum verified. Any out pointer may be NULL. */

@@ -214,6 +214,24 @@ struct Volume {
 std::vector<Volume> decompress_volume(std::span<const std::uint8_t> stream, int level = 0,
                                       unsigned threads = 0);
 
+// A box of full-resolution voxels: [lo[a], hi[a]) along x, y and z (half-open).
+struct VoxelBox {
+  std::array<std::size_t, 3> lo{0, 0, 0};
+  std::array<std::size_t, 3> hi{0, 0, 0};
+};
+
+// Decodes the voxels of `box` of one grid (`grid`, or the only one) at level, decoding only the
+// bricks the box touches: the level-`level` voxels whose full-resolution footprint
+// [c 2^level, (c + 1) 2^level) meets the box (c from lo / 2^level to (hi - 1) / 2^level, rounded
+// down); `origin` is the first one's index-space position. Equal to that box cropped out of
+// decompress_volume at the level (a sparse grid's box is its dense bounding box, a .vdb grid's
+// its active bounding box; `active` and inactive values included). The decode limit counts the
+// box's voxels, not the grid's. Status::invalid_argument for a box that is empty, inverted or
+// outside the grid (the message names the box and the grid's dims), no such grid, several grids
+// and no name, or a grid carried as OpenVDB bytes only.
+Volume decompress_volume_box(std::span<const std::uint8_t> stream, const VoxelBox& box, int level = 0,
+                             unsigned threads = 0, std::string_view grid = {});
+
 // ---- description -----------------------------------------------------------------------------
 
 struct StreamInfo {

@@ -5,7 +5,7 @@ compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, 
 decompress(data, level=0, threads=None) -> numpy.ndarray
 compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=None, step=None, lossless=False,
                 transform=None, levels=None, brick=None, threads=None, strict=False) -> bytes
-decompress_volume(data, level=0, threads=None) -> numpy.ndarray
+decompress_volume(data, level=0, threads=None, box=None) -> numpy.ndarray
 info(data) -> dict
 hdf5_filter(max_error=None, bpv=None, lossless=False) -> dict of h5py create_dataset keywords (docs/hdf5.md);
     a pip-installed pupwave ships the HDF5 filter plugin, and importing pupwave registers it with h5py
@@ -141,17 +141,39 @@ def _halved_bounds(max_error, max_error_rel, bpv, psnr, step, lossless):
             max_error_rel / 2 if max_error_rel is not None else None)
 
 
-def decompress_volume(data, level=0, threads=None):
+def decompress_volume(data, level=0, threads=None, box=None):
     """Decode .pw volume bytes (any bytes-like object) holding one grid.
 
     level: 0 full size, n 1/2^n of it per axis.
     threads: None or 0 all cores, 1 the calling thread, n at most n.
+    box: None for the whole grid, or ((z0, z1), (y0, y1), (x0, x1)), the axes in the order of the
+        returned array, in full-resolution voxels, each upper bound excluded (as array[z0:z1,
+        y0:y1, x0:x1]): only the bricks the box touches are decoded. At a level n > 0 the array
+        holds the level-n voxels whose footprint meets the box, indices z0 // 2^n to
+        (z1 - 1) // 2^n along z (and likewise y, x): the same voxels as slicing the whole
+        decode at that level.
 
     Returns a (z, y, x) numpy array of the original dtype. Raises ValueError for bytes that are
-    not a single-grid Pupwave volume stream (the reason), TypeError for a non-bytes-like.
+    not a single-grid Pupwave volume stream (the reason) or a box that is empty, inverted or
+    outside the grid (the library's message names it as [x0,x1) x [y0,y1) x [z0,z1) and the
+    grid's dims as x by y by z), TypeError for a non-bytes-like.
     """
-    array, attributes = _pupwave.decompress_volume(data, level, threads)
+    array, attributes = _pupwave.decompress_volume(data, level, threads, _xyz_box(box))
     return dtypes.from_stored(array, attributes, dtypes.VOLUME)
+
+
+def _xyz_box(box):
+    """box ((z0, z1), (y0, y1), (x0, x1)) as _pupwave takes it: (x0, y0, z0, x1, y1, z1); None stays."""
+    if box is None:
+        return None
+    try:
+        (z0, z1), (y0, y1), (x0, x1) = box
+        bounds = [int(v) for v in (x0, y0, z0, x1, y1, z1)]
+    except (TypeError, ValueError):
+        raise ValueError(f"box must be ((z0, z1), (y0, y1), (x0, x1)) with integer bounds, got {box!r}") from None
+    if min(bounds) < 0:
+        raise ValueError(f"box bounds must be >= 0, got {box!r}")
+    return tuple(bounds)
 
 
 def info(data):

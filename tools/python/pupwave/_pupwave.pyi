@@ -44,9 +44,12 @@ def compress_volume(
     """(stream, miss) as compress."""
 
 def decompress_volume(
-    data: Any, level: int = 0, threads: Optional[int] = None
+    data: Any,
+    level: int = 0,
+    threads: Optional[int] = None,
+    box: Optional[Tuple[int, int, int, int, int, int]] = None,
 ) -> Tuple[np.ndarray, Dict[str, str]]:
-    """(array of the stored dtype, the grid's text attributes)."""
+    """(array of the stored dtype, the grid's text attributes); box: (x0, y0, z0, x1, y1, z1)."""
 
 def info(data: Any) -> Dict[str, Any]:
     """The stream described as a dict (pupwave.info adds the decoded dtype)."""
