@@ -150,6 +150,10 @@ std::size_t run_rd_into(const BenchOptions& o, const fs::path& dir, const std::s
   const auto specs = resolve_transforms(o.transforms);
   run.bpps = parse_bpps(o.bpps);
   run.codecs = build_codecs(o, specs, notes);
+  if (const auto tool = find_tool("butteraugli", environment_path()))
+    run.butteraugli = *tool;
+  else
+    notes.push_back("butteraugli not found in PATH (Debian package butteraugli): its column is empty");
   for (const std::string& n : notes) std::cerr << "pupwave bench: " << n << '\n';
   run.images = load_images(o.images);
   run.jobs = o.jobs;
