@@ -47,14 +47,17 @@ fs::path reference_png(const fs::path& work, const BenchImage& img) {
   return work / (safe_name(img.name) + ".png");
 }
 
-// Runs butteraugli on two PNG files and returns the distance it prints; std::runtime_error
-// quoting the tool when it fails or prints something else.
+// Runs butteraugli on two PNG files and returns the distance it prints as its last line (libpng
+// may warn on stderr before it); std::runtime_error quoting the tool when it fails or prints
+// something else.
 double butteraugli_distance(const fs::path& tool, const fs::path& reference, const fs::path& decoded,
                             const fs::path& log) {
   const ProcessResult r = run_process({tool.string(), reference.string(), decoded.string()}, log);
   std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  std::istringstream text(last);
   double distance = 0.0;
   std::string rest;
   if (r.exit_code != 0 || !(text >> distance) || text >> rest)
