@@ -59,6 +59,14 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   return rows;
 }
 
+// Fatal (through ASSERT_NO_FATAL_FAILURE) unless every row of results.csv has the current
+// columns, so the column positions above index real cells.
+void check_results_columns(const std::vector<std::vector<std::string>>& rows) {
+  ASSERT_FALSE(rows.empty());
+  ASSERT_EQ(rows[0], results_csv_columns());
+  for (const auto& row : rows) ASSERT_EQ(row.size(), rows[0].size());
+}
+
 class BenchCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -90,13 +98,12 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
               dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 1u + 4 * 2) << "header + (2 transforms + 2 anchors) x 2 rates";
-  EXPECT_EQ(rows[0], results_csv_columns());
   std::map<std::string, std::vector<double>> psnr_by_codec;
   std::map<std::string, std::vector<std::array<double, 3>>>
       perceptual_by_codec;  // SSIM, MS-SSIM, butteraugli
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    ASSERT_EQ(rows[i].size(), rows[0].size());
     EXPECT_EQ(rows[i][0], "crop");
     EXPECT_EQ(rows[i][kStatus], "ok");
     const double target = std::stod(rows[i][6]), bpp = std::stod(rows[i][8]), psnr = std::stod(rows[i][9]);
@@ -166,6 +173,7 @@ TEST_F(BenchCli, ButteraugliDistanceIsZeroWhenLosslessAndLargeAtALowRate) {
                            dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 3u);
   ASSERT_EQ(rows[2][kMaxError], "0") << "24 bpp must be coded lossless";
   EXPECT_EQ(rows[2][kSsim], "1");
@@ -184,6 +192,7 @@ TEST_F(BenchCli, ModernAnchorsHitTheirRatesAndAreComparedWithCdf97) {
               dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 1u + 5 * 2) << "header + (cdf97 + 4 anchors) x 2 rates";
   std::map<std::string, std::vector<double>> psnr_by_codec;
   for (std::size_t i = 1; i < rows.size(); ++i) {
@@ -225,6 +234,7 @@ TEST_F(BenchCli, MissingAnchorToolsAreSkippedWithANote) {
   EXPECT_NE(summary.find("> Note: plots not drawn: gnuplot not found"), std::string::npos);
   EXPECT_NE(summary.find("> Note: butteraugli not found in PATH"), std::string::npos);
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 2u);  // header + cdf97 at 1 bpp
   EXPECT_EQ(rows[1][kButteraugli], "");
   EXPECT_FALSE(rows[1][kMsSsim].empty()) << "SSIM and MS-SSIM need no tool";
@@ -242,6 +252,7 @@ TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
   EXPECT_NE(r.output.find("1 of 2 rd jobs failed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("pupwave: error: 1 job(s) failed"), std::string::npos) << r.output;
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[1][kStatus].rfind("failed: false failed (exit 1)", 0), 0u) << rows[1][kStatus];
   EXPECT_EQ(rows[2][kStatus], "ok");
