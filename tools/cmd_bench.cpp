@@ -246,7 +246,8 @@ void add_bench_command(CLI::App& app) {
   auto* rd = bench->add_subcommand(
       "rd",
       "Compress/decompress every image x transform x rate (and the anchors); writes results.csv, "
-      "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG) and plots/ (gnuplot SVG) into --out");
+      "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG, SSIM, MS-SSIM and butteraugli when installed) "
+      "and plots/ (gnuplot SVG) into --out");
   add_common(rd, *opt, true, false);
   add_report_verbosity_flags(*rd);
   rd->callback([opt] { fail_if(run_rd_into(*opt, opt->out, command_line("rd", *opt, true, false))); });

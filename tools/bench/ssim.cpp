@@ -25,6 +25,7 @@ struct Plane {
   double at(std::size_t x, std::size_t y) const { return v[y * width + x]; }
 };
 
+// Rec. 601 luma, the same expression as compare_images' luma PSNR.
 Plane luma(const Image& img) {
   Plane p{img.width, img.height, std::vector<double>(img.plane_size())};
   for (std::size_t i = 0; i < p.v.size(); ++i)
