@@ -14,6 +14,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # anchors and helpers for the rate-distortion harness and volume comparisons
   libopenjp2-tools libjxl-tools zfp libopenvdb-tools gnuplot-nox
+  # the butteraugli distance column of `pupwave bench rd`
+  butteraugli
   # the modern anchors of `pupwave bench rd`: AVIF (libaom), HEVC intra (ffmpeg + libx265), WebP
   libavif-bin ffmpeg webp
   # bench/codec_speed.sh only: Grok and OpenJPH (HTJ2K) as speed peers

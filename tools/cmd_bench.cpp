@@ -150,6 +150,10 @@ std::size_t run_rd_into(const BenchOptions& o, const fs::path& dir, const std::s
   const auto specs = resolve_transforms(o.transforms);
   run.bpps = parse_bpps(o.bpps);
   run.codecs = build_codecs(o, specs, notes);
+  if (const auto tool = find_tool("butteraugli", environment_path()))
+    run.butteraugli = *tool;
+  else
+    notes.push_back("butteraugli not found in PATH (Debian package butteraugli): its column is empty");
   for (const std::string& n : notes) std::cerr << "pupwave bench: " << n << '\n';
   run.images = load_images(o.images);
   run.jobs = o.jobs;
@@ -242,7 +246,8 @@ void add_bench_command(CLI::App& app) {
   auto* rd = bench->add_subcommand(
       "rd",
       "Compress/decompress every image x transform x rate (and the anchors); writes results.csv, "
-      "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG) and plots/ (gnuplot SVG) into --out");
+      "summary.md (PSNR per rate, BD-PSNR/BD-rate vs OpenJPEG, SSIM, MS-SSIM and butteraugli when installed) "
+      "and plots/ (gnuplot SVG) into --out");
   add_common(rd, *opt, true, false);
   add_report_verbosity_flags(*rd);
   rd->callback([opt] { fail_if(run_rd_into(*opt, opt->out, command_line("rd", *opt, true, false))); });

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,10 @@ namespace pupwave::bench {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Positions of results.csv columns the tests read.
+constexpr std::size_t kMaxError = 11, kSsim = 12, kMsSsim = 13, kButteraugli = 14, kSetting = 17,
+                      kStatus = 18;
 
 struct CliRun {
   int exit_code = -1;
@@ -54,6 +59,14 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   return rows;
 }
 
+// Fatal (through ASSERT_NO_FATAL_FAILURE) unless every row of results.csv has the current
+// columns, so the column positions above index real cells.
+void check_results_columns(const std::vector<std::vector<std::string>>& rows) {
+  ASSERT_FALSE(rows.empty());
+  ASSERT_EQ(rows[0], results_csv_columns());
+  for (const auto& row : rows) ASSERT_EQ(row.size(), rows[0].size());
+}
+
 class BenchCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -85,13 +98,14 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
               dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 1u + 4 * 2) << "header + (2 transforms + 2 anchors) x 2 rates";
-  EXPECT_EQ(rows[0], results_csv_columns());
   std::map<std::string, std::vector<double>> psnr_by_codec;
+  std::map<std::string, std::vector<std::array<double, 3>>>
+      perceptual_by_codec;  // SSIM, MS-SSIM, butteraugli
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    ASSERT_EQ(rows[i].size(), rows[0].size());
     EXPECT_EQ(rows[i][0], "crop");
-    EXPECT_EQ(rows[i][15], "ok");
+    EXPECT_EQ(rows[i][kStatus], "ok");
     const double target = std::stod(rows[i][6]), bpp = std::stod(rows[i][8]), psnr = std::stod(rows[i][9]);
     EXPECT_NEAR(bpp, 8.0 * std::stod(rows[i][7]) / (96 * 64), 1e-8);  // 10 significant digits
     EXPECT_GT(psnr, 15.0);
@@ -100,17 +114,36 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
       EXPECT_NEAR(bpp, target, 0.1 * target) << rows[i][4];
     }
     psnr_by_codec[rows[i][4]].push_back(psnr);
+    for (std::size_t col : {kSsim, kMsSsim}) {
+      const double v = std::stod(rows[i][col]);
+      EXPECT_GT(v, 0.3) << rows[0][col];
+      EXPECT_LE(v, 1.0) << rows[0][col];
+    }
+    perceptual_by_codec[rows[i][4]].push_back(
+        {std::stod(rows[i][kSsim]), std::stod(rows[i][kMsSsim]), std::stod(rows[i][kButteraugli])});
   }
   ASSERT_EQ(psnr_by_codec.size(), 4u);
   for (const auto& [codec, p] : psnr_by_codec) EXPECT_LT(p[0], p[1]) << codec << ": more bits, higher PSNR";
+  for (const auto& [codec, p] : perceptual_by_codec) {
+    EXPECT_LT(p[0][0], p[1][0]) << codec << ": more bits, higher SSIM";
+    EXPECT_LT(p[0][1], p[1][1]) << codec << ": more bits, higher MS-SSIM";
+    EXPECT_GT(p[0][2], p[1][2]) << codec << ": more bits, smaller butteraugli distance";
+  }
 
   const std::string summary = read_text(out / "summary.md");
   EXPECT_NE(summary.find("## Mean over 1 image(s)"), std::string::npos);
   EXPECT_NE(summary.find("| codec | 0.5 bpp | 2 bpp | BD-PSNR (dB) | BD-rate (%) |"), std::string::npos);
+  EXPECT_NE(summary.find("| BD-rate vs cdf97 (%) | MS-SSIM BD-rate (%) |"), std::string::npos);
+  // The perceptual table: SSIM / MS-SSIM / butteraugli of OpenJPEG at 0.5 bpp.
+  const auto& oj = perceptual_by_codec["openjpeg"][0];
+  EXPECT_NE(
+      summary.find("| openjpeg | " + fixed(oj[0], 4) + " / " + fixed(oj[1], 4) + " / " + fixed(oj[2], 3)),
+      std::string::npos)
+      << summary;
   for (const char* codec : {"| cdf97 |", "| cdf53 |", "| openjpeg | ", "| jxl |"})
     EXPECT_NE(summary.find(codec), std::string::npos) << codec;
   EXPECT_NE(summary.find("| openjpeg | " + fixed(psnr_by_codec["openjpeg"][0], 2)), std::string::npos);
-  for (const std::string plot : {"plots/crop.svg", "plots/crop-vs-openjpeg.svg"}) {
+  for (const std::string plot : {"plots/crop.svg", "plots/crop-ms-ssim.svg", "plots/crop-vs-openjpeg.svg"}) {
     EXPECT_NE(summary.find("![crop: " + plot + "](" + plot + ")"), std::string::npos) << plot;
     EXPECT_NE(read_text(out / plot).find("<svg"), std::string::npos) << plot;
   }
@@ -124,6 +157,29 @@ TEST_F(BenchCli, SmallRdRunWritesAllOutputs) {
   first_point >> bpp >> psnr >> delta;
   EXPECT_NEAR(psnr, psnr_by_codec["openjpeg"][0], 1e-6);
   EXPECT_EQ(delta, 0.0);
+  double ms_ssim_db = 0;
+  first_point >> ms_ssim_db;
+  EXPECT_NEAR(ms_ssim_db, -10 * std::log10(1 - perceptual_by_codec["openjpeg"][0][1]), 1e-5);
+}
+
+// butteraugli (installed by scripts/install-deps.sh) finds no difference in a lossless file
+// and a clear one at a low rate.
+TEST_F(BenchCli, ButteraugliDistanceIsZeroWhenLosslessAndLargeAtALowRate) {
+  ASSERT_TRUE(find_tool("butteraugli", environment_path()))
+      << "butteraugli not in PATH (scripts/install-deps.sh)";
+  const fs::path out = dir_ / "rd";
+  const CliRun r = run_cli({"bench", "rd", "--images", image_.string(), "--transforms", "cdf53", "--bpp",
+                            "0.5,24", "--anchors", "none", "--out", out.string()},
+                           dir_ / "log.txt", environment_path());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
+  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows[2][kMaxError], "0") << "24 bpp must be coded lossless";
+  EXPECT_EQ(rows[2][kSsim], "1");
+  EXPECT_EQ(rows[2][kMsSsim], "1");
+  EXPECT_LT(std::stod(rows[2][kButteraugli]), 0.01);
+  EXPECT_GT(std::stod(rows[1][kButteraugli]), 1.0) << "0.5 bpp on a 96x64 photograph is visibly distorted";
 }
 
 // The modern anchors (AVIF, HEVC intra, WebP) reach the target rate by bisecting their quantiser
@@ -136,14 +192,16 @@ TEST_F(BenchCli, ModernAnchorsHitTheirRatesAndAreComparedWithCdf97) {
               dir_ / "log.txt", environment_path());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 1u + 5 * 2) << "header + (cdf97 + 4 anchors) x 2 rates";
   std::map<std::string, std::vector<double>> psnr_by_codec;
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    ASSERT_EQ(rows[i][15], "ok") << rows[i][4];
+    ASSERT_EQ(rows[i][kStatus], "ok") << rows[i][4];
     const double target = std::stod(rows[i][6]), bpp = std::stod(rows[i][8]);
     // Integer quantisers step the size by a few percent at these sizes; a miss of a third would
     // mean the search ran the wrong way.
-    EXPECT_NEAR(bpp, target, 0.35 * target) << rows[i][4] << " at " << target << " bpp: " << rows[i][14];
+    EXPECT_NEAR(bpp, target, 0.35 * target)
+        << rows[i][4] << " at " << target << " bpp: " << rows[i][kSetting];
     psnr_by_codec[rows[i][4]].push_back(std::stod(rows[i][9]));
   }
   for (const char* codec : {"avif", "hevc", "webp"}) {
@@ -174,7 +232,12 @@ TEST_F(BenchCli, MissingAnchorToolsAreSkippedWithANote) {
   EXPECT_NE(summary.find("> Note: anchor openjpeg skipped"), std::string::npos);
   EXPECT_NE(summary.find("> Note: anchor jxl skipped"), std::string::npos);
   EXPECT_NE(summary.find("> Note: plots not drawn: gnuplot not found"), std::string::npos);
-  EXPECT_EQ(read_csv(out / "results.csv").size(), 2u);  // header + cdf97 at 1 bpp
+  EXPECT_NE(summary.find("> Note: butteraugli not found in PATH"), std::string::npos);
+  const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
+  ASSERT_EQ(rows.size(), 2u);  // header + cdf97 at 1 bpp
+  EXPECT_EQ(rows[1][kButteraugli], "");
+  EXPECT_FALSE(rows[1][kMsSsim].empty()) << "SSIM and MS-SSIM need no tool";
   EXPECT_NE(summary.find("| cdf97 |"), std::string::npos);
   EXPECT_EQ(summary.find("| openjpeg |"), std::string::npos);
 }
@@ -189,14 +252,15 @@ TEST_F(BenchCli, FailedJobsAreListedAndTheRunFails) {
   EXPECT_NE(r.output.find("1 of 2 rd jobs failed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("pupwave: error: 1 job(s) failed"), std::string::npos) << r.output;
   const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
   ASSERT_EQ(rows.size(), 3u);
-  EXPECT_EQ(rows[1][15].rfind("failed: false failed (exit 1)", 0), 0u) << rows[1][15];
-  EXPECT_EQ(rows[2][15], "ok");
+  EXPECT_EQ(rows[1][kStatus].rfind("failed: false failed (exit 1)", 0), 0u) << rows[1][kStatus];
+  EXPECT_EQ(rows[2][kStatus], "ok");
   const std::string summary = read_text(out / "summary.md");
   EXPECT_NE(summary.find("## Failed jobs"), std::string::npos);
   EXPECT_NE(summary.find("| cdf97 | n/a | n/a | n/a | n/a | n/a | n/a |"), std::string::npos) << summary;
   // The failed codec keeps its (empty) data block, so gnuplot's `index` still matches the key.
-  EXPECT_NE(read_text(out / "plots" / "crop.dat").find("# cdf97\n? ? ?\n\n\n# openjpeg\n"),
+  EXPECT_NE(read_text(out / "plots" / "crop.dat").find("# cdf97\n? ? ? ?\n\n\n# openjpeg\n"),
             std::string::npos);
 }
 

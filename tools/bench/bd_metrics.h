@@ -9,7 +9,7 @@ namespace pupwave::bench {
 // One measured point of a rate-distortion curve.
 struct RdPoint {
   double bpp = 0.0;   // achieved bits per pixel (> 0)
-  double psnr = 0.0;  // dB (finite)
+  double psnr = 0.0;  // quality in dB (finite): PSNR, or MS-SSIM as -10 log10(1 - MS-SSIM)
 };
 
 // Average PSNR difference in dB of `test` over `anchor` (positive = test is better), over the

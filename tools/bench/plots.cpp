@@ -12,52 +12,64 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// One plotted measurement.
+struct PlotPoint {
+  double bpp = 0.0, psnr = 0.0;
+  double ms_ssim_db = 0.0;  // -10 log10(1 - MS-SSIM); infinite when MS-SSIM is 1
+  bool operator<(const PlotPoint& o) const { return bpp < o.bpp; }
+};
+
+// A value for gnuplot: non-finite values become the missing marker '?'.
+std::string cell(double v) {
+  if (!std::isfinite(v)) return "?";
+  std::ostringstream s;
+  s.precision(8);
+  s << v;
+  return s.str();
+}
+
 // PSNR of the reference curve at `bpp`, linear in log(bpp) between its points, and extended
 // along the end segments by up to 3% in rate (rate control lands a little off target); NaN
 // farther out.
-double interpolate(const std::vector<std::pair<double, double>>& ref, double bpp) {
+double interpolate(const std::vector<PlotPoint>& ref, double bpp) {
   constexpr double kReach = 0.03;
   const double x = std::log(bpp);
   for (std::size_t i = 0; i + 1 < ref.size(); ++i) {
-    const double a = std::log(ref[i].first), b = std::log(ref[i + 1].first);
+    const double a = std::log(ref[i].bpp), b = std::log(ref[i + 1].bpp);
     const bool first = i == 0, last = i + 2 == ref.size();
     if (b > a && x >= a - (first ? kReach : 0.0) && x <= b + (last ? kReach : 0.0))
-      return ref[i].second + (ref[i + 1].second - ref[i].second) * (x - a) / (b - a);
+      return ref[i].psnr + (ref[i + 1].psnr - ref[i].psnr) * (x - a) / (b - a);
   }
   return NAN;
 }
 
-std::vector<std::pair<double, double>> points(const std::vector<RdRecord>& records, const std::string& image,
-                                              const std::string& codec) {
-  std::vector<std::pair<double, double>> p;
+// The points of one image and codec with a finite PSNR (lossless points are left out), by rate.
+std::vector<PlotPoint> points(const std::vector<RdRecord>& records, const std::string& image,
+                              const std::string& codec) {
+  std::vector<PlotPoint> p;
   for (const RdRecord& r : records)
-    if (r.image == image && r.codec == codec && r.ok && std::isfinite(r.psnr)) p.emplace_back(r.bpp, r.psnr);
+    if (r.image == image && r.codec == codec && r.ok && std::isfinite(r.psnr))
+      p.push_back({r.bpp, r.psnr, -10.0 * std::log10(1.0 - r.ms_ssim)});
   std::sort(p.begin(), p.end());
   return p;
 }
 
-// Points of every codec for one image (bpp, PSNR, PSNR minus OpenJPEG's at that rate or "?");
-// gnuplot reads block k with `index k`.
+// Points of every codec for one image (bpp, PSNR, PSNR minus OpenJPEG's at that rate, MS-SSIM
+// in dB; "?" where missing); gnuplot reads block k with `index k`.
 std::string data_blocks(const std::vector<RdRecord>& records, const std::string& image,
                         const std::vector<std::string>& codecs) {
   const auto reference = points(records, image, "openjpeg");
   std::ostringstream d;
-  d.precision(8);
-  d << "# bpp psnr_db psnr_minus_openjpeg_db\n";
+  d << "# bpp psnr_db psnr_minus_openjpeg_db ms_ssim_db\n";
   for (const std::string& codec : codecs) {
     d << "# " << codec << "\n";
     const auto curve = points(records, image, codec);
     // A codec without points still needs a (missing) row, or gnuplot would merge its empty
     // block into the separator and shift every later `index`.
-    if (curve.empty()) d << "? ? ?\n";
-    for (const auto& [bpp, psnr] : curve) {
-      const double delta = psnr - interpolate(reference, bpp);
-      d << bpp << ' ' << psnr << ' ';
-      if (std::isnan(delta))
-        d << "?\n";
-      else
-        d << delta << '\n';
-    }
+    if (curve.empty()) d << "? ? ? ?\n";
+    for (const PlotPoint& p : curve)
+      d << cell(p.bpp) << ' ' << cell(p.psnr) << ' ' << cell(p.psnr - interpolate(reference, p.bpp)) << ' '
+        << cell(p.ms_ssim_db) << '\n';
     d << "\n\n";
   }
   return d.str();
@@ -85,7 +97,8 @@ std::string plot_commands(const std::string& title, const std::string& ylabel, i
   return g.str();
 }
 
-// The script drawing the plots of one image: PSNR, and PSNR relative to OpenJPEG when it ran.
+// The script drawing the plots of one image: PSNR, MS-SSIM, and PSNR relative to OpenJPEG when
+// it ran (`svgs` in that order).
 std::string plot_script(const std::string& image, const std::vector<std::string>& codecs,
                         const fs::path& data, const std::vector<fs::path>& svgs) {
   std::string g =
@@ -94,9 +107,11 @@ std::string plot_script(const std::string& image, const std::vector<std::string>
       "8\n";
   g += plot_commands("PSNR against bits per pixel: " + image, "PSNR (dB, all channels)", 2, codecs, data,
                      svgs[0]);
-  if (svgs.size() > 1)
+  g += plot_commands("MS-SSIM against bits per pixel: " + image,
+                     "MS-SSIM of luma (dB, -10 log10(1 - MS-SSIM))", 4, codecs, data, svgs[1]);
+  if (svgs.size() > 2)
     g += plot_commands("PSNR minus the PSNR of OpenJPEG at the same rate: " + image, "PSNR difference (dB)",
-                       3, codecs, data, svgs[1]);
+                       3, codecs, data, svgs[2]);
   return g;
 }
 
@@ -122,7 +137,7 @@ std::vector<std::vector<fs::path>> draw_rd_plots(const std::vector<RdRecord>& re
   for (std::size_t i = 0; i < images.size(); ++i) {
     const std::string base = (dir / images[i]).string();
     const fs::path data = base + ".dat", script = base + ".gp", log = base + ".log";
-    std::vector<fs::path> svgs = {base + ".svg"};
+    std::vector<fs::path> svgs = {base + ".svg", base + "-ms-ssim.svg"};
     if (relative) svgs.emplace_back(base + "-vs-openjpeg.svg");
     write_text_file(data, data_blocks(records, images[i], codecs));
     write_text_file(script, plot_script(images[i], codecs, data, svgs));

@@ -1,5 +1,5 @@
 #pragma once
-// PSNR-against-bpp plots drawn by gnuplot (SVG), one per image, from the measured records.
+// PSNR- and MS-SSIM-against-bpp plots drawn by gnuplot (SVG), one per image, from the measured records.
 
 #include <filesystem>
 #include <string>
@@ -11,7 +11,8 @@ namespace pupwave::bench {
 
 // For each image (in `images` order) writes <dir>/<image>.dat (the points, one gnuplot data
 // block per codec), <dir>/<image>.gp (the script) and runs gnuplot to draw <dir>/<image>.svg
-// (PSNR against bpp) and, when "openjpeg" is among the codecs, <dir>/<image>-vs-openjpeg.svg
+// (PSNR against bpp), <dir>/<image>-ms-ssim.svg (MS-SSIM of luma in dB, -10 log10(1 - MS-SSIM),
+// against bpp) and, when "openjpeg" is among the codecs, <dir>/<image>-vs-openjpeg.svg
 // (PSNR minus OpenJPEG's, interpolated in log rate, against bpp: small gaps become visible).
 // Earlier .svg, .dat and .gp files in `dir` are removed first, so `dir` holds this run's
 // plots only. Returns the SVG paths per image (empty where drawing failed). When gnuplot is not in

@@ -1,6 +1,7 @@
 #pragma once
 // Writers for the rate-distortion outputs: results.csv (one row per measurement), summary.md
-// (PSNR per rate, BD-PSNR and BD-rate against OpenJPEG, per image and mean) and the plots.
+// (PSNR per rate, BD-PSNR and BD-rate against OpenJPEG, MS-SSIM BD-rate, SSIM / MS-SSIM /
+// butteraugli per rate, per image and mean) and the plots.
 
 #include <filesystem>
 #include <string>

@@ -6,10 +6,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "codec/rate/metrics.h"
+#include "tools/bench/process.h"
 #include "tools/bench/progress.h"
+#include "tools/bench/ssim.h"
 #include "tools/image_io.h"
 #include "transforms/executor.h"
 
@@ -36,6 +40,30 @@ std::string bpp_label(double bpp) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", bpp);
   return buf;
+}
+
+// The reference image as butteraugli reads it (the Debian tool takes PNG and JPEG only).
+fs::path reference_png(const fs::path& work, const BenchImage& img) {
+  return work / (safe_name(img.name) + ".png");
+}
+
+// Runs butteraugli on two PNG files and returns the distance it prints as its last line (libpng
+// may warn on stderr before it); std::runtime_error quoting the tool when it fails or prints
+// something else.
+double butteraugli_distance(const fs::path& tool, const fs::path& reference, const fs::path& decoded,
+                            const fs::path& log) {
+  const ProcessResult r = run_process({tool.string(), reference.string(), decoded.string()}, log);
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  std::istringstream text(last);
+  double distance = 0.0;
+  std::string rest;
+  if (r.exit_code != 0 || !(text >> distance) || text >> rest)
+    throw std::runtime_error("butteraugli failed (exit " + std::to_string(r.exit_code) +
+                             "): " + log_tail(log));
+  return distance;
 }
 
 struct Job {
@@ -72,6 +100,13 @@ RdRecord run_job(const RdRun& run, const Job& job, const fs::path& work) {
     r.psnr = err.overall.psnr;
     r.psnr_luma = err.has_luma ? err.luma.psnr : err.overall.psnr;
     r.max_error = err.overall.max_abs;
+    r.ssim = ssim(img.pixels, out), r.ms_ssim = ms_ssim(img.pixels, out);
+    if (!run.butteraugli.empty()) {
+      const fs::path png = dir / "decoded.png";
+      cli::write_image(out, png);
+      r.butteraugli =
+          butteraugli_distance(run.butteraugli, reference_png(work, img), png, dir / "butteraugli.txt");
+    }
     r.ok = true;
   } catch (const std::exception& ex) {
     r.error = ex.what();
@@ -127,6 +162,7 @@ std::vector<RdRecord> run_rd(const RdRun& run, const fs::path& work_root, std::o
     // Every codec reads the same 8-bit PPM/PGM (not PNG: gamma chunks would skew the anchors).
     const std::string pnm = run.images[i].pixels.channels == 1 ? ".pgm" : ".ppm";
     cli::write_image(run.images[i].pixels, work / (safe_name(run.images[i].name) + pnm));
+    if (!run.butteraugli.empty()) cli::write_image(run.images[i].pixels, reference_png(work, run.images[i]));
     for (std::size_t c = 0; c < run.codecs.size(); ++c)
       for (std::size_t r = 0; r < run.bpps.size(); ++r) jobs.push_back({i, c, r});
   }

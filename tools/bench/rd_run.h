@@ -1,10 +1,12 @@
 #pragma once
 // The rate-distortion run: every image x codec x target rate is compressed, decompressed and
-// measured (achieved bpp, PSNR, max error, times), independent jobs on a thread pool.
+// measured (achieved bpp, PSNR, max error, SSIM, MS-SSIM, butteraugli distance, times),
+// independent jobs on a thread pool.
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -33,6 +35,9 @@ struct RdRecord {
   double psnr = 0.0;       // dB over all channels (RGB for colour), peak 255
   double psnr_luma = 0.0;  // dB of Rec. 601 luma; the grey channel itself for grey images
   double max_error = 0.0;  // largest absolute sample error
+  double ssim = 0.0;       // SSIM of luma (tools/bench/ssim.h)
+  double ms_ssim = 0.0;    // MS-SSIM of luma (tools/bench/ssim.h)
+  double butteraugli = std::numeric_limits<double>::quiet_NaN();  // distance; NaN when not measured
   double encode_s = 0.0, decode_s = 0.0;
   std::string setting;  // encoder parameter used
   bool ok = false;
@@ -41,10 +46,11 @@ struct RdRecord {
 
 struct RdRun {
   std::vector<BenchImage> images;
-  std::vector<RdCodecPtr> codecs;  // pupwave transforms first, then anchors
-  std::vector<double> bpps;        // target rates, ascending
-  unsigned jobs = 1;               // worker threads (>= 1)
-  bool terminal = false;           // progress as a redrawn bar rather than lines
+  std::vector<RdCodecPtr> codecs;     // pupwave transforms first, then anchors
+  std::vector<double> bpps;           // target rates, ascending
+  unsigned jobs = 1;                  // worker threads (>= 1)
+  bool terminal = false;              // progress as a redrawn bar rather than lines
+  std::filesystem::path butteraugli;  // the butteraugli command; empty: distances not measured
 };
 
 // Expands --images arguments: a directory gives its image files (png, ppm, pgm, pnm, tif,
