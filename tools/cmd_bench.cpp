@@ -97,9 +97,24 @@ std::vector<double> parse_bpps(const std::string& text) {
   return bpps;
 }
 
-std::vector<BenchImage> load_images(const std::vector<std::string>& args) {
+// The images of the --images arguments. A file named on the command line that the harness cannot
+// take is an error; one found in a named directory (a 16-bit photograph beside 8-bit ones) is
+// skipped with a note, so that a folder of mixed images still runs.
+std::vector<BenchImage> load_images(const std::vector<std::string>& args, std::vector<std::string>& notes) {
   std::vector<BenchImage> images;
-  for (const fs::path& p : expand_image_args(args)) images.push_back(load_bench_image(p));
+  for (const std::string& a : args)
+    for (const fs::path& p : expand_image_args({a})) {
+      if (!fs::is_directory(a)) {
+        images.push_back(load_bench_image(p));
+        continue;
+      }
+      try {
+        images.push_back(load_bench_image(p));
+      } catch (const std::invalid_argument& e) {
+        notes.push_back("skipped " + std::string(e.what()));
+      }
+    }
+  if (images.empty()) throw std::invalid_argument("--images: no image the harness takes (8-bit grey or RGB)");
   return images;
 }
 
@@ -154,8 +169,8 @@ std::size_t run_rd_into(const BenchOptions& o, const fs::path& dir, const std::s
     run.butteraugli = *tool;
   else
     notes.push_back("butteraugli not found in PATH (Debian package butteraugli): its column is empty");
+  run.images = load_images(o.images, notes);
   for (const std::string& n : notes) std::cerr << "pupwave bench: " << n << '\n';
-  run.images = load_images(o.images);
   run.jobs = o.jobs;
   run.terminal = Progress::is_terminal(2);
   fs::create_directories(dir);
@@ -189,7 +204,9 @@ std::size_t run_coarse_into(const BenchOptions& o, const fs::path& dir, const st
   const auto specs = resolve_transforms(o.transforms);
   if (specs.empty()) throw std::invalid_argument("--transforms: the coarse experiment needs transforms");
   const auto levels = parse_levels(o.levels);
-  const auto images = load_images(o.images);
+  std::vector<std::string> notes;
+  const auto images = load_images(o.images, notes);
+  for (const std::string& n : notes) std::cerr << "pupwave bench: " << n << '\n';
   fs::create_directories(dir);
   const auto records = run_coarse(images, specs, levels, o.jobs, Progress::is_terminal(2), std::cerr);
   write_coarse_report(records, levels, command, machine_paragraph(o.jobs), dir);

@@ -278,6 +278,32 @@ TEST_F(BenchCli, BadArgumentsAreRejectedBeforeAnyWork) {
   }
 }
 
+// A folder of mixed photographs runs on those the harness takes; a 16-bit one named alone is refused.
+TEST_F(BenchCli, ImagesItCannotTakeAreSkippedInAFolderAndRefusedByName) {
+  const fs::path folder = dir_ / "images", out = dir_ / "rd";
+  fs::create_directories(folder);
+  fs::copy_file(image_, folder / "crop.png");
+  const fs::path deep = fs::path(PUPWAVE_TESTIMAGES_DIR) / "courtyard16.png";
+  fs::copy_file(deep, folder / "courtyard16.png");
+  const CliRun r = run_cli({"bench", "rd", "--images", folder.string(), "--transforms", "cdf97", "--bpp", "1",
+                            "--anchors", "none", "--jobs", "1", "--out", out.string()},
+                           dir_ / "log.txt", environment_path());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("skipped " + (folder / "courtyard16.png").string()), std::string::npos) << r.output;
+  const auto rows = read_csv(out / "results.csv");
+  ASSERT_NO_FATAL_FAILURE(check_results_columns(rows));
+  ASSERT_EQ(rows.size(), 2u);  // header + crop at 1 bpp
+  EXPECT_EQ(rows[1][0], "crop");
+  EXPECT_NE(read_text(out / "summary.md").find("> Note: skipped"), std::string::npos);
+
+  const CliRun alone = run_cli({"bench", "rd", "--images", deep.string(), "--out", (dir_ / "alone").string()},
+                               dir_ / "alone.txt", environment_path());
+  EXPECT_EQ(alone.exit_code, 1) << alone.output;
+  EXPECT_NE(alone.output.find("courtyard16.png: the harness takes 8-bit grey or RGB images"),
+            std::string::npos)
+      << alone.output;
+}
+
 TEST_F(BenchCli, CoarseRunWritesItsTable) {
   const fs::path out = dir_ / "coarse";
   const CliRun r = run_cli({"bench", "coarse", "--images", image_.string(), "--transforms", "cdf97,cdf53",
