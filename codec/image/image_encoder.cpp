@@ -32,7 +32,7 @@
 #include "codec/rate/metrics.h"
 #include "codec/rate/pcrd.h"
 #include "codec/rate/quantizer.h"
-#include "codec/rate/rate_guess.h"
+#include "codec/image/rate_guess.h"
 #include "codec/rate/rdoq.h"
 #include "transforms/separable.h"
 

@@ -30,7 +30,7 @@
 #include "codec/image/image_encoder_ht.h"
 #include "codec/image/image_strip_encoder.h"
 #include "codec/rate/byte_budget.h"
-#include "codec/rate/rate_guess.h"
+#include "codec/image/rate_guess.h"
 
 namespace pupwave {
 namespace {

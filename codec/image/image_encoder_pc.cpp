@@ -31,7 +31,7 @@
 #include "codec/image/lc_parent.h"
 #include "codec/image/pc_decoder.h"
 #include "codec/rate/byte_budget.h"
-#include "codec/rate/pc_rate_model.h"
+#include "codec/image/pc_rate_model.h"
 #include "codec/rate/quantizer.h"
 #include "transforms/separable.h"
 

@@ -1,4 +1,4 @@
-// The pc coder's rate search (codec/image/image_encoder_pc.cpp with codec/rate/pc_rate_model.h)
+// The pc coder's rate search (codec/image/image_encoder_pc.cpp with codec/image/pc_rate_model.h)
 // and its in-place decoder on the test photographs: byte budgets met from below within half a
 // percent in a few passes, trimmed streams decoding to the encoder's planes, the model near the
 // real coder, and decode_pc_into equal, bit for bit, to decoding into separate index planes.
@@ -19,7 +19,7 @@
 #include "codec/image/lc_parent.h"
 #include "codec/image/pc_decoder.h"
 #include "codec/rate/metrics.h"
-#include "codec/rate/pc_rate_model.h"
+#include "codec/image/pc_rate_model.h"
 #include "photo_crops.h"
 #include "transforms/executor.h"
 #include "transforms/separable.h"

@@ -1,4 +1,4 @@
-#include "codec/rate/pc_rate_model.h"
+#include "codec/image/pc_rate_model.h"
 
 #include <algorithm>
 #include <bit>
@@ -6,7 +6,7 @@
 #include <iterator>
 
 #include "codec/entropy/pc_cfl.h"
-#include "codec/rate/rate_guess.h"
+#include "codec/image/rate_guess.h"
 
 namespace pupwave {
 namespace {

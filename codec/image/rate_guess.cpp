@@ -1,4 +1,4 @@
-#include "codec/rate/rate_guess.h"
+#include "codec/image/rate_guess.h"
 
 #include <array>
 #include <bit>
