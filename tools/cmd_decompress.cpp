@@ -16,6 +16,7 @@
 #include "codec/image/image_strips.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
+#include "tools/cli_errors.h"
 #include "tools/cli_numbers.h"
 #include "tools/cli_stdio.h"
 #include "tools/commands.h"
@@ -308,7 +309,7 @@ void add_decompress_command(CLI::App& app) {
     o.verbosity.to_stderr = is_stdio(o.output);
     // The format is decided from the name (or --format) before anything is decoded.
     if (!o.format.empty() || !is_stdio(o.output)) o.format_as = format_name_path(o.output, o.format);
-    run_decompress(o);
+    naming_stream(o.input, [&] { run_decompress(o); });
   });
 }
 

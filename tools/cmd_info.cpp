@@ -8,6 +8,7 @@
 #include "codec/image/image_stream.h"
 #include "codec/volume/volume_codec.h"
 #include "tools/atomic_file.h"
+#include "tools/cli_errors.h"
 #include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
@@ -28,9 +29,12 @@ void run_info(const std::string& input) {
   const std::string& path = in.path;
   const std::string sig = signature(path);
   if (sig == "PUPW") {
-    std::cout << path << ": " << describe_stream(read_file_bytes(path)) << '\n';
+    const std::string text = naming_stream(input, [&] { return describe_stream(read_file_bytes(path)); });
+    std::cout << path << ": " << text << '\n';
   } else if (sig == "PUPV") {
-    std::cout << path << ": " << describe_volume_stream(read_file_bytes(path));
+    const std::string text =
+        naming_stream(input, [&] { return describe_volume_stream(read_file_bytes(path)); });
+    std::cout << path << ": " << text;
   } else if (is_vdb_path(path)) {
     std::cout << describe_vdb_file(path);
   } else {

@@ -27,12 +27,12 @@
 #include "codec/image/image_plan.h"
 #include "codec/image/image_strip_encoder.h"
 #include "codec/image/kept_block.h"
+#include "codec/image/rate_guess.h"
 #include "codec/image/transfer.h"
 #include "codec/rate/byte_budget.h"
 #include "codec/rate/metrics.h"
 #include "codec/rate/pcrd.h"
 #include "codec/rate/quantizer.h"
-#include "codec/image/rate_guess.h"
 #include "codec/rate/rdoq.h"
 #include "transforms/separable.h"
 

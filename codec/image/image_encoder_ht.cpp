@@ -29,8 +29,8 @@
 #include "codec/entropy/ht_blocks.h"
 #include "codec/image/image_encoder_ht.h"
 #include "codec/image/image_strip_encoder.h"
-#include "codec/rate/byte_budget.h"
 #include "codec/image/rate_guess.h"
+#include "codec/rate/byte_budget.h"
 
 namespace pupwave {
 namespace {

@@ -30,8 +30,8 @@
 #include "codec/image/image_stream.h"
 #include "codec/image/lc_parent.h"
 #include "codec/image/pc_decoder.h"
-#include "codec/rate/byte_budget.h"
 #include "codec/image/pc_rate_model.h"
+#include "codec/rate/byte_budget.h"
 #include "codec/rate/quantizer.h"
 #include "transforms/separable.h"
 

@@ -6,6 +6,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/run_cli.h"
 #include "tools/image_io.h"
@@ -60,6 +63,27 @@ TEST_F(CliErrors, DecompressingAnImageFileSaysItIsNoStream) {
   expect_failure(r, "not a pupwave image stream (bad signature)");
   EXPECT_EQ(r.output.find("pupwave pupwave"), std::string::npos) << r.output;
   EXPECT_EQ(leftovers(0), 0u);
+}
+
+// A damaged stream's error names the file it came from, for images and volumes, in decompress and info.
+TEST_F(CliErrors, DamagedStreamErrorsNameTheFile) {
+  const std::string image = (dir_ / "camera.pw").string(), volume = (dir_ / "wmag.pw").string();
+  ASSERT_EQ(test::run_cli({"compress", camera_, image, "-q"}).exit_code, 0);
+  ASSERT_EQ(test::run_cli({"compress", std::string(PUPWAVE_TESTIMAGES_DIR) + "/wmag91.float", volume,
+                           "--dims", "91,91,91", "--dtype", "f32", "-q"})
+                .exit_code,
+            0);
+  for (const auto& [whole, output] : {std::pair{image, "out.png"}, std::pair{volume, "out.raw"}}) {
+    const std::string cut = whole + ".cut";
+    fs::copy_file(whole, cut);
+    fs::resize_file(cut, fs::file_size(whole) / 2);
+    for (const auto& args : std::vector<std::vector<std::string>>{
+             {"decompress", cut, (dir_ / output).string()}, {"info", cut}}) {
+      const auto r = test::run_cli(args);
+      expect_failure(r, "error: " + cut + ": corrupt or truncated stream");
+    }
+  }
+  EXPECT_EQ(leftovers(4), 0u);
 }
 
 TEST_F(CliErrors, UnsupportedOutputFormat) {
