@@ -18,7 +18,7 @@
 #include "codec/api/api_image_options.h"
 #include "codec/api/api_volume_options.h"
 #include "codec/image/image_codec.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "codec/volume/volume_codec.h"
 #include "pupwave/pupwave.hpp"
 #include "tools/atomic_file.h"

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "codec/image/image_metrics.h"
 #include "codec/image/transfer.h"
-#include "codec/rate/metrics.h"
 #include "tools/cli_stdio.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"

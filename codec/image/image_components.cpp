@@ -5,7 +5,7 @@
 #include <functional>
 #include <span>
 
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 
 namespace pupwave {
 namespace {

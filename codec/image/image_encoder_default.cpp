@@ -3,8 +3,8 @@
 #include <limits>
 
 #include "codec/image/image_codec.h"
+#include "codec/image/image_metrics.h"
 #include "codec/image/image_plan.h"
-#include "codec/rate/metrics.h"
 
 namespace pupwave {
 

@@ -9,8 +9,8 @@
 
 #include "codec/error.h"
 #include "codec/image/image_components.h"
+#include "codec/image/image_metrics.h"
 #include "codec/rate/byte_budget.h"
-#include "codec/rate/metrics.h"
 #include "codec/rate/quantizer.h"
 #include "transforms/norms.h"
 #include "transforms/reach.h"

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "codec/error.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 
 namespace pupwave {
 namespace {

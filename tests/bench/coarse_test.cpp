@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/bench/coarse.h"
 #include "tools/image_io.h"
 

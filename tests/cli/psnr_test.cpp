@@ -9,7 +9,7 @@
 #include <regex>
 
 #include "cli/run_cli.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/image_io.h"
 
 namespace pupwave {

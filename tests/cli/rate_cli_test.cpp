@@ -16,7 +16,7 @@
 
 #include "cli/run_cli.h"
 #include "codec/image/image_codec.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/image_io.h"
 
 namespace pupwave {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "codec/format/crc32.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/atomic_file.h"
 #include "tools/image_io.h"
 

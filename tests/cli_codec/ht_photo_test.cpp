@@ -8,8 +8,8 @@
 
 #include "codec/format/crc32.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_metrics.h"
 #include "codec/image/image_stream.h"
-#include "codec/rate/metrics.h"
 #include "photo_crops.h"
 #include "tools/image_io.h"
 

@@ -13,9 +13,9 @@
 #include "codec/entropy/pc_priors.h"
 #include "codec/error.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_metrics.h"
 #include "codec/image/image_stream.h"
 #include "codec/image/lc_parent.h"
-#include "codec/rate/metrics.h"
 #include "photo_crops.h"
 #include "transforms/separable.h"
 

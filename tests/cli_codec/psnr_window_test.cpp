@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "codec/image/image_codec.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tests/cli_codec/photo_crops.h"
 
 namespace pupwave::test {

@@ -10,10 +10,10 @@
 
 #include "cli_codec/photo_crops.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_metrics.h"
 #include "codec/image/image_plan.h"
 #include "codec/image/image_strips.h"
 #include "codec/image/transfer.h"
-#include "codec/rate/metrics.h"
 
 namespace pupwave {
 namespace {

@@ -7,9 +7,9 @@
 
 #include "codec/error.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_metrics.h"
 #include "codec/image/image_stream.h"
 #include "codec/image/transfer.h"
-#include "codec/rate/metrics.h"
 #include "test_images.h"
 #include "thread_independence.h"
 #include "transforms/separable.h"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "codec/image/image_codec.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/image_io.h"
 
 namespace pupwave {

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "codec/image/image_codec.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/image_io.h"
 #include "transforms/separable.h"
 

@@ -7,7 +7,7 @@
 
 #include "codec/entropy/block_encoder.h"
 #include "codec/image/image_codec.h"
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "codec/rate/rdoq.h"
 #include "tools/image_io.h"
 

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/bench/progress.h"
 #include "tools/bench/rd_report.h"
 #include "transforms/executor.h"

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 #include "tools/bench/process.h"
 #include "tools/bench/progress.h"
 #include "tools/bench/ssim.h"

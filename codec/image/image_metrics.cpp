@@ -1,4 +1,4 @@
-#include "codec/rate/metrics.h"
+#include "codec/image/image_metrics.h"
 
 #include <algorithm>
 #include <cmath>
