@@ -47,7 +47,7 @@ struct CompressOptions {
   unsigned threads = 0;
   bool report_psnr = false;
   bool keep_nonfinite = false;
-  std::string transfer = "log";  // --transfer: log or linear
+  std::string transfer = "log";  // --transfer: log, adaptive or linear
   // volumes
   std::string dims, dtype, grid;
   double bpv = 0.0, max_error = 0.0, max_error_rel = 0.0;
@@ -248,7 +248,9 @@ void run_compress(const CompressOptions& opt) {
   enc.executor = executor.get();
   enc.measure_psnr = opt.report_psnr;
   enc.keep_nonfinite = opt.keep_nonfinite;
-  enc.transfer = opt.transfer == "linear" ? Transfer::linear : Transfer::log2;
+  enc.transfer = opt.transfer == "linear"     ? Transfer::linear
+                 : opt.transfer == "adaptive" ? Transfer::log2_adaptive
+                                              : Transfer::log2;
   if (!image.metadata.empty()) enc.metadata = &image.metadata;
   const auto start = std::chrono::steady_clock::now();
   const EncodeResult r = [&] {
@@ -350,8 +352,9 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option(
          "--transfer", opt->transfer,
          "float images: coding domain, log (default: log2 of the value, --psnr is log-PSNR with peak "
-         "1 stop) or linear (--psnr against the value range)")
-      ->transform(CLI::IsMember({"log", "linear"}, CLI::ignore_case));
+         "1 stop), adaptive (log2 with an offset chosen per image: more bits to highlights, higher "
+         "PSNR in linear light; --psnr is adaptive log-PSNR) or linear (--psnr against the value range)")
+      ->transform(CLI::IsMember({"log", "adaptive", "linear"}, CLI::ignore_case));
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_flag("--report-psnr", opt->report_psnr,
                 "images: decode the stream in memory and report its PSNR against the input (costs about "

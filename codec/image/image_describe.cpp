@@ -1,6 +1,7 @@
 // describe_stream: a readable summary of a .pw file for `pupwave info`.
 #include <cstdint>
 #include <sstream>
+#include <string>
 
 #include "codec/error.h"
 #include "codec/image/image_stream.h"
@@ -15,10 +16,16 @@ struct ResolutionSummary {
   std::size_t bytes = 0;
 };
 
-const char* to_string(Transfer t) {
-  return t == Transfer::log2
-             ? "log2 (coded as log2(1 + |x| / 2^-14), signed; targets in log-PSNR, peak 1 stop)"
-             : "linear";
+std::string to_string(Transfer t, int offset_log2) {
+  switch (t) {
+    case Transfer::linear: return "linear";
+    case Transfer::log2:
+      return "log2 (coded as log2(1 + |x| / 2^-14), signed; targets in log-PSNR, peak 1 stop)";
+    case Transfer::log2_adaptive:
+      return "log2 adaptive (coded as log2(1 + |x| / 2^" + std::to_string(offset_log2) +
+             "), signed; targets in adaptive log-PSNR, peak 1 stop)";
+  }
+  return "unknown";
 }
 
 // The META chunk: channel names, windows, attributes.
@@ -55,7 +62,8 @@ std::string describe_stream(std::span<const std::uint8_t> bytes) {
   out << ", " << h.channels << " channel(s), " << to_string(h.type) << "\n";
   out << "  colour      " << to_string(h.colour) << "\n";
   if (!is_integer(h.type))
-    out << "  transfer    " << to_string(h.transfer) << (h.nonnegative ? ", non-negative input" : "") << "\n";
+    out << "  transfer    " << to_string(h.transfer, h.transfer_offset_log2)
+        << (h.nonnegative ? ", non-negative input" : "") << "\n";
   if (!h.nonfinite.empty())
     out << "  non-finite  " << h.nonfinite.size() << " sample(s) kept exactly (NFIN)\n";
   describe_metadata(out, h.metadata, h.dims);

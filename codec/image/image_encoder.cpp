@@ -828,6 +828,7 @@ EncodeResult encode_for_psnr(const ImageView& image, ImagePlan& plan, double psn
 // What the stream records about the coded domain of a float image (transfer.h).
 struct CodedDomain {
   Transfer transfer = Transfer::linear;
+  int offset_log2 = kLogOffsetLog2;
   bool nonnegative = false;
   std::vector<NonFiniteSample> nonfinite;
 };
@@ -850,6 +851,7 @@ EncodeResult encode_with_levels(const ImageView& image, const EncodeOptions& opt
   if (coder_traits(options.entropy).whole_bands) planned.block_size = kLcBlockSize;
   ImagePlan plan = plan_image(image, planned);
   plan.header.transfer = domain.transfer;
+  plan.header.transfer_offset_log2 = domain.offset_log2;
   plan.header.nonnegative = domain.nonnegative;
   plan.header.nonfinite = domain.nonfinite;
   if (!coder_traits(options.entropy).embedded) return encode_not_embedded(image, plan, options);
@@ -987,10 +989,13 @@ EncodeResult encode_any(const ImageView& image, const EncodeOptions& options) {
   if (image.channels > kMaxChannels || image.width > kMaxAxisExtent || image.height > kMaxAxisExtent ||
       image.plane_size() * image.channels > kMaxTotalSamples)
     throw EncodeError("image exceeds 65536 per axis, 64 channels or 2^31 samples");
-  CodedDomainImage coded = to_coded_domain(image, options.transfer, options.keep_nonfinite);
+  const int offset_log2 = options.mode == RateMode::bpp
+                              ? adaptive_offset_log2(options.target / double(image.channels))
+                              : kAdaptiveOffsetNoRate;
+  CodedDomainImage coded = to_coded_domain(image, options.transfer, options.keep_nonfinite, offset_log2);
   ImageView view = view_of(coded.image);
-  if (options.transfer == Transfer::log2) view.peak = 1.0;  // log-PSNR: peak 1 stop
-  CodedDomain domain{options.transfer, coded.nonnegative, std::move(coded.nonfinite)};
+  if (options.transfer != Transfer::linear) view.peak = 1.0;  // log-PSNR: peak 1 stop
+  CodedDomain domain{options.transfer, coded.offset_log2, coded.nonnegative, std::move(coded.nonfinite)};
   const std::size_t kept = domain.nonfinite.size();
   EncodeResult r = [&] {
     if (options.mode != RateMode::psnr) return encode_in_domain(view, options, domain);

@@ -35,6 +35,8 @@ std::vector<std::uint8_t> header_payload(const StreamHeader& h) {
   for (float s : h.steps) w.f32(s);
   w.u8(std::uint8_t(h.transfer));
   w.u8(h.nonnegative ? 1 : 0);
+  // Only log2_adaptive carries its offset, so streams of the other transfers parse as before.
+  if (h.transfer == Transfer::log2_adaptive) w.u8(std::uint32_t(h.transfer_offset_log2 - kLogOffsetLog2));
   return p;
 }
 
@@ -100,9 +102,13 @@ StreamHeader parse_header(std::span<const std::uint8_t> payload) {
   h.steps.resize(step_count);
   for (auto& s : h.steps) s = r.f32();
   const std::uint32_t transfer = r.u8(), nonnegative = r.u8();
-  require_stream(transfer <= 1 && nonnegative <= 1, "transfer or flags field");
+  require_stream(transfer <= 2 && nonnegative <= 1, "transfer or flags field");
   h.transfer = Transfer(transfer);
   h.nonnegative = nonnegative != 0;
+  if (h.transfer == Transfer::log2_adaptive) {
+    h.transfer_offset_log2 = kLogOffsetLog2 + int(r.u8());
+    require_stream(h.transfer_offset_log2 <= kMaxAdaptiveOffsetLog2, "transfer offset exponent");
+  }
   require_stream(r.remaining() == 0, "HEAD chunk has trailing bytes");
   validate_coding(h);
   return h;

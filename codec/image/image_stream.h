@@ -40,8 +40,13 @@ inline constexpr std::size_t kMaxTotalSamples = std::size_t(1) << 31;
 inline constexpr std::size_t kMaxSpecLength = 4096;
 inline constexpr std::uint32_t kMaxChannels = 64;
 
-// Domain the samples are coded in (float images): see codec/image/transfer.h.
-enum class Transfer : std::uint8_t { linear = 0, log2 = 1 };
+// Domain the samples are coded in (float images): see codec/image/transfer.h. log2_adaptive is
+// log2 with an offset chosen per image (StreamHeader::transfer_offset_log2).
+enum class Transfer : std::uint8_t { linear = 0, log2 = 1, log2_adaptive = 2 };
+// The log2 transfer's offset a = 2^kLogOffsetLog2 (the smallest normal half float), and the
+// largest offset exponent log2_adaptive may signal (a = 2^16, above the half range).
+inline constexpr int kLogOffsetLog2 = -14;
+inline constexpr int kMaxAdaptiveOffsetLog2 = 16;
 
 // A sample the coded planes cannot hold (NaN, +-infinity), restored exactly after decoding.
 struct NonFiniteSample {
@@ -58,13 +63,15 @@ struct StreamHeader {
   EntropyCoder entropy = EntropyCoder::ebcot;
   bool reversible = false;  // integer transform, no quantization: lossless
   int levels = 0;
-  Extent block_log2{6, 6, 0};              // code-block extent 2^k per axis
-  double delta = 0.375;                    // reconstruction offset in a bin (index units), [0, 1)
-  std::string spec;                        // transform spec for make_transform
-  std::vector<float> steps;                // quantizer step per (component, band): c * bands + b
-  Transfer transfer = Transfer::linear;    // float images: coded as transfer(x), inverted on decode
-  bool nonnegative = false;                // every input sample was >= 0: decoded values are clamped at 0
-  ImageMetadata metadata;                  // META chunk (written when not empty)
+  Extent block_log2{6, 6, 0};            // code-block extent 2^k per axis
+  double delta = 0.375;                  // reconstruction offset in a bin (index units), [0, 1)
+  std::string spec;                      // transform spec for make_transform
+  std::vector<float> steps;              // quantizer step per (component, band): c * bands + b
+  Transfer transfer = Transfer::linear;  // float images: coded as transfer(x), inverted on decode
+  int transfer_offset_log2 =
+      kLogOffsetLog2;        // log2 of the log transfers' offset a (signalled for log2_adaptive)
+  bool nonnegative = false;  // every input sample was >= 0: decoded values are clamped at 0
+  ImageMetadata metadata;    // META chunk (written when not empty)
   std::vector<NonFiniteSample> nonfinite;  // NFIN chunk (written when not empty)
 
   Extent block_size() const {

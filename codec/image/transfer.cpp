@@ -12,6 +12,11 @@
 namespace pupwave {
 namespace {
 
+// The adaptive transfer's offset exponent at 1 bit per sample, and the largest it takes (the
+// lowest rate it was fitted at).
+constexpr double kAdaptiveOffsetAtOneBit = -5.2;
+constexpr int kAdaptiveOffsetHighest = -4;
+
 std::uint32_t float_bits(float v) {
   std::uint32_t b = 0;
   std::memcpy(&b, &v, 4);
@@ -33,20 +38,39 @@ float bits_float(std::uint32_t b) {
 
 }  // namespace
 
-double to_transfer(double x, Transfer t) {
+double to_transfer(double x, Transfer t, int offset_log2) {
   if (t == Transfer::linear) return x;
-  return std::copysign(std::log2(1.0 + std::abs(x) / kLogTransferOffset), x);
+  return std::copysign(std::log2(1.0 + std::ldexp(std::abs(x), -offset_log2)), x);
 }
 
-double from_transfer(double v, Transfer t) {
+double from_transfer(double v, Transfer t, int offset_log2) {
   if (t == Transfer::linear) return v;
-  return std::copysign(kLogTransferOffset * (std::exp2(std::abs(v)) - 1.0), v);
+  return std::copysign(std::ldexp(std::exp2(std::abs(v)) - 1.0, offset_log2), v);
 }
 
-std::string metric_name(Transfer t) { return t == Transfer::log2 ? "log-PSNR" : "PSNR"; }
+std::string metric_name(Transfer t) {
+  switch (t) {
+    case Transfer::linear: return "PSNR";
+    case Transfer::log2: return "log-PSNR";
+    case Transfer::log2_adaptive: return "adaptive log-PSNR";
+  }
+  return "PSNR";
+}
 
-CodedDomainImage to_coded_domain(const ImageView& image, Transfer t, bool keep_nonfinite) {
+// Fitted on Blender's eight HDR maps against OpenEXR DWAA/DWAB at Q 45 .. 400 (bench/hdr_vs_dwa.py,
+// bench/results/image-lossless-hdr.md): the offset that kept Pupwave ahead in both log-PSNR and
+// linear-light PSNR fell by about two stops per doubling of the rate (2^-4 at 0.67 bits per
+// sample, 2^-8 at 2.7, 2^-10 at 6), since at high rates the dark pixels' relative precision
+// decides log-PSNR and at low rates the highlights decide linear PSNR. The image's own
+// statistics (its log-average value) predicted nothing beyond the rate.
+int adaptive_offset_log2(double bits_per_sample) {
+  const double k = kAdaptiveOffsetAtOneBit - 2.0 * std::log2(bits_per_sample);
+  return std::clamp(int(std::lround(k)), kLogOffsetLog2, kAdaptiveOffsetHighest);
+}
+
+CodedDomainImage to_coded_domain(const ImageView& image, Transfer t, bool keep_nonfinite, int offset_log2) {
   CodedDomainImage out;
+  out.offset_log2 = t == Transfer::log2_adaptive ? offset_log2 : kLogOffsetLog2;
   out.image = Image(image.width, image.height, image.channels, image.type);
   std::size_t bad = 0, first_c = 0, first_x = 0, first_y = 0;
   for (std::size_t c = 0; c < image.channels; ++c)
@@ -62,7 +86,7 @@ CodedDomainImage to_coded_domain(const ImageView& image, Transfer t, bool keep_n
           continue;
         }
         out.nonnegative = out.nonnegative && v >= 0.0f;
-        row[x] = float(to_transfer(v, t));
+        row[x] = float(to_transfer(v, t, out.offset_log2));
       }
     }
   if (bad > 0 && !keep_nonfinite) refuse_nonfinite(bad, first_c, first_x, first_y);
@@ -72,19 +96,21 @@ CodedDomainImage to_coded_domain(const ImageView& image, Transfer t, bool keep_n
 void from_coded_domain(Image& image, const StreamHeader& h, bool full_resolution) {
   const double lo = h.nonnegative ? 0.0 : -std::numeric_limits<double>::infinity();
   const double hi = image.type == SampleType::f16 ? 65504.0 : std::numeric_limits<double>::infinity();
-  for (float& v : image.samples) v = float(std::clamp(from_transfer(v, h.transfer), std::max(lo, -hi), hi));
+  for (float& v : image.samples)
+    v = float(std::clamp(from_transfer(v, h.transfer, h.transfer_offset_log2), std::max(lo, -hi), hi));
   if (!full_resolution) return;  // the listed positions are those of the full-size image
   for (const NonFiniteSample& s : h.nonfinite) image.plane(s.channel)[s.index] = bits_float(s.bits);
 }
 
-double transfer_psnr(const Image& reference, const Image& test, Transfer t) {
+double transfer_psnr(const Image& reference, const Image& test, Transfer t, int offset_log2) {
   if (reference.samples.size() != test.samples.size())
     throw std::invalid_argument("transfer_psnr: images of different shapes");
   double sum = 0.0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < reference.samples.size(); ++i) {
     if (!std::isfinite(reference.samples[i])) continue;
-    const double d = to_transfer(reference.samples[i], t) - to_transfer(test.samples[i], t);
+    const double d =
+        to_transfer(reference.samples[i], t, offset_log2) - to_transfer(test.samples[i], t, offset_log2);
     sum += d * d;
     ++n;
   }

@@ -87,6 +87,8 @@ enc "$tmp/grey.pgm" --lossless --levels 2
 # The parent-context coder (entropy coder 4, lossy only): parents across levels, RGB and grey.
 enc "$tmp/rgb.ppm" --bpp 2 --entropy pc
 enc "$tmp/grey.pgm" --psnr 35 --entropy pc --levels 3
+# A half-float image in the adaptive log transfer (transfer 2, with its offset byte).
+enc "$out/exr/seed-rgb-half.exr" --bpp 4 --transfer adaptive
 for f in "$out"/image/seed-*.pw; do
   for level in 0 1 2; do
     { printf "\\x$(printf %02x $level)"; cat "$f"; } > "$out/image_level/$(basename "$f" .pw)-level$level"
