@@ -9,9 +9,9 @@
 
 #include "codec/error.h"
 #include "codec/image/image_codec.h"
+#include "codec/image/image_metrics.h"
 #include "codec/image/image_stream.h"
 #include "codec/image/transfer.h"
-#include "codec/rate/metrics.h"
 #include "hdr/hdr_test_util.h"
 #include "tools/image_io.h"
 
