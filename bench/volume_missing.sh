@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Missing values: wmag91 (testimages/) with a land mask (every voxel below 40, about a fifth, set
+# Missing values: wmag91 (testimages/) with a land mask (every voxel below 8, about a fifth, set
 # to NaN, and a 31 x 24 x 20 corner block set to the fill value -999), coded at an absolute bound
 # E of 1e-3 / 1e-2 of the valid voxels' range, against the same field without the mask (every
 # voxel valid, the masked ones holding their original values) and against the masked voxels set to
@@ -18,7 +18,7 @@ import numpy as np
 pupwave, work, source = sys.argv[1:4]
 v = np.fromfile(source, '<f4').reshape(91, 91, 91)
 masked = v.copy()
-masked[masked < 40] = np.nan
+masked[masked < 8] = np.nan
 masked[:20, :24, 60:] = -999.0
 missing = np.isnan(masked) | (masked == -999.0)
 zeroed = np.where(missing, 0, v).astype('<f4')

