@@ -16,7 +16,9 @@ struct Level {
   Extent dims{0, 0, 0};
   std::vector<double> value;
   std::vector<std::uint8_t> known;
-  std::size_t index(std::size_t x, std::size_t y, std::size_t z) const { return x + dims[0] * (y + dims[1] * z); }
+  std::size_t index(std::size_t x, std::size_t y, std::size_t z) const {
+    return x + dims[0] * (y + dims[1] * z);
+  }
 };
 
 // The next coarser level: each cell the mean of its known children, known when any child is.
