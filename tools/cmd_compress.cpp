@@ -51,6 +51,7 @@ struct CompressOptions {
   // volumes
   std::string dims, dtype, grid;
   double bpv = 0.0, max_error = 0.0, max_error_rel = 0.0;
+  std::optional<double> fill_value;  // --fill-value: voxels equal to it are missing, kept exactly
   std::size_t brick = 64;
   bool strict = false;  // a missed rate target is an error and nothing is written
   Verbosity verbosity;
@@ -124,6 +125,7 @@ pupwave::api::VolumeOptions volume_options(const CompressOptions& opt) {
   o.transform = opt.transform;
   o.levels = opt.levels;
   o.brick = opt.brick;
+  o.fill_value = opt.fill_value;
   return o;
 }
 
@@ -222,9 +224,9 @@ void run_compress(const CompressOptions& opt) {
   if (!is_stdio(opt.output)) check_output_path(opt.output);
   if (is_volume_input(opt)) return run_compress_volume(opt);
   if (opt.bpv > 0.0 || opt.max_error > 0.0 || opt.max_error_rel > 0.0 || !opt.dtype.empty() ||
-      !opt.grid.empty())
+      !opt.grid.empty() || opt.fill_value)
     throw std::invalid_argument(
-        "--bpv, --max-error, --max-error-rel, --dtype and --grid apply to volumes only");
+        "--bpv, --max-error, --max-error-rel, --fill-value, --dtype and --grid apply to volumes only");
   // An 8-bit binary PGM/PPM is encoded from the file mapped in place, never widened to float.
   const auto mapped = is_stdio(opt.input) ? nullptr : MappedPnm::open(opt.input);
   const Image image = mapped ? Image() : read_image(opt.input);
@@ -328,6 +330,9 @@ void add_compress_command(CLI::App& app) {
   lossless->excludes(bpv, max_error, max_error_rel);
   bpv->excludes(max_error, max_error_rel);
   max_error->excludes(max_error_rel);
+  cmd->add_option("--fill-value", opt->fill_value,
+                  "dense volumes: voxels equal to V are missing values (as NaN and infinities always are): "
+                  "restored exactly, outside the error bound, the value range and the statistics");
   cmd->add_option("--dims", opt->dims, "raw volume input: X,Y,Z (x fastest)");
   cmd->add_option("--dtype", opt->dtype, "raw volume input: u8, u16, f32 or f64 (little endian)");
   cmd->add_option("--grid", opt->grid, ".vdb input: compress only the grids of this name");

@@ -1,10 +1,12 @@
 // The C API (pupwave/pupwave.h) over the C++ API: handles own C++ objects, every entry point
 // catches everything and turns it into a status plus a thread-local message.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,7 @@ struct pupwave_options {
   std::size_t brick = 64;
   pupwave_coder coder = PUPWAVE_CODER_AUTO;
   int effort = 1;
+  std::optional<double> fill_value;
 };
 
 struct pupwave_stream {
@@ -135,6 +138,7 @@ pupwave::api::VolumeOptions volume_options(const pupwave_options* o) {
   out.levels = o->levels;
   out.threads = o->threads;
   out.brick = o->brick;
+  out.fill_value = o->fill_value;
   return out;
 }
 
@@ -215,6 +219,14 @@ pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick)
   return guarded([&] {
     require(options != nullptr, "options is null");
     options->brick = brick;
+  });
+}
+
+pupwave_status pupwave_options_set_fill_value(pupwave_options* options, double fill_value) {
+  return guarded([&] {
+    require(options != nullptr, "options is null");
+    require(std::isfinite(fill_value), "fill value must be finite (NaN and infinities are always missing)");
+    options->fill_value = fill_value;
   });
 }
 

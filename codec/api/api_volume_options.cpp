@@ -11,9 +11,9 @@
 namespace pupwave::api {
 namespace {
 
-// Widens [lo, hi] by the active voxels of a box (one typed pass, summarize_values).
-void widen(const pupwave::VolumeView& v, double& lo, double& hi) {
-  const ValueSummary s = summarize_values(v);
+// Widens [lo, hi] by the active voxels of a box that are not missing (one typed pass, summarize_values).
+void widen(const pupwave::VolumeView& v, double& lo, double& hi, const std::optional<double>& fill = {}) {
+  const ValueSummary s = summarize_values(v, v.is_sparse() ? std::nullopt : fill);
   lo = std::min(lo, s.lo), hi = std::max(hi, s.hi);
 }
 
@@ -49,17 +49,18 @@ const char* default_transform(VolumeRateMode mode) {
   }
 }
 
-// The largest value range (max - min of the active voxels, active tiles included) over the grids;
+// The largest value range (max - min of the active voxels not missing, active tiles included) over the grids;
 // 0 when every grid is constant or has no active voxel.
-double largest_range(const std::vector<VolumeGrid>& grids, std::span<const pupwave::VolumeView> views) {
+double largest_range(const std::vector<VolumeGrid>& grids, std::span<const pupwave::VolumeView> views,
+                     const std::optional<double>& fill) {
   double range = 0.0;
   for (std::size_t i = 0; i < grids.size(); ++i) {
     const VolumeGrid& g = grids[i];
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     if (i < views.size() && views[i].data != nullptr)
-      widen(views[i], lo, hi);
+      widen(views[i], lo, hi, fill);
     else if (!g.is_blocked() && !g.is_opaque())
-      widen(view_of(g.volume), lo, hi);
+      widen(view_of(g.volume), lo, hi, fill);
     for (const VolumeBlock& b : g.blocks) widen(view_of(b.volume), lo, hi);
     for (const VolumeTile& t : g.tiles)
       if (t.active) lo = std::min(lo, t.value), hi = std::max(hi, t.value);
@@ -83,7 +84,7 @@ ResolvedVolumeOptions resolve_volume_options(const VolumeOptions& options,
   VolumeEncodeOptions& enc = out.encode;
   enc.mode = encoder_mode(rate);
   if (rate == VolumeRate::max_error_rel) {
-    const double range = largest_range(grids, views);
+    const double range = largest_range(grids, views, options.fill_value);
     out.error_unit = range > 0.0 ? range : 1.0;
     const double fraction = options.rate == VolumeRate::automatic ? kDefaultRelativeError : options.target;
     enc.target = fraction * out.error_unit;
@@ -93,6 +94,7 @@ ResolvedVolumeOptions resolve_volume_options(const VolumeOptions& options,
   enc.transform = !options.transform.empty() ? options.transform : default_transform(enc.mode);
   enc.levels = options.levels;
   enc.brick = options.brick;
+  enc.fill_value = options.fill_value;
   return out;
 }
 

@@ -49,6 +49,10 @@ struct VolumeEncodeOptions {
   std::size_t block = 32;  // code-block edge inside a brick (power of two, 16..64)
   // Runs the bricks as parallel tasks; null: default_executor(). Streams never depend on it.
   const Executor* executor = nullptr;
+  // Missing values of dense grids, restored bit for bit and left out of the bound, the range
+  // and the statistics: NaN and infinities always, and voxels equal to this value when set
+  // (e.g. -999, or netCDF's 9.96921e36). Must be finite. Sparse grids keep refusing NaN.
+  std::optional<double> fill_value;
 };
 
 struct VolumeEncodeResult {
@@ -71,8 +75,9 @@ struct VolumeEncodeResult {
 
 // Compresses grids (each a Volume with its name, class, transform and metadata). Throws
 // std::invalid_argument for bad options (unknown transform, lossless of float data or with a
-// non-reversible transform, non-positive target, bad brick/block size) and EncodeError for
-// volumes the format cannot hold (no grids, empty or too large volumes, non-finite samples).
+// non-reversible transform, non-positive target, bad brick/block size, a non-finite fill value)
+// and EncodeError for volumes the format cannot hold (no grids, empty or too large volumes,
+// non-finite samples in a sparse grid). Dense grids may hold missing values (fill_value).
 VolumeEncodeResult encode_volumes(const std::vector<VolumeGrid>& grids, const VolumeEncodeOptions& options);
 
 // The same with box grids read in place through views of the caller's memory (typed, strided;

@@ -314,7 +314,7 @@ void restore_blocks(VolumeGrid& g, const BlocksChunk& layout, int level) {
 void restore_sparse(std::vector<VolumeGrid>& grids, const ParsedVolumeStream& s, int level, bool to_blocks) {
   for (std::size_t g = 0; g < grids.size(); ++g) {
     if (s.header.blocked[g] == 1) restore_blocks(grids[g], s.layouts[g], level);
-    if (!s.header.grids[g].volume.is_sparse() || to_blocks) continue;
+    if (!s.header.grids[g].volume.is_sparse() || (to_blocks && !s.header.has_missing(g))) continue;
     if (level == 0)
       restore_mask(grids[g].volume, s.masks[g]);
     else
@@ -751,7 +751,7 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
       g.opaque = s.opaque[i];  // carried verbatim, at every level
     else if (h.blocked[i] == 1)
       allocate_blocks(g, s.layouts[i], level);
-    else if (to_blocks && h.grids[i].volume.is_sparse())
+    else if (to_blocks && h.grids[i].volume.is_sparse() && !h.has_missing(i))
       box_to_blocks(g, s.masks[i], bricks[i].box, level, content[i]);
     else
       g.volume.samples.assign(g.volume.count(), g.volume.background);
@@ -774,6 +774,8 @@ std::vector<VolumeGrid> decode_volumes(std::span<const std::uint8_t> bytes, int 
     place(target, at, part, values);  // bricks never overlap
   });
   restore_sparse(grids, s, level, to_blocks);
+  for (std::size_t i = 0; i < grids.size(); ++i)
+    if (h.has_missing(i)) grids[i].volume.active.clear();  // dense, its missing voxels restored exactly
   return grids;
 }
 
@@ -798,6 +800,7 @@ std::optional<VolumeGrid> decode_volume_into(std::span<const std::uint8_t> bytes
   VolumeGrid grid = h.grids[g];
   if (level > 0) scale_placement(grid, level);
   grid.volume.dims = level_extent(grid.volume.dims, level);  // volume.active: the header's sparse marker
+  if (h.has_missing(g)) grid.volume.active.clear();          // returned dense
   const VolumeOutput out = allocate(grid);
   if (out.data == nullptr || out.dims != grid.volume.dims)
     throw std::invalid_argument("decode_volume_into: the output does not match the grid's dims");
@@ -851,7 +854,8 @@ VolumeGrid decode_volume_box_into(std::span<const std::uint8_t> bytes, std::stri
   VolumeGrid grid = h.grids[g];
   if (level > 0) scale_placement(grid, level);
   for (std::size_t a = 0; a < 3; ++a) grid.origin[a] += std::int64_t(crop.first[a]);
-  grid.volume.dims = crop.dims;  // volume.active: the header's sparse marker
+  grid.volume.dims = crop.dims;                      // volume.active: the header's sparse marker
+  if (h.has_missing(g)) grid.volume.active.clear();  // returned dense
   if (h.blocked[g] == 1) return blocked_box_into(grid, s, g, coding, bricks[g], level, ex, allocate);
   const VolumeOutput out = allocate(grid);
   if (out.data == nullptr || out.dims != grid.volume.dims)

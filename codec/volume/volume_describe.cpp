@@ -9,7 +9,7 @@ namespace pupwave {
 namespace {
 
 struct GridCounts {
-  std::size_t active = 0, tiles = 0, blocks = 0;
+  std::size_t active = 0, tiles = 0, blocks = 0, missing = 0;
 };
 
 std::size_t active_states(const MaskChunk& m) {
@@ -28,6 +28,7 @@ GridCounts count_grid(const ParsedVolumeStream& s, std::size_t g) {
       if (t.active) n.active += std::size_t(t.edge) * t.edge * t.edge, ++n.tiles;
   } else {
     n.active = v.is_sparse() ? s.masks[g].active : v.count();
+    if (s.header.has_missing(g)) n.missing = v.count() - n.active;
   }
   return n;
 }
@@ -69,17 +70,21 @@ std::string describe_volume_stream(std::span<const std::uint8_t> bytes) {
                                  : std::string();
     out << "  grid " << g << "      '" << grid.name << "'" << part << ", " << to_string(grid.grid_class)
         << ", " << to_string(v.type)
-        << (h.blocked[g]    ? ", sparse (blocks and tiles)"
-            : v.is_sparse() ? ", sparse"
-                            : ", dense")
+        << (h.blocked[g]       ? ", sparse (blocks and tiles)"
+            : h.has_missing(g) ? ", dense with missing values"
+            : v.is_sparse()    ? ", sparse"
+                               : ", dense")
         << ", background " << v.background << '\n'
-        << "              " << n.active << " active voxels, " << n.tiles << " active tile(s), " << n.blocks
-        << " block(s); bounding box (" << grid.origin[0] << "," << grid.origin[1] << "," << grid.origin[2]
-        << ")..(" << grid.origin[0] + std::int64_t(v.dims[0]) - 1 << ","
-        << grid.origin[1] + std::int64_t(v.dims[1]) - 1 << "," << grid.origin[2] + std::int64_t(v.dims[2]) - 1
-        << "), " << v.dims[0] << " x " << v.dims[1] << " x " << v.dims[2] << "; voxel size " << size[0]
-        << " x " << size[1] << " x " << size[2] << "; " << s.grid_bytes[g] << " bytes ("
-        << 100.0 * double(s.grid_bytes[g]) / double(bytes.size()) << "% of the stream)\n";
+        << "              " << n.active << " active voxels, "
+        << (h.has_missing(g) ? std::to_string(n.missing) + " missing voxels (NaN, infinity or fill value), "
+                             : "")
+        << n.tiles << " active tile(s), " << n.blocks << " block(s); bounding box (" << grid.origin[0] << ","
+        << grid.origin[1] << "," << grid.origin[2] << ")..(" << grid.origin[0] + std::int64_t(v.dims[0]) - 1
+        << "," << grid.origin[1] + std::int64_t(v.dims[1]) - 1 << ","
+        << grid.origin[2] + std::int64_t(v.dims[2]) - 1 << "), " << v.dims[0] << " x " << v.dims[1] << " x "
+        << v.dims[2] << "; voxel size " << size[0] << " x " << size[1] << " x " << size[2] << "; "
+        << s.grid_bytes[g] << " bytes (" << 100.0 * double(s.grid_bytes[g]) / double(bytes.size())
+        << "% of the stream)\n";
   }
   std::size_t outlier_bytes = 0, outlier_bricks = 0;
   for (const BrickChunk& b : s.bricks)

@@ -3,6 +3,7 @@
 // pass of the fixed-step, lossless and max-error modes is volume_encoder_bricks.cpp (the step per
 // brick for a bound: volume_encoder_bound.cpp), the rate modes' volume_encoder_rate.cpp.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -64,15 +65,22 @@ int log2_exact(std::size_t v, std::size_t lo, std::size_t hi, const char* what) 
 // Values of each part of each grid (grid_parts), read once for validation and planning.
 using Summaries = std::vector<std::vector<ValueSummary>>;
 
-// Checks one dense box (a box grid or a block) with the summary of its values; `total` is the
-// running voxel count of all grids. Returns its largest |sample| (for the precision check).
-double validate_volume(const VolumeView& v, const ValueSummary& values, std::size_t total) {
+// Checks one box (a box grid or a block) with the summary of its values; `total` is the running
+// voxel count of all grids; `dense`: a dense box grid, whose NaN and infinities are missing
+// values. Returns its largest |sample| (for the precision check).
+double validate_volume(const VolumeView& v, const ValueSummary& values, std::size_t total, bool dense) {
   for (std::size_t d : v.dims)
     if (d < 1 || d > kMaxVolumeAxis) throw EncodeError("volume dims must be in [1, 2^20] per axis");
   if (total > kMaxVolumeVoxels) throw EncodeError("volumes exceed 2^31 voxels");
   if (!std::isfinite(v.background)) throw EncodeError("non-finite background");
-  if (!values.finite) throw EncodeError("volume has non-finite samples (NaN or infinity)");
+  if (!values.finite && !dense)
+    throw EncodeError("sparse volume has non-finite samples (NaN or infinity); only dense volumes keep them");
   return values.largest;
+}
+
+// A box grid without an active mask: the grids whose NaN, infinities and fill value are missing values.
+bool is_dense_box(const VolumeGrid& g, const std::vector<VolumeView>& parts) {
+  return !g.is_opaque() && !g.is_blocked() && !parts.empty() && !parts[0].is_sparse();
 }
 
 // Coordinates of blocks and tiles must stay in OpenVDB's 32-bit index range.
@@ -92,7 +100,7 @@ double validate_blocked(const VolumeGrid& g, const std::vector<VolumeView>& part
   for (std::size_t k = 0; k < g.blocks.size(); ++k) {
     const VolumeBlock& b = g.blocks[k];
     total += b.volume.count();
-    largest = std::max(largest, validate_volume(parts[k], values[k], total));
+    largest = std::max(largest, validate_volume(parts[k], values[k], total, false));
     if (b.volume.type != g.volume.type || b.volume.background != g.volume.background)
       throw std::invalid_argument("grid '" + g.name + "': block type or background differs from the grid's");
     for (std::size_t a = 0; a < 3; ++a)
@@ -117,6 +125,9 @@ void validate(const std::vector<VolumeGrid>& grids, const std::vector<std::vecto
   if (grids.size() > kMaxVolumeGrids) throw EncodeError("more than 1024 grids");
   if (o.mode != VolumeRateMode::lossless && !(o.target > 0.0 && std::isfinite(o.target)))
     throw std::invalid_argument("rate target must be positive and finite");
+  if (o.fill_value && !std::isfinite(*o.fill_value))
+    throw std::invalid_argument(
+        "fill value must be finite (NaN and infinities are always kept as missing values)");
   std::size_t total = 0;
   double largest = 0.0;
   for (std::size_t i = 0; i < grids.size(); ++i) {
@@ -131,13 +142,19 @@ void validate(const std::vector<VolumeGrid>& grids, const std::vector<std::vecto
       if (parts[i][0].count() == 0)
         throw EncodeError("grid '" + g.name + "' has no active voxels; nothing to encode");
       total += parts[i][0].count();
-      largest = std::max(largest, validate_volume(parts[i][0], values[i][0], total));
+      largest =
+          std::max(largest, validate_volume(parts[i][0], values[i][0], total, is_dense_box(g, parts[i])));
     }
     if (o.mode == VolumeRateMode::lossless && !is_integer(g.volume.type))
       throw std::invalid_argument(
           "lossless coding needs integer volumes (u8, u16); use --max-error for float");
   }
   check_precision(o, largest);
+}
+
+// Bitwise equality: -0.0 is not 0.0, and each NaN keeps its own bits, so inactive values come back exact.
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
 // Voxel states and inactive values of a sparse grid (appended to m).
@@ -147,9 +164,9 @@ void append_mask(const VolumeView& v, MaskChunk& m) {
   for_each_voxel(v, [&](double value, bool active) {
     VoxelState s = VoxelState::active;
     if (!active) {
-      if (value == v.background)
+      if (same_bits(value, v.background))
         s = VoxelState::inactive_background;
-      else if (value == -v.background)
+      else if (same_bits(value, -v.background))
         s = VoxelState::inactive_negative;
       else {
         s = VoxelState::inactive_other;
@@ -218,9 +235,10 @@ VolumeGrid describe(const VolumeGrid& g, const std::vector<VolumeView>& parts) {
 // Bricks holding an active voxel, of the grid's box or of each of its blocks in turn.
 void add_jobs(VolumePlan& plan, const std::vector<VolumeView>& parts, std::uint32_t grid, std::size_t edge) {
   std::uint32_t index = 0;
+  const bool missing = plan.header.has_missing(grid);
   for (std::uint32_t k = 0; k < parts.size(); ++k) {
     for (const BrickBox& box : brick_boxes(parts[k].dims, edge)) {
-      if (brick_has_active(parts[k], box)) plan.jobs.push_back({grid, index, box, k, parts[k]});
+      if (brick_has_active(parts[k], box)) plan.jobs.push_back({grid, index, box, k, parts[k], missing});
       ++index;
     }
   }
@@ -260,10 +278,12 @@ std::vector<std::vector<VolumeView>> grid_parts(const std::vector<VolumeGrid>& g
 
 VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const VolumeView> views,
                         const VolumeEncodeOptions& o) {
-  const std::vector<std::vector<VolumeView>> parts = grid_parts(grids, views);
+  std::vector<std::vector<VolumeView>> parts = grid_parts(grids, views);
   Summaries values(parts.size());
-  for (std::size_t g = 0; g < parts.size(); ++g)
-    for (const VolumeView& v : parts[g]) values[g].push_back(summarize_values(v));
+  for (std::size_t g = 0; g < parts.size(); ++g) {
+    const std::optional<double> fill = is_dense_box(grids[g], parts[g]) ? o.fill_value : std::nullopt;
+    for (const VolumeView& v : parts[g]) values[g].push_back(summarize_values(v, fill));
+  }
   validate(grids, parts, values, o);
   VolumePlan plan;
   plan.transform = make_transform(o.transform);
@@ -293,8 +313,13 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const Vo
   plan.masks.resize(grids.size());
   plan.layouts.resize(grids.size());
   plan.opaque.resize(grids.size());
+  plan.valid.resize(grids.size());
   for (std::uint32_t g = 0; g < grids.size(); ++g) {
     const VolumeGrid& grid = grids[g];
+    // A dense grid with missing values is coded as a sparse box whose inactive voxels are they.
+    const bool missing = is_dense_box(grid, parts[g]) && values[g][0].missing > 0;
+    if (missing) parts[g][0].active = missing_value_mask(parts[g][0], o.fill_value, plan.valid[g]);
+    h.missing.push_back(missing ? 1 : 0);
     h.grids.push_back(describe(grid, parts[g]));
     h.blocked.push_back(grid.is_opaque() ? 2 : grid.is_blocked() ? 1 : 0);
     if (grid.is_opaque())

@@ -12,6 +12,7 @@
 #include "codec/volume/volume_brick.h"
 #include "codec/volume/volume_codec.h"
 #include "codec/volume/volume_format.h"
+#include "codec/volume/volume_missing.h"
 #include "codec/volume/volume_view.h"
 
 namespace pupwave {
@@ -25,6 +26,7 @@ struct BrickJob {
   BrickBox box;
   std::uint32_t block = 0;
   VolumeView view;
+  bool missing = false;  // the view's inactive voxels are missing values, filled before coding
 };
 
 struct VolumePlan {
@@ -34,6 +36,7 @@ struct VolumePlan {
   std::vector<MaskChunk> masks;                   // per grid (empty for dense)
   std::vector<BlocksChunk> layouts;               // per grid (empty unless sparse-native)
   std::vector<std::vector<std::uint8_t>> opaque;  // per grid (empty unless opaque)
+  std::vector<std::vector<std::uint8_t>> valid;   // per grid with missing values: its view's mask
   std::vector<BrickJob> jobs;
   std::size_t voxels = 0;              // active voxels of all grids (what bpv counts)
   double range = 0.0;                  // largest value range (max - min of active voxels) over grids
@@ -76,6 +79,7 @@ VolumePlan plan_volumes(const std::vector<VolumeGrid>& grids, std::span<const Vo
 template <class S>
 void brick_samples(const BrickJob& job, std::vector<S>& samples, std::vector<std::uint8_t>& active) {
   gather_box(job.view, job.box.offset, job.box.size, samples, active);
+  if (job.missing) fill_missing(samples, active, job.box.size);
 }
 
 // Max-error coding of a brick (its samples and voxels that count, as brick_samples gives them):

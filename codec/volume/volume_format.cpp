@@ -40,7 +40,7 @@ void write_metadata(ByteWriter& w, const std::map<std::string, MetaValue>& metad
   }
 }
 
-void write_grid(ByteWriter& w, const VolumeGrid& g, std::uint8_t blocked) {
+void write_grid(ByteWriter& w, const VolumeGrid& g, std::uint8_t blocked, bool missing) {
   put_text(w, g.name);
   w.u8(std::uint8_t(g.grid_class));
   for (std::int64_t o : g.origin) put_u64(w, std::uint64_t(o));
@@ -49,20 +49,30 @@ void write_grid(ByteWriter& w, const VolumeGrid& g, std::uint8_t blocked) {
   for (std::size_t d : g.volume.dims) w.u32(std::uint32_t(d));
   w.u8(std::uint8_t(g.volume.type));
   put_f64(w, g.volume.background);
-  w.u8(blocked == 2 ? 3 : blocked == 1 ? 2 : g.volume.is_sparse() ? 1 : 0);
+  w.u8(missing ? 4 : blocked == 2 ? 3 : blocked == 1 ? 2 : g.volume.is_sparse() ? 1 : 0);
 }
 
-// Voxel states (zstd) and inactive values, shared by MASK and BLKS.
-void write_states(ByteWriter& w, const MaskChunk& mask) {
-  std::vector<std::uint8_t> packed(ZSTD_compressBound(mask.states.size()));
+// Bytes as a zstd frame (u32 length, then the frame).
+void put_zstd(ByteWriter& w, std::span<const std::uint8_t> bytes) {
+  std::vector<std::uint8_t> packed(ZSTD_compressBound(bytes.size()));
   const std::size_t n =
-      ZSTD_compress(packed.data(), packed.size(), mask.states.data(), mask.states.size(), kMaskZstdLevel);
+      ZSTD_compress(packed.data(), packed.size(), bytes.data(), bytes.size(), kMaskZstdLevel);
   if (ZSTD_isError(n)) throw EncodeError(std::string("zstd: ") + ZSTD_getErrorName(n));
   packed.resize(n);
   w.u32(std::uint32_t(packed.size()));
   w.bytes(packed);
+}
+
+// Voxel states (zstd) and inactive values, shared by MASK and BLKS.
+// The inactive values are a zstd frame of their little-endian f64 bits: a land mask's thousands
+// of NaNs or fill values cost a few bytes, not eight each.
+void write_states(ByteWriter& w, const MaskChunk& mask) {
+  put_zstd(w, mask.states);
   w.u32(std::uint32_t(mask.other_values.size()));
-  for (double v : mask.other_values) put_f64(w, v);
+  std::vector<std::uint8_t> values;
+  ByteWriter v(values);
+  for (double x : mask.other_values) put_f64(v, x);
+  put_zstd(w, values);
 }
 
 }  // namespace
@@ -85,7 +95,7 @@ void write_header_chunk(std::vector<std::uint8_t>& out, const VolumeStreamHeader
   w.u32(h.brick_chunks);
   w.u32(std::uint32_t(h.grids.size()));
   for (std::size_t g = 0; g < h.grids.size(); ++g)
-    write_grid(w, h.grids[g], g < h.blocked.size() ? h.blocked[g] : 0);
+    write_grid(w, h.grids[g], g < h.blocked.size() ? h.blocked[g] : 0, h.has_missing(g));
   write_chunk(out, "VHDR", p);
 }
 

@@ -25,7 +25,11 @@ namespace pupwave {
 // Version 5: the bit-plane block coder's priors retrained, as image version 4.
 // Version 6: a brick's outlier corrections range coded with adaptive models, not a zstd frame
 // of varints (volume_outliers.cpp).
-inline constexpr std::uint8_t kVolumeStreamVersion = 6;
+// Version 7: dense grids with missing values (layout 4: a MASK chunk whose inactive voxels are the
+// missing ones, decoded as a dense grid), and the inactive values of MASK and BLKS as a zstd frame.
+inline constexpr std::uint8_t kVolumeStreamVersion = 7;
+// The oldest version this decoder reads (version 6 differs only by what version 7 added).
+inline constexpr std::uint8_t kOldestVolumeStreamVersion = 6;
 inline constexpr char kVolumeSignature[5] = "PUPV";
 // Caps that keep a hostile header from demanding unbounded memory.
 inline constexpr std::size_t kMaxVolumeAxis = std::size_t(1) << 20;
@@ -53,6 +57,12 @@ struct VolumeStreamHeader {
   std::vector<VolumeGrid>
       grids;  // descriptions: volume.dims/type/background, active non-empty when sparse (size 1)
   std::vector<std::uint8_t> blocked;  // per grid: 1 sparse-native grid (BLKS chunk), 2 opaque (OPAQ chunk)
+  // Per grid: 1 when a dense grid with missing values (its MASK's inactive voxels: NaN, infinities
+  // or the fill value, kept exactly); grids[g].volume then carries the sparse marker, as a
+  // sparse box does, and decoders return it dense.
+  std::vector<std::uint8_t> missing;
+  std::uint8_t version = kVolumeStreamVersion;  // as parsed (writers write the current one)
+  bool has_missing(std::size_t g) const { return g < missing.size() && missing[g] != 0; }
 };
 
 // Per sparse grid: the state of every box voxel and the values of inactive_other voxels.

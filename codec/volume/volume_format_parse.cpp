@@ -80,7 +80,8 @@ std::array<std::int64_t, 3> get_origin(ByteReader& r) {
   return o;
 }
 
-VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels, std::uint8_t& blocked) {
+VolumeGrid read_grid(ByteReader& r, std::uint8_t version, std::size_t& total_voxels, std::uint8_t& blocked,
+                     std::uint8_t& missing) {
   VolumeGrid g;
   g.name = r.str16(65535);
   const std::uint32_t cls = r.u8();
@@ -101,9 +102,10 @@ VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels, std::uint8_t& blo
   g.volume.type = VoxelType(type);
   g.volume.background = get_finite(r, "background");
   const std::uint32_t sparse = r.u8();
-  require_stream(sparse <= 3, "volume stream: sparse flag");
+  require_stream(sparse <= (version >= 7 ? 4u : 3u), "volume stream: sparse flag");
   blocked = sparse == 3 ? 2 : sparse == 2 ? 1 : 0;
-  if (sparse == 1) g.volume.active.assign(1, 1);  // marker; the mask comes from the MASK chunk
+  missing = sparse == 4 ? 1 : 0;
+  if (sparse == 1 || sparse == 4) g.volume.active.assign(1, 1);  // marker; the mask comes from MASK
   // A sparse-native grid's dims are its bounding box only; its blocks are counted in BLKS.
   if (!blocked) total_voxels += voxels;
   require_stream(voxels <= kMaxVolumeVoxels || blocked,
@@ -117,15 +119,16 @@ VolumeGrid read_grid(ByteReader& r, std::size_t& total_voxels, std::uint8_t& blo
 std::size_t header_decoded_voxels(const VolumeStreamHeader& h, SparseBoxCount count) {
   std::size_t n = 0;
   for (std::size_t g = 0; g < h.grids.size(); ++g)
-    if (!h.blocked[g] && (!h.grids[g].volume.is_sparse() || count == SparseBoxCount::box))
+    if (!h.blocked[g] && (!h.grids[g].volume.is_sparse() || h.has_missing(g) || count == SparseBoxCount::box))
       n += h.grids[g].volume.count();
   return n;
 }
 
-VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const DecodeLimits& limits,
-                               SparseBoxCount count) {
+VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, std::uint8_t version,
+                               const DecodeLimits& limits, SparseBoxCount count) {
   ByteReader r(payload, "volume header");
   VolumeStreamHeader h;
+  h.version = version;
   const std::uint32_t reversible = r.u8();
   h.levels = int(r.u8());
   h.brick_log2 = int(r.u8());
@@ -147,15 +150,44 @@ VolumeStreamHeader read_header(std::span<const std::uint8_t> payload, const Deco
   require_stream(grids >= 1 && grids <= kMaxVolumeGrids, "volume stream: grid count");
   std::size_t total = 0;
   h.blocked.assign(grids, 0);
-  for (std::size_t i = 0; i < grids; ++i) h.grids.push_back(read_grid(r, total, h.blocked[i]));
+  h.missing.assign(grids, 0);
+  for (std::size_t i = 0; i < grids; ++i)
+    h.grids.push_back(read_grid(r, version, total, h.blocked[i], h.missing[i]));
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in header");
   // Before any mask is read or output allocated.
   check_decode_limit(header_decoded_voxels(h, count), limits, "volume stream: voxels of all grids");
   return h;
 }
 
+// The inactive_other values of a mask of `count` voxels: raw f64s (version 6) or a zstd frame of
+// them (version 7). Non-finite values belong only to a grid with missing values.
+std::vector<double> read_inactive_values(ByteReader& r, std::uint8_t version, std::size_t count,
+                                         bool missing) {
+  const std::size_t others = r.u32();
+  std::vector<double> values;
+  if (version < 7) {
+    require_stream(others <= r.remaining() / 8, "volume stream: inactive value count");
+    values.reserve(others);
+    for (std::size_t i = 0; i < others; ++i) values.push_back(get_finite(r, "inactive value"));
+    return values;
+  }
+  const auto packed = r.bytes(r.u32());
+  const unsigned long long content = ZSTD_getFrameContentSize(packed.data(), packed.size());
+  require_stream(others <= count && content == others * 8, "volume stream: inactive value count");
+  std::vector<std::uint8_t> raw(others * 8);
+  const std::size_t n = ZSTD_decompress(raw.data(), raw.size(), packed.data(), packed.size());
+  require_stream(!ZSTD_isError(n) && n == raw.size(), "volume stream: corrupt inactive values");
+  ByteReader v(raw, "volume inactive values");
+  values.reserve(others);
+  for (std::size_t i = 0; i < others; ++i) {
+    values.push_back(get_f64(v));
+    require_stream(missing || std::isfinite(values.back()), "volume stream: non-finite inactive value");
+  }
+  return values;
+}
+
 // Voxel states of `count` voxels (zstd) and the inactive_other values.
-MaskChunk read_states(ByteReader& r, std::size_t count) {
+MaskChunk read_states(ByteReader& r, std::uint8_t version, std::size_t count) {
   const auto packed = r.bytes(r.u32());
   const unsigned long long content = ZSTD_getFrameContentSize(packed.data(), packed.size());
   require_stream(content == count, "volume stream: mask size");
@@ -163,9 +195,7 @@ MaskChunk read_states(ByteReader& r, std::size_t count) {
   m.states.resize(count);
   const std::size_t n = ZSTD_decompress(m.states.data(), count, packed.data(), packed.size());
   require_stream(!ZSTD_isError(n) && n == count, "volume stream: corrupt mask");
-  const std::size_t others = r.u32();
-  require_stream(others <= r.remaining() / 8, "volume stream: inactive value count");
-  for (std::size_t i = 0; i < others; ++i) m.other_values.push_back(get_finite(r, "inactive value"));
+  m.other_values = read_inactive_values(r, version, count, false);
   return m;
 }
 
@@ -177,11 +207,8 @@ BoxMask read_mask(std::span<const std::uint8_t> payload, const VolumeStreamHeade
   grid = r.u32();
   require_stream(grid < h.grids.size() && h.grids[grid].volume.is_sparse(), "volume stream: mask grid");
   const auto frame = r.bytes(r.u32());
-  const std::size_t others = r.u32();
-  require_stream(others <= r.remaining() / 8, "volume stream: inactive value count");
-  std::vector<double> values;
-  values.reserve(others);
-  for (std::size_t i = 0; i < others; ++i) values.push_back(get_finite(r, "inactive value"));
+  std::vector<double> values =
+      read_inactive_values(r, h.version, h.grids[grid].volume.count(), h.has_missing(grid));
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in mask");
   return scan_box_mask(frame, std::move(values), h.grids[grid].volume.dims, h.brick_log2, limits, already);
 }
@@ -251,7 +278,7 @@ BlocksChunk read_blocks(std::span<const std::uint8_t> payload, const VolumeStrea
     t.active = active == 1;
     c.tiles.push_back(t);
   }
-  c.mask = read_states(r, total_block_voxels(c));
+  c.mask = read_states(r, h.version, total_block_voxels(c));
   require_stream(r.remaining() == 0, "volume stream: trailing bytes in blocks");
   return c;
 }
@@ -282,10 +309,10 @@ BrickChunk read_brick(std::span<const std::uint8_t> payload, const VolumeStreamH
 
 ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, const DecodeLimits& limits,
                                        SparseBoxCount count) {
-  ChunkReader r(bytes, kVolumeSignature, kVolumeStreamVersion, "volume stream");
+  ChunkReader r(bytes, kVolumeSignature, kVolumeStreamVersion, "volume stream", kOldestVolumeStreamVersion);
   const Chunk head = r.expect("VHDR");
   ParsedVolumeStream s;
-  s.header = read_header(head.payload, limits, count);
+  s.header = read_header(head.payload, r.version(), limits, count);
   // Voxels the decode allocates, against the limit; box mode counted whole boxes already.
   std::size_t decoded = header_decoded_voxels(s.header, count);
   const DecodeLimits mask_limits =
@@ -309,7 +336,7 @@ ParsedVolumeStream parse_volume_stream(std::span<const std::uint8_t> bytes, cons
       std::uint32_t grid = 0;
       BoxMask m = read_mask(c.payload, s.header, grid, mask_limits, decoded);
       require_stream(s.masks[grid].empty(), "volume stream: repeated mask");
-      if (count == SparseBoxCount::content) decoded += m.content_voxels;
+      if (count == SparseBoxCount::content && !s.header.has_missing(grid)) decoded += m.content_voxels;
       s.masks[grid] = std::move(m);
       s.grid_bytes[grid] += c.payload.size() + kFraming;
       ++masks;

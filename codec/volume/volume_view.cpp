@@ -1,5 +1,7 @@
 #include "codec/volume/volume_view.h"
 
+#include "codec/volume/volume_missing.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -198,12 +200,12 @@ struct RowRange {
 
 }  // namespace
 
-ValueSummary summarize_values(const VolumeView& view) {
+ValueSummary summarize_values(const VolumeView& view, const std::optional<double>& fill) {
   ValueSummary s;
   s.lo = std::numeric_limits<double>::infinity();
   s.hi = -s.lo;
   if (view.count() == 0) return s;
-  if (view.active == nullptr && view.strides[0] == 1) {  // the usual case: typed rows, no mask
+  if (view.active == nullptr && view.strides[0] == 1 && !fill) {  // the usual case: typed rows, no mask
     with_storage(view.storage, [&](auto t) {
       using T = decltype(t);
       const T* data = static_cast<const T*>(view.data);
@@ -214,11 +216,18 @@ ValueSummary summarize_values(const VolumeView& view) {
       }
       r.finish(s);
     });
-    if (s.finite) s.largest = std::max(std::fabs(s.lo), std::fabs(s.hi));
-    return s;
+    if (s.finite) {
+      s.largest = std::max(std::fabs(s.lo), std::fabs(s.hi));
+      return s;
+    }
+    s = ValueSummary{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   }
-  for_each_voxel(view, [&](double v, bool active) {
+  for_each_voxel(view, [&](double v, bool active) {  // missing values: a second, per-voxel pass
     s.finite = s.finite && std::isfinite(v);
+    if (is_missing(v, fill)) {
+      s.missing += active ? 1 : 0;
+      return;
+    }
     s.largest = std::max(s.largest, std::fabs(v));
     if (active) s.lo = std::min(s.lo, v), s.hi = std::max(s.hi, v);
   });

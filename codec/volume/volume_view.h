@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "codec/volume/volume.h"
@@ -97,13 +98,16 @@ void for_each_voxel(const VolumeView& view, F f) {
 
 // What the encoder and the CLI need of a view's values, read in one pass: the range of the active
 // voxels, and whether every voxel (active or not) is finite and the largest magnitude of all.
+// Missing values (NaN, infinities and voxels equal to `fill`: what a dense grid keeps exactly,
+// volume_missing.h) are left out of the range and the magnitude, and counted.
 // Drops (VolumeView::drop) every plane once it is read.
 struct ValueSummary {
-  double lo = 0.0, hi = 0.0;  // min and max of the active voxels (lo > hi when there are none)
-  double largest = 0.0;       // largest |value| of all voxels (meaningful when finite)
+  double lo = 0.0, hi = 0.0;  // min and max of the active voxels not missing (lo > hi: none)
+  double largest = 0.0;       // largest |value| of all voxels not missing
   bool finite = true;         // no NaN or infinity among all voxels
+  std::size_t missing = 0;    // active voxels that are missing
 };
-ValueSummary summarize_values(const VolumeView& view);
+ValueSummary summarize_values(const VolumeView& view, const std::optional<double>& fill = std::nullopt);
 
 // Active voxels of a view (all of them when dense).
 std::size_t active_count(const VolumeView& view);

@@ -28,13 +28,21 @@ bool same_voxels(const std::vector<VolumeGrid>& a, const std::vector<VolumeGrid>
   return true;
 }
 
-// The blocks form of sparse box grids, made dense again, against the box form.
+// The blocks form of sparse box grids, made dense again, against the box form (grids with missing
+// values come back dense in both).
 bool same_as_box_form(const std::vector<VolumeGrid>& box, std::vector<VolumeGrid> blocks,
                       const VolumeStreamHeader& h, int level) {
   if (box.size() != blocks.size()) return false;
   for (std::size_t g = 0; g < box.size(); ++g) {
     if (h.blocked[g] != 0 || !h.grids[g].volume.is_sparse()) continue;
     const Volume& x = box[g].volume;
+    if (h.has_missing(g)) {  // a dense grid with missing values: dense in both forms, bit for bit
+      const Volume& y = blocks[g].volume;
+      if (x.is_sparse() || y.is_sparse() || blocks[g].is_blocked() || y.dims != x.dims ||
+          std::memcmp(x.samples.data(), y.samples.data(), x.count() * sizeof(double)) != 0)
+        return false;
+      continue;
+    }
     if (!blocks[g].is_blocked()) {  // nothing but inactive background
       if (blocks[g].volume.count() != 0 || x.active_count() != 0) return false;
       continue;

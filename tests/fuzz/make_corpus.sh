@@ -101,6 +101,16 @@ done
   --max-error 0.01 --threads 1 > /dev/null
 "$cli" compress "$tmp/gs.raw" "$out/volume/seed-lossless.pw" --dims 16,16,16 --dtype f32 --brick 16 \
   --bpv 4 --threads 1 > /dev/null
+# Missing values (MASK chunk of a dense grid): NaN below the median, a block of fill values.
+python3 - "$tmp/gs.raw" "$tmp/gs_missing.raw" <<'PY'
+import sys, numpy as np
+v = np.fromfile(sys.argv[1], '<f4')
+v[v < np.median(v)] = np.nan
+v[:300] = -999.0
+v.tofile(sys.argv[2])
+PY
+"$cli" compress "$tmp/gs_missing.raw" "$out/volume/seed-missing.pw" --dims 16,16,16 --dtype f32 --brick 8 \
+  --max-error 0.01 --fill-value -999 --threads 1 > /dev/null
 
 # Mesh: a sqrt(3)-structured mesh from the smallest test mesh, decomposed.
 "$cli" mesh subdivide testimages/u.off "$tmp/u3.off" --levels 1 > /dev/null

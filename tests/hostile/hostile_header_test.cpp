@@ -193,7 +193,11 @@ std::vector<std::uint8_t> sparse_box_stream(std::size_t n, VoxelType type, std::
   w.u32(0);
   w.u32(std::uint32_t(frame.size()));
   w.bytes(frame);
-  w.u32(0);
+  w.u32(0);  // no inactive_other values: an empty zstd frame of them (version 7)
+  std::vector<std::uint8_t> none(ZSTD_compressBound(0));
+  none.resize(ZSTD_compress(none.data(), none.size(), nullptr, 0, 1));
+  w.u32(std::uint32_t(none.size()));
+  w.bytes(none);
   write_chunk(bytes, "MASK", p);
   for (const auto& b : bricks) write_chunk(bytes, "BRIK", b);
   return bytes;

@@ -201,7 +201,23 @@ def test_bad_arguments_raise(wmag):
     with pytest.raises(ValueError):
         pupwave.compress_volume(wmag, lossless=True)  # float data cannot be lossless
     with pytest.raises(ValueError):
-        pupwave.compress_volume(np.full((4, 4, 4), np.nan, np.float32))
+        pupwave.compress_volume(wmag, fill_value=float("nan"))  # NaN is always missing; a fill value is finite
+
+
+def test_volume_missing_values_come_back_exactly(wmag):
+    masked = np.array(wmag[:40, :40, :40], np.float32)
+    masked[masked < 40] = np.nan
+    masked[:8, :8, :8] = -999.0
+    stream = pupwave.compress_volume(masked, max_error_rel=1e-3, fill_value=-999.0)
+    out = pupwave.decompress_volume(stream)
+    missing = np.isnan(masked) | (masked == -999.0)
+    assert 0 < missing.sum() < masked.size
+    assert np.array_equal(out.view(np.uint32)[missing], masked.view(np.uint32)[missing])
+    valid = masked[~missing]
+    bound = 1e-3 * float(valid.max() - valid.min())
+    assert np.abs(out[~missing].astype(np.float64) - valid).max() <= bound
+    everything = pupwave.decompress_volume(pupwave.compress_volume(np.full((4, 4, 4), np.nan, np.float32)))
+    assert np.isnan(everything).all()
 
 
 def test_corrupted_bytes_raise(real_image, wmag):

@@ -5,6 +5,8 @@
 // (its slabs unmapped once written) gives the bytes decoding to stdout does.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -129,18 +131,51 @@ TEST_F(VolumeRawCli, DecodeToFileReleasingSlabsEqualsDecodeToStdout) {
 
 TEST_F(VolumeRawCli, FailedEncodeLeavesTheOutputUntouched) {
   Volume v = test::smooth_volume({9, 8, 7}, VoxelType::f32, 1.0);
-  v.samples[100] = std::numeric_limits<double>::quiet_NaN();
-  cli::write_raw_volume(v, path("nan.raw"));
+  cli::write_raw_volume(v, path("in.raw"));
   {
     std::ofstream keep(path("v.pw"));
     keep << "keep me";
   }
-  const auto r = run_cli({"compress", path("nan.raw"), path("v.pw"), "--dims", "9,8,7", "--dtype", "f32"});
+  // A bound finer than the coder resolves is found once the input is read and the output opened.
+  const auto r = run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "9,8,7", "--dtype", "f32",
+                          "--max-error", "1e-30"});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("pupwave: error:"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("non-finite"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("finer than the volume coder resolves"), std::string::npos) << r.output;
   EXPECT_EQ(fs::file_size(path("v.pw")), 7u);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 2);  // no temporary left
+}
+
+// A raw float file with NaN, an infinity and --fill-value voxels: they come back byte for byte,
+// the rest within the bound, and `pupwave info` counts them.
+TEST_F(VolumeRawCli, MissingValuesComeBackExactAndInfoCountsThem) {
+  Volume v = test::smooth_volume({19, 17, 13}, VoxelType::f32, 10.0);
+  for (std::size_t i = 0; i < v.count(); i += 5) v.samples[i] = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 1; i < 200; i += 2) v.samples[i] = -999.0;
+  v.samples[2] = std::numeric_limits<double>::infinity();
+  cli::write_raw_volume(v, path("in.raw"));
+  auto r = run_cli({"compress", path("in.raw"), path("v.pw"), "--dims", "19,17,13", "--dtype", "f32",
+                    "--max-error", "0.01", "--fill-value", "-999"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_cli({"decompress", path("v.pw"), path("out.raw")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto in = cli::read_file_bytes(path("in.raw")), out = cli::read_file_bytes(path("out.raw"));
+  ASSERT_EQ(in.size(), out.size());
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < v.count(); ++i) {
+    float a = 0, b = 0;
+    std::memcpy(&a, in.data() + 4 * i, 4);
+    std::memcpy(&b, out.data() + 4 * i, 4);
+    if (!std::isfinite(a) || a == -999.0f) {
+      ++missing;
+      EXPECT_EQ(std::memcmp(in.data() + 4 * i, out.data() + 4 * i, 4), 0) << i;
+    } else {
+      EXPECT_LE(std::abs(double(a) - double(b)), 0.01) << i;
+    }
+  }
+  r = run_cli({"info", path("v.pw")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(std::to_string(missing) + " missing voxels"), std::string::npos) << r.output;
 }
 
 }  // namespace

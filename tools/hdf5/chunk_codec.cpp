@@ -232,7 +232,7 @@ std::vector<std::uint8_t> encode_chunk(const ChunkParams& params, std::span<cons
   try {
     coded = encode_box(params, raw, params.dims, options, executor.get());
   } catch (const EncodeError&) {
-    // Data the codec cannot hold (NaN, Inf, a bound below the type's precision): keep it raw.
+    // Data the codec cannot hold (a bound below the type's precision): keep it raw.
     return stored_raw(params.type, raw);
   }
   if (coded.bytes.size() >= raw.size()) return stored_raw(params.type, raw);

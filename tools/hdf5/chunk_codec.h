@@ -41,7 +41,8 @@ std::string check_params(std::uint32_t mode, double bound, ChunkType type);
 Extent extent_from_shape(std::span<const unsigned long long> c_order_dims);
 
 // Stored chunk: 4-byte header then a Pupwave volume stream, or the raw bytes when coding would
-// not make the chunk smaller (or the data cannot be coded, e.g. NaN): never more than raw + 4.
+// not make the chunk smaller (or the data cannot be coded: a bound below the type's precision):
+// never more than raw + 4. NaN and infinities are coded as missing values, kept exactly.
 // `raw` holds params.count() elements of params.type, C order, native byte order.
 std::vector<std::uint8_t> encode_chunk(const ChunkParams& params, std::span<const std::uint8_t> raw);
 

@@ -223,7 +223,8 @@ py::tuple compress_volume(const py::object& obj, std::optional<double> max_error
                           std::optional<double> psnr, std::optional<double> step, bool lossless,
                           const std::optional<std::string>& transform, std::optional<int> levels,
                           std::optional<std::size_t> brick,
-                          const std::map<std::string, std::string>& attributes, std::optional<int> threads) {
+                          const std::map<std::string, std::string>& attributes, std::optional<int> threads,
+                          std::optional<double> fill_value) {
   const py::array given = as_array(obj);
   // The dtype first: readable_in_place divides by its (then nonzero) item size.
   const api::VoxelType type = voxel_type(given);
@@ -237,6 +238,7 @@ py::tuple compress_volume(const py::object& obj, std::optional<double> max_error
   if (brick) options.brick = *brick;  // none: the library's default edge
   options.attributes = to_attributes(attributes);
   options.threads = thread_count(threads);
+  options.fill_value = fill_value;
   api::VolumeView view{
       a.data(), {std::size_t(a.shape(2)), std::size_t(a.shape(1)), std::size_t(a.shape(0))}, type};
   for (int d = 0; d < 3; ++d) view.strides[std::size_t(2 - d)] = element_stride(a, d);  // (z, y, x)
@@ -341,8 +343,10 @@ PYBIND11_MODULE(_pupwave, m) {
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = py::none(),
         py::arg("levels") = py::none(), py::arg("brick") = py::none(),
         py::arg("attributes") = std::map<std::string, std::string>{}, py::arg("threads") = py::none(),
+        py::arg("fill_value") = py::none(),
         "pupwave.compress_volume on a uint8/uint16/float32/float64 array; attributes (str -> str) are "
-        "stored as the grid's metadata. Returns (bytes, miss) as compress does.");
+        "stored as the grid's metadata; fill_value: voxels equal to it are missing values (as NaN and "
+        "infinities), kept exactly. Returns (bytes, miss) as compress does.");
   m.def("decompress_volume", &decompress_volume, py::arg("data"), py::arg("level") = 0,
         py::arg("threads") = py::none(), py::arg("box") = py::none(),
         "(array of the stored dtype, the grid's text attributes as a dict); box: (x0, y0, z0, x1, y1, z1).");

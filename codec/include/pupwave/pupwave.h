@@ -74,6 +74,9 @@ pupwave_status pupwave_options_set_levels(pupwave_options* options, int levels);
 pupwave_status pupwave_options_set_threads(pupwave_options* options, unsigned threads);
 /* Volumes: brick edge (power of two, 8..256). */
 pupwave_status pupwave_options_set_brick(pupwave_options* options, size_t brick);
+/* Dense volumes: voxels equal to fill_value (finite) are missing values, as NaN and infinities
+ * always are: restored bit for bit, outside the error bound, the value range and statistics. */
+pupwave_status pupwave_options_set_fill_value(pupwave_options* options, double fill_value);
 /* Images: the entropy coder, with the names of the CLI's --entropy and Python's entropy=
  * (pupwave_coder_name): AUTO (the default: LC for lossless; for rate targets PC on images of up
  * to 4 Mpixel, EBCOT on larger ones), EBCOT (bit-plane coder: embedded, bounded

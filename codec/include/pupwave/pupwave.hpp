@@ -184,6 +184,9 @@ struct VolumeOptions {
   unsigned threads = 0;    // as ImageOptions::threads
   // Stored as the grid's metadata.
   std::vector<Attribute> attributes;
+  // Dense volumes: voxels equal to this value are missing (as NaN and infinities always are):
+  // restored bit for bit, outside the bound, the range and the statistics. Must be finite.
+  std::optional<double> fill_value;
 };
 
 std::vector<std::uint8_t> compress_volume(const VolumeView& volume, const VolumeOptions& options = {});

@@ -4,7 +4,7 @@ compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, 
          entropy="auto", threads=None, strict=False) -> bytes
 decompress(data, level=0, threads=None) -> numpy.ndarray
 compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=None, step=None, lossless=False,
-                transform=None, levels=None, brick=None, threads=None, strict=False) -> bytes
+                transform=None, levels=None, brick=None, threads=None, strict=False, fill_value=None) -> bytes
 decompress_volume(data, level=0, threads=None, box=None) -> numpy.ndarray
 info(data) -> dict
 hdf5_filter(max_error=None, bpv=None, lossless=False) -> dict of h5py create_dataset keywords (docs/hdf5.md);
@@ -101,7 +101,7 @@ def decompress(data, level=0, threads=None):
 
 
 def compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=None, step=None, lossless=False,
-                    transform=None, levels=None, brick=None, threads=None, strict=False):
+                    transform=None, levels=None, brick=None, threads=None, strict=False, fill_value=None):
     """Compress a volume to .pw bytes.
 
     array3d: 3-D (z, y, x) array of any bool, integer or float dtype (uint8, uint16, float32,
@@ -120,6 +120,8 @@ def compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=
     brick: brick edge, a power of two 8..256; None: 64.
     threads: None or 0 all cores, 1 the calling thread, n at most n (the bytes do not depend on it).
     strict: raise PupwaveTargetError instead of warning when the target is missed.
+    fill_value: values equal to it are missing (as NaN and infinities always are): decoded bit
+        for bit, outside the bound, the value range and the statistics (the CLI's --fill-value).
 
     Returns the stream (bytes), the CLI's bytes for the same settings. Warns PupwaveTargetWarning
     (the CLI's `warning:` text) when the stream misses its bpv budget, psnr target or error bound.
@@ -129,7 +131,7 @@ def compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=
     if dtypes.halves_bound(array3d):
         max_error, max_error_rel = _halved_bounds(max_error, max_error_rel, bpv, psnr, step, lossless)
     return _checked(_pupwave.compress_volume(stored, max_error, max_error_rel, bpv, psnr, step, lossless, transform,
-                                             levels, brick, attributes, threads), strict)
+                                             levels, brick, attributes, threads, fill_value), strict)
 
 
 def _halved_bounds(max_error, max_error_rel, bpv, psnr, step, lossless):

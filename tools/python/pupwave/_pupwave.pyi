@@ -40,6 +40,7 @@ def compress_volume(
     brick: Optional[int] = None,
     attributes: Dict[str, str] = {},
     threads: Optional[int] = None,
+    fill_value: Optional[float] = None,
 ) -> Tuple[bytes, str]:
     """(stream, miss) as compress."""
 
