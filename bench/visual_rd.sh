@@ -28,6 +28,6 @@ done
 "$pw" bench rd --images "$out/photos" --transforms cdf97 --tune psnr,visual --bpp 0.25,0.5,1 \
   --anchors openjpeg,avif-s6,jxl --jobs 2 --out "$out/rd"
 first=$(echo "${photos[0]}" | tr A-Z a-z)
-"$py" "$here/bench/crop_grid.py" "$out/rd/results.csv" "$out/photos/$first.png" 0.5 1100,700,256,192 \
+"$py" "$here/bench/crop_grid.py" "$out/rd/results.csv" "$out/photos/$first.png" 0.5 1100,700,256,160 \
   "$out/crops-visual.png" "$pw"
 echo "tables: $out/rd/summary.md, crop grid: $out/crops-visual.png"
