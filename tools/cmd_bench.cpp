@@ -255,7 +255,8 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
         ->capture_default_str()
         ->each([](const std::string& list) {
           for (const std::string& t : split_list(list))
-            if (t != "psnr" && t != "visual") throw CLI::ValidationError("--tune", "unknown tune " + t);
+            if (t != "psnr" && t != "visual")
+              throw CLI::ValidationError("unknown tune " + t + " (psnr or visual)");
         });
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();
