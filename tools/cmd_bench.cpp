@@ -40,6 +40,7 @@ struct BenchOptions {
   std::string cli;               // pupwave binary driving our codec; default: this very program
   int effort = 1;                // pupwave compress --effort for every pupwave encode
   std::string entropy = "auto";  // comma list of entropy coders ("auto": no --entropy)
+  std::string tunes = "psnr";    // comma list of compress --tune values, each its own curve
 };
 
 // Splits at commas outside parentheses, so custom specs such as
@@ -124,7 +125,8 @@ std::string command_line(const std::string& sub, const BenchOptions& o, bool rd,
   if (rd)
     c += " --bpp " + o.bpps + " --anchors " + o.anchors +
          (o.effort != 1 ? " --effort " + std::to_string(o.effort) : "") +
-         (o.entropy != "auto" ? " --entropy " + o.entropy : "");
+         (o.entropy != "auto" ? " --entropy " + o.entropy : "") +
+         (o.tunes != "psnr" ? " --tune " + o.tunes : "");
   if (coarse) c += " --levels " + o.levels;
   return c + " --jobs " + std::to_string(o.jobs) + " --out " + o.out;
 }
@@ -146,7 +148,8 @@ std::vector<RdCodecPtr> build_codecs(const BenchOptions& o, const std::vector<st
   std::vector<RdCodecPtr> codecs;
   for (const std::string& spec : specs)
     for (const std::string& coder : split_list(o.entropy))
-      codecs.push_back(make_pupwave_codec(cli, spec, o.effort, coder == "auto" ? "" : coder));
+      for (const std::string& tune : split_list(o.tunes))
+        codecs.push_back(make_pupwave_codec(cli, spec, o.effort, coder == "auto" ? "" : coder, tune));
   const auto anchors = o.anchors == "none" ? std::vector<std::string>{} : split_list(o.anchors);
   for (const std::string& name : anchors) {
     std::string missing;
@@ -233,9 +236,9 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
       ->capture_default_str();
   if (rd) {
     cmd->add_option("--bpp", o.bpps, "comma list of target bits per pixel")->capture_default_str();
-    cmd->add_option(
-           "--anchors", o.anchors,
-           "comma list of openjpeg, jxl, avif, hevc, webp, or 'none' (missing tools are skipped with a note)")
+    cmd->add_option("--anchors", o.anchors,
+                    "comma list of openjpeg, jxl, avif (libaom speed 4), avif-s6 (speed 6), hevc, webp, or "
+                    "'none' (missing tools are skipped with a note)")
         ->capture_default_str();
     cmd->add_option("--cli", o.cli, "pupwave binary to drive (default: this program)");
     cmd->add_option("--effort", o.effort, "pupwave compress --effort for every pupwave encode (1 or 2)")
@@ -246,6 +249,15 @@ void add_common(CLI::App* cmd, BenchOptions& o, bool rd, bool coarse) {
            "comma list of pupwave entropy coders (compress --entropy names), each a curve per transform "
            "(SPEC+CODER): auto (the default choice), ebcot, pc, lc or ht")
         ->capture_default_str();
+    cmd->add_option("--tune", o.tunes,
+                    "comma list of pupwave compress --tune values (psnr, visual), each a curve per transform "
+                    "and coder (SPEC+visual)")
+        ->capture_default_str()
+        ->each([](const std::string& list) {
+          for (const std::string& t : split_list(list))
+            if (t != "psnr" && t != "visual")
+              throw CLI::ValidationError("unknown tune " + t + " (psnr or visual)");
+        });
   }
   if (coarse) cmd->add_option("--levels", o.levels, "levels 'A..B' or a comma list")->capture_default_str();
   cmd->add_option("--jobs", o.jobs, "parallel jobs")->capture_default_str()->check(CLI::Range(1u, 256u));

@@ -44,6 +44,7 @@ struct CompressOptions {
   bool lossless = false;
   std::string entropy = "auto";  // --entropy: a coder name of pupwave::api::coder_from_name
   int effort = 0;                // 0: not given (1)
+  std::string tune = "psnr";     // --tune: psnr or visual (pupwave::api::tune_from_name)
   unsigned threads = 0;
   bool report_psnr = false;
   bool keep_nonfinite = false;
@@ -133,6 +134,7 @@ void run_compress_volume(const CompressOptions& opt) {
   if (coder_of(opt) != pupwave::api::Coder::automatic && coder_of(opt) != pupwave::api::Coder::ebcot)
     throw std::invalid_argument("--entropy applies to images only");
   if (opt.effort != 0) throw std::invalid_argument("--effort applies to image --bpp targets only");
+  if (opt.tune != "psnr") throw std::invalid_argument("--tune applies to images only");
   const VolumeInput in = read_volume_input(opt);
   const std::vector<VolumeGrid>& grids = in.grids;
   VolumeEncodeOptions enc = pupwave::api::resolve_volume_options(volume_options(opt), grids, in.views).encode;
@@ -200,6 +202,7 @@ pupwave::api::ImageOptions image_options(const CompressOptions& opt) {
   o.levels = opt.levels;
   o.coder = coder_of(opt);
   if (opt.effort != 0) o.effort = opt.effort;
+  o.tune = *pupwave::api::tune_from_name(opt.tune);  // checked by the option's IsMember
   return o;
 }
 
@@ -245,6 +248,8 @@ void run_compress(const CompressOptions& opt) {
     throw std::invalid_argument("--effort applies to --bpp targets only");
   if (opt.effort != 0 && coder_of(opt) != pupwave::api::Coder::ebcot)
     throw std::invalid_argument("--effort applies to the bit-plane coder: add --entropy ebcot");
+  if (opt.tune != "psnr" && opt.lossless)
+    throw std::invalid_argument("--tune " + opt.tune + " applies to lossy coding, not --lossless");
   EncodeOptions enc = pupwave::api::resolve_image_options(image_options(opt));
   const auto executor = make_pool_executor(opt.threads);
   enc.executor = executor.get();
@@ -352,6 +357,12 @@ void add_compress_command(CLI::App& app) {
                   "images, --bpp, --entropy ebcot: 1 (default, fastest) or 2 (three base steps per band and "
                   "RDOQ: about 1% smaller at equal PSNR, up to 1.9x the encode time)")
       ->check(CLI::Range(1, 2));
+  cmd->add_option(
+         "--tune", opt->tune,
+         "images, lossy: what the coding minimises: psnr (default: the squared error, the best PSNR "
+         "at a size) or visual (a contrast-sensitivity-weighted error with less weight on chroma: "
+         "better butteraugli and MS-SSIM at a size, lower PSNR); --bpp and --psnr targets hold in both")
+      ->transform(CLI::IsMember({"psnr", "visual"}, CLI::ignore_case));
   cmd->add_flag("--keep-nonfinite", opt->keep_nonfinite,
                 "float images: code NaN and infinite samples exactly in a side list (default: refuse them)");
   cmd->add_option(

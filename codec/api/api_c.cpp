@@ -25,6 +25,7 @@ struct pupwave_options {
   pupwave_coder coder = PUPWAVE_CODER_AUTO;
   int effort = 1;
   std::optional<double> fill_value;
+  pupwave_tune tune = PUPWAVE_TUNE_PSNR;
 };
 
 struct pupwave_stream {
@@ -117,6 +118,7 @@ pupwave::api::ImageOptions image_options(const pupwave_options* o) {
   out.threads = o->threads;
   out.coder = pupwave::api::Coder(o->coder);
   out.effort = o->effort;
+  out.tune = pupwave::api::Tune(o->tune);
   return out;
 }
 
@@ -265,6 +267,18 @@ pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort) 
     require(options != nullptr, "options is null");
     require(effort == 1 || effort == 2, "effort must be 1 or 2");
     options->effort = effort;
+  });
+}
+
+static_assert(int(PUPWAVE_TUNE_PSNR) == int(pupwave::api::Tune::psnr) &&
+              int(PUPWAVE_TUNE_VISUAL) == int(pupwave::api::Tune::visual));
+
+pupwave_status pupwave_options_set_tune(pupwave_options* options, pupwave_tune tune) {
+  return guarded([&] {
+    require(options != nullptr, "options is null");
+    require(tune == PUPWAVE_TUNE_PSNR || tune == PUPWAVE_TUNE_VISUAL,
+            "unknown tune " + std::to_string(int(tune)));
+    options->tune = tune;
   });
 }
 

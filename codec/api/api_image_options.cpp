@@ -2,6 +2,7 @@
 // (api_image_options.h).
 #include "codec/api/api_image_options.h"
 
+#include <cctype>
 #include <cmath>
 #include <string>
 
@@ -35,6 +36,18 @@ void check_decodable(std::span<const std::uint8_t> bytes) {
 
 }  // namespace
 
+std::string_view tune_name(Tune tune) {
+  return to_string(tune == Tune::visual ? pupwave::Tune::visual : pupwave::Tune::psnr);
+}
+
+std::optional<Tune> tune_from_name(std::string_view name) {
+  std::string lower(name);
+  for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  const auto t = pupwave::tune_from_name(lower);
+  if (!t) return std::nullopt;
+  return *t == pupwave::Tune::visual ? Tune::visual : Tune::psnr;
+}
+
 EncodeOptions resolve_image_options(const ImageOptions& options) {
   EncodeOptions enc;
   enc.mode = rate_mode(options.rate);
@@ -48,6 +61,9 @@ EncodeOptions resolve_image_options(const ImageOptions& options) {
   enc.levels = options.levels;
   enc.entropy = entropy_coder(options.coder).value_or(EntropyCoder::ebcot);
   enc.effort = options.effort;
+  if (options.tune != Tune::psnr && options.tune != Tune::visual)
+    detail::fail("unknown tune " + std::to_string(int(options.tune)));
+  enc.tune = options.tune == Tune::visual ? pupwave::Tune::visual : pupwave::Tune::psnr;
   enc.measure_psnr = false;
   return enc;
 }

@@ -12,6 +12,7 @@
 #include "codec/image/image.h"
 #include "codec/image/image_stream.h"
 #include "codec/image/image_view.h"
+#include "codec/rate/visual_weights.h"
 #include "transforms/executor.h"
 
 namespace pupwave {
@@ -40,6 +41,10 @@ struct EncodeOptions {
   // at three base steps and each band takes the best (plus RDOQ): about 1 % less rate at equal
   // PSNR for 1.2-1.9x the encode time and the transformed components held in memory.
   int effort = 1;
+  // What the rate allocation minimises (visual_weights.h): the squared error (psnr), or a
+  // contrast-sensitivity-weighted one (visual). Only the quantizer steps differ; rate targets keep
+  // their meaning (a PSNR target is the real PSNR). Lossless ignores it.
+  Tune tune = Tune::psnr;
   // Decode the result to report its PSNR. Costs about a full decode, strip by strip (the strip
   // decoder's memory, not a decoded image's) except for lc and pc streams, whose decode holds
   // the component planes; PSNR targets measure it anyway.

@@ -514,7 +514,7 @@ CodedImage mix_families(ImagePlan& plan, std::vector<Family>& families,
                         const std::vector<std::size_t>& choice, std::vector<double>& scale) {
   std::vector<float> steps(choice.size());
   for (std::size_t f = 0; f < families.size(); ++f) {
-    const auto family_steps = subband_steps(families[f].base, plan.norms, plan.weights);
+    const auto family_steps = subband_steps(families[f].base, plan.norms, plan.weights, plan.visual);
     for (std::size_t g = 0; g < choice.size(); ++g)
       if (choice[g] == f) steps[g] = family_steps[g];
   }

@@ -901,7 +901,8 @@ EncodeResult encode_pc(const ImageView& image, ImagePlan& plan, const EncodeOpti
         return true;
       }
       if (k == 0.0) return false;
-      const std::vector<float> steered = subband_steps(std::exp(p.t + k), plan.norms, plan.weights);
+      const std::vector<float> steered =
+          subband_steps(std::exp(p.t + k), plan.norms, plan.weights, plan.visual);
       for (std::size_t b = 0; b < s.size(); ++b)
         if (!p.coded[b]) {
           p.shift[b] = k;

@@ -12,6 +12,7 @@
 #include "codec/image/image_metrics.h"
 #include "codec/rate/byte_budget.h"
 #include "codec/rate/quantizer.h"
+#include "codec/rate/visual_weights.h"
 #include "transforms/norms.h"
 #include "transforms/reach.h"
 #include "transforms/separable.h"
@@ -167,6 +168,7 @@ ImagePlan plan_image(const ImageView& image, const EncodeOptions& o) {
     h.steps.assign(plan.bands.size() * h.channels, 1.0f);
   else
     plan.norms = synthesis_norms(*t, h.dims, h.levels);
+  if (!reversible && o.tune == Tune::visual) plan.visual = visual_weights(plan.bands, h.channels, h.colour);
   if (o.strip_encode && is_integer(image.type)) plan.strip_reach = analysis_reach(*t);
   plan.transform = std::move(t);
   return plan;
@@ -192,7 +194,7 @@ void transform_all_components(ImagePlan& plan) {
 }
 
 void set_base_step(ImagePlan& plan, double base_step) {
-  plan.header.steps = subband_steps(base_step, plan.norms, plan.weights);
+  plan.header.steps = subband_steps(base_step, plan.norms, plan.weights, plan.visual);
 }
 
 void release_component(ImagePlan& plan, std::size_t c) {

@@ -45,6 +45,7 @@ struct ImagePlan {
   std::vector<CodeBlock> blocks;
   std::vector<double> norms;                     // synthesis norm per band
   std::vector<double> weights;                   // output error per unit component error
+  std::vector<double> visual;                    // Tune::visual: visual_weights(), else empty
   std::vector<std::vector<float>> coef;          // irreversible: transformed components (or empty)
   std::vector<std::vector<std::int32_t>> icoef;  // reversible: transformed components (or empty)
   // A released component's buffer, reused by the next: first touches of fresh pages cost more

@@ -82,6 +82,9 @@ PcRateModel::PcRateModel(const ImagePlan& plan, double delta) : delta_(delta) {
       out.count = band.size[0] * band.size[1];
       out.coarse = band.orientation == 0;
       out.chroma = c > 0 && plan.header.colour != ColourTransform::none;
+      if (!plan.visual.empty())
+        out.error_scale =
+            1.0 / (plan.visual[c * plan.bands.size() + b] * plan.visual[c * plan.bands.size() + b]);
       out.below.assign(kBins + 1, 0u);
       for (int bin = 0; bin < kBins; ++bin) out.below[bin + 1] = out.below[bin] + counts[bin];
       bands_.push_back(std::move(out));
@@ -172,7 +175,7 @@ double PcRateModel::bits(double base_step, const std::vector<double>* scale) con
 
 double PcRateModel::squared_error(double base_step) const {
   double total = 0.0;
-  for (const Band& b : bands_) total += band_error(b, base_step);
+  for (const Band& b : bands_) total += b.error_scale * band_error(b, base_step);
   return total;
 }
 

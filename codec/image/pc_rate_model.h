@@ -40,6 +40,8 @@ class PcRateModel {
     std::vector<std::uint32_t> below;  // below[k]: magnitudes in bins under k (kBins + 1 entries)
     bool coarse = false;               // the coarse (LL) band
     bool chroma = false;               // a detail band of a colour-transformed chroma component
+    // Its squared error in the PSNR's units per unit of band_error's (visually weighted) ones.
+    double error_scale = 1.0;
   };
   double count_below(const Band& band, double magnitude) const;  // interpolated inside a bin
   double band_bits(const Band& band, double base_step) const;

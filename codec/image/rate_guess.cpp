@@ -68,7 +68,8 @@ double step_for_bits(const Histogram& h, double budget_bytes, double margin) {
 
 float magnitude_scale(const ImagePlan& plan, std::size_t c, std::size_t band) {
   // Output units: index units times the base step, the same scale in every band.
-  return float(plan.norms[band] * std::sqrt(plan.weights[c]));
+  const double visual = plan.visual.empty() ? 1.0 : plan.visual[c * plan.norms.size() + band];
+  return float(plan.norms[band] * std::sqrt(plan.weights[c]) * visual);
 }
 
 void MagnitudeHistogram::add(std::span<const float> values, float scale) {

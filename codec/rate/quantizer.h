@@ -16,9 +16,11 @@ namespace pupwave {
 // middle because detail coefficients are peaked (Laplacian) around zero.
 inline constexpr double kDefaultReconstructionDelta = 0.4375;
 
-// Steps for every (component, band): result[c * norms.size() + b].
+// Steps for every (component, band): result[c * norms.size() + b]. A non-empty `visual` (one
+// per (component, band), same order: visual_weights.h) scales each gain, so a unit index
+// error costs base^2 of visually weighted squared error instead.
 std::vector<float> subband_steps(double base_step, std::span<const double> norms,
-                                 std::span<const double> weights);
+                                 std::span<const double> weights, std::span<const double> visual = {});
 
 // Index-unit magnitudes |x| / step and signs of a run of coefficients: the integer part of
 // magnitude is the dead-zone quantization index (bin [q, q+1) * step, q = 0 twice as wide).

@@ -89,6 +89,19 @@ static void test_image_rates(void) {
   pupwave_stream_destroy(s);
   CHECK(pupwave_options_set_coder(o, PUPWAVE_CODER_AUTO) == PUPWAVE_OK);
   CHECK(pupwave_options_set_effort(o, 1) == PUPWAVE_OK);
+  /* Visual tuning keeps the budget and gives a stream the decoder reads. */
+  CHECK(pupwave_options_set_tune(o, (pupwave_tune)2) == PUPWAVE_ERROR_ARGUMENT);
+  CHECK(pupwave_options_set_tune(o, PUPWAVE_TUNE_VISUAL) == PUPWAVE_OK);
+  CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
+  CHECK(pupwave_stream_size(s) * 8 <= w * h + 64);
+  {
+    pupwave_decoded* d = NULL;
+    CHECK(pupwave_decompress_image(pupwave_stream_data(s), pupwave_stream_size(s), 0, 1, &d) == PUPWAVE_OK);
+    CHECK(d && pupwave_decoded_dim(d, 0) == w && pupwave_decoded_channels(d) == 3);
+    pupwave_decoded_destroy(d);
+  }
+  pupwave_stream_destroy(s);
+  CHECK(pupwave_options_set_tune(o, PUPWAVE_TUNE_PSNR) == PUPWAVE_OK);
   CHECK(pupwave_options_set_rate(o, PUPWAVE_RATE_STEP, 1.0) == PUPWAVE_OK);
   CHECK(pupwave_compress_image(o, rgb, PUPWAVE_U8, w, h, 3, 1, 3, (ptrdiff_t)(3 * w), &s) == PUPWAVE_OK);
   large = pupwave_stream_size(s);

@@ -51,6 +51,11 @@ std::vector<OptionSet> option_sets() {
   sets.push_back({"--levels 3 --bpp 1", options(ImageRate::bpp, 1.0)});
   sets.back().options.levels = 3;
   sets.push_back({"--entropy ht --bpp 1", options(ImageRate::bpp, 1.0, api::Coder::ht)});
+  sets.push_back({"--bpp 0.5 --tune visual", options(ImageRate::bpp, 0.5)});
+  sets.back().options.tune = api::Tune::visual;
+  sets.push_back(
+      {"--psnr 33 --entropy ebcot --tune visual", options(ImageRate::psnr, 33.0, api::Coder::ebcot)});
+  sets.back().options.tune = api::Tune::visual;
   return sets;
 }
 
@@ -108,6 +113,7 @@ std::vector<std::uint8_t> c_stream(const Photo& p, const api::ImageOptions& o) {
   if (o.levels != defaults.levels) statuses.push_back(pupwave_options_set_levels(set(), o.levels));
   if (o.coder != defaults.coder) statuses.push_back(pupwave_options_set_coder(set(), pupwave_coder(o.coder)));
   if (o.effort != defaults.effort) statuses.push_back(pupwave_options_set_effort(set(), o.effort));
+  if (o.tune != defaults.tune) statuses.push_back(pupwave_options_set_tune(set(), pupwave_tune(o.tune)));
   for (pupwave_status s : statuses) EXPECT_EQ(s, PUPWAVE_OK) << pupwave_last_error();
   const auto ch = std::ptrdiff_t(p.channels);
   pupwave_stream* stream = nullptr;

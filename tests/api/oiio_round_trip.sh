@@ -37,6 +37,7 @@ for name in camera astronaut chelsea coffee; do
 --psnr 35 --transform cdf53
 --levels 3 --bpp 1
 --entropy ht --bpp 1
+--bpp 0.5 --tune visual
 --psnr 35.3
 --step 3.3 --entropy ebcot
 SETS

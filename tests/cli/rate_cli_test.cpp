@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 #include <vector>
@@ -44,6 +46,11 @@ double number_after(const std::string& text, const std::string& key) {
   const auto at = text.find(key);
   if (at == std::string::npos) return std::nan("");
   return std::atof(text.c_str() + at + key.size());
+}
+
+std::vector<char> read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 void expect_error(const test::CliResult& r, const std::string& needle) {
@@ -255,6 +262,23 @@ TEST_F(RateCli, EffortTwoGivesAHigherPsnrWithinTheSameBudget) {
   const auto bad = run_cli({"compress", image("coffee.png"), out("a.pw"), "--bpp", "1", "--effort", "3"});
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("--effort"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(out("a.pw")));
+}
+
+// --tune visual keeps the budget and codes other bytes; it is refused where nothing is tuned.
+TEST_F(RateCli, TuneVisualKeepsTheBudgetAndIsRefusedWhereItWouldBeIgnored) {
+  const auto psnr = run_cli({"compress", image("coffee.png"), out("p.pw"), "--bpp", "0.5"});
+  const auto visual =
+      run_cli({"compress", image("coffee.png"), out("v.pw"), "--bpp", "0.5", "--tune", "visual"});
+  ASSERT_EQ(psnr.exit_code, 0) << psnr.output;
+  ASSERT_EQ(visual.exit_code, 0) << visual.output;
+  EXPECT_LE(fs::file_size(out("v.pw")), std::uintmax_t(0.5 * 600 * 400 / 8));
+  EXPECT_NE(read_bytes(out("p.pw")), read_bytes(out("v.pw")));
+  expect_error(run_cli({"compress", image("coffee.png"), out("a.pw"), "--lossless", "--tune", "visual"}),
+               "--tune visual applies to lossy coding, not --lossless");
+  const auto bad = run_cli({"compress", image("coffee.png"), out("a.pw"), "--tune", "sharp"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--tune"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(out("a.pw")));
 }
 

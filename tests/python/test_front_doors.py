@@ -19,6 +19,8 @@ OPTION_SETS = [
     (["--psnr", "35", "--transform", "cdf53"], {"psnr": 35, "transform": "cdf53"}),
     (["--levels", "3", "--bpp", "1"], {"levels": 3, "bpp": 1}),
     (["--entropy", "ht", "--bpp", "1"], {"entropy": "ht", "bpp": 1}),
+    (["--bpp", "0.5", "--tune", "visual"], {"bpp": 0.5, "tune": "visual"}),
+    (["--psnr", "33", "--entropy", "ebcot", "--tune", "visual"], {"psnr": 33, "entropy": "ebcot", "tune": "visual"}),
 ]
 PHOTOGRAPHS = [("camera", "pgm"), ("astronaut", "ppm"), ("chelsea", "ppm"), ("coffee", "ppm")]
 

@@ -69,6 +69,10 @@ def test_rate_modes_and_levels(real_image):
         pupwave.compress(a, bpp=1, entropy="jpeg")
     with pytest.raises(ValueError, match="effort"):
         pupwave.compress(a, bpp=1, effort=3, entropy="ebcot")
+    visual = pupwave.compress(a, bpp=1, tune="visual")
+    assert len(visual) * 8 <= a.shape[0] * a.shape[1] and visual != pupwave.compress(a, bpp=1)
+    with pytest.raises(ValueError, match="tune"):
+        pupwave.compress(a, bpp=1, tune="sharp")
 
 
 def test_image_bytes_identical_to_cli(cli, real_image, tmp_path):

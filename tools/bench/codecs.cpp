@@ -26,9 +26,15 @@ std::string format_number(double v, const char* fmt = "%.6g") {
 
 class PupwaveCodec final : public RdCodec {
  public:
-  PupwaveCodec(fs::path cli, std::string spec, int effort, std::string entropy)
-      : cli_(std::move(cli)), spec_(std::move(spec)), effort_(effort), entropy_(std::move(entropy)) {}
-  std::string name() const override { return entropy_.empty() ? spec_ : spec_ + "+" + entropy_; }
+  PupwaveCodec(fs::path cli, std::string spec, int effort, std::string entropy, std::string tune)
+      : cli_(std::move(cli)),
+        spec_(std::move(spec)),
+        effort_(effort),
+        entropy_(std::move(entropy)),
+        tune_(std::move(tune)) {}
+  std::string name() const override {
+    return spec_ + (entropy_.empty() ? "" : "+" + entropy_) + (tune_ == "psnr" ? "" : "+" + tune_);
+  }
   std::string kind() const override { return "pupwave"; }
   std::string extension() const override { return ".pw"; }
 
@@ -39,10 +45,12 @@ class PupwaveCodec final : public RdCodec {
                                   "--transform", spec_,      "--bpp",          bpp};
     if (effort_ != 1) args.insert(args.end(), {"--effort", std::to_string(effort_)});
     if (!entropy_.empty()) args.insert(args.end(), {"--entropy", entropy_});
+    if (tune_ != "psnr") args.insert(args.end(), {"--tune", tune_});
     out.seconds = run_checked(args, q.log, q.output);
     out.bytes = fs::file_size(q.output);
     out.setting = "--bpp " + bpp + (effort_ != 1 ? " --effort " + std::to_string(effort_) : "") +
-                  (entropy_.empty() ? "" : " --entropy " + entropy_);
+                  (entropy_.empty() ? "" : " --entropy " + entropy_) +
+                  (tune_ == "psnr" ? "" : " --tune " + tune_);
     return out;
   }
 
@@ -55,6 +63,7 @@ class PupwaveCodec final : public RdCodec {
   std::string spec_;
   int effort_ = 1;
   std::string entropy_;  // empty: the CLI's default coder
+  std::string tune_;     // compress --tune
 };
 
 // JPEG 2000 through OpenJPEG: irreversible 9/7 (-I), 6 resolutions (-n 6, fewer for images too
@@ -118,12 +127,12 @@ class JxlAnchor final : public RdCodec {
 }  // namespace
 
 RdCodecPtr make_pupwave_codec(const fs::path& cli, const std::string& spec, int effort,
-                              const std::string& entropy) {
-  return std::make_shared<PupwaveCodec>(cli, spec, effort, entropy);
+                              const std::string& entropy, const std::string& tune) {
+  return std::make_shared<PupwaveCodec>(cli, spec, effort, entropy, tune);
 }
 
 const std::vector<std::string>& anchor_names() {
-  static const std::vector<std::string> names = {"openjpeg", "jxl", "avif", "hevc", "webp"};
+  static const std::vector<std::string> names = {"openjpeg", "jxl", "avif", "avif-s6", "hevc", "webp"};
   return names;
 }
 
@@ -138,10 +147,12 @@ struct AnchorTools {
 AnchorTools anchor_tools(const std::string& name) {
   if (name == "openjpeg") return {{"opj_compress", "opj_decompress"}, "libopenjp2-tools"};
   if (name == "jxl") return {{"cjxl", "djxl"}, "libjxl-tools"};
-  if (name == "avif") return {{"avifenc", "avifdec", "ffmpeg"}, "libavif-bin and ffmpeg"};
+  if (name == "avif" || name == "avif-s6")
+    return {{"avifenc", "avifdec", "ffmpeg"}, "libavif-bin and ffmpeg"};
   if (name == "hevc") return {{"ffmpeg"}, "ffmpeg"};
   if (name == "webp") return {{"cwebp", "dwebp", "ffmpeg"}, "webp and ffmpeg"};
-  throw std::invalid_argument("unknown anchor '" + name + "' (known: openjpeg, jxl, avif, hevc, webp)");
+  throw std::invalid_argument("unknown anchor '" + name +
+                              "' (known: openjpeg, jxl, avif, avif-s6, hevc, webp)");
 }
 
 }  // namespace
@@ -161,7 +172,8 @@ RdCodecPtr make_anchor(const std::string& name, const std::string& search_path, 
   missing_note.clear();
   if (name == "openjpeg") return std::make_shared<OpenJpegAnchor>(found[0], found[1]);
   if (name == "jxl") return std::make_shared<JxlAnchor>(found[0], found[1]);
-  if (name == "avif") return make_avif_anchor(found[0], found[1], found[2]);
+  if (name == "avif") return make_avif_anchor(found[0], found[1], found[2], 4);
+  if (name == "avif-s6") return make_avif_anchor(found[0], found[1], found[2], 6);
   if (name == "hevc") return make_hevc_anchor(found[0]);
   return make_webp_anchor(found[0], found[1], found[2]);
 }

@@ -47,10 +47,10 @@ class RdCodec {
 using RdCodecPtr = std::shared_ptr<const RdCodec>;
 
 // pupwave compress/decompress run through the binary `cli` with `--transform spec --bpp X`
-// (and `--effort N` when effort is not 1, `--entropy E` when entropy is not empty; the codec is then
-// named SPEC+E).
+// (and `--effort N` when effort is not 1, `--entropy E` when entropy is not empty, `--tune T` when
+// tune is not psnr; the codec is then named SPEC+E, SPEC+T or SPEC+E+T).
 RdCodecPtr make_pupwave_codec(const std::filesystem::path& cli, const std::string& spec, int effort = 1,
-                              const std::string& entropy = "");
+                              const std::string& entropy = "", const std::string& tune = "psnr");
 
 // Names of the anchors the harness knows, in report order.
 const std::vector<std::string>& anchor_names();

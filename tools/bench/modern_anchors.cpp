@@ -28,9 +28,12 @@ bool is_grey(const fs::path& decoded_target) { return decoded_target.extension()
 
 class AvifAnchor final : public RdCodec {
  public:
-  AvifAnchor(fs::path enc, fs::path dec, fs::path ffmpeg)
-      : enc_(std::move(enc)), dec_(std::move(dec)), ffmpeg_(std::move(ffmpeg)) {}
-  std::string name() const override { return "avif"; }
+  AvifAnchor(fs::path enc, fs::path dec, fs::path ffmpeg, int speed)
+      : enc_(std::move(enc)),
+        dec_(std::move(dec)),
+        ffmpeg_(std::move(ffmpeg)),
+        speed_(std::to_string(speed)) {}
+  std::string name() const override { return speed_ == "4" ? "avif" : "avif-s" + speed_; }
   std::string kind() const override { return "anchor"; }
   std::string extension() const override { return ".avif"; }
 
@@ -41,11 +44,11 @@ class AvifAnchor final : public RdCodec {
     const auto trial = [&](double quantiser, const fs::path& product) {
       const std::string qs = integer_text(quantiser);
       return run_checked(
-          {enc_.string(), "-s", "4", "-y", yuv, "--min", qs, "--max", qs, png.string(), product.string()},
+          {enc_.string(), "-s", speed_, "-y", yuv, "--min", qs, "--max", qs, png.string(), product.string()},
           q.log, product);
     };
     EncodeOutcome out = search_parameter(q, {0, 63, true, true, false}, trial, [&](double quantiser) {
-      return "-s 4 -y " + yuv + " --min/--max " + integer_text(quantiser);
+      return "-s " + speed_ + " -y " + yuv + " --min/--max " + integer_text(quantiser);
     });
     fs::remove(png);
     return out;
@@ -61,6 +64,7 @@ class AvifAnchor final : public RdCodec {
 
  private:
   fs::path enc_, dec_, ffmpeg_;
+  std::string speed_;  // libaom's -s
 };
 
 class HevcAnchor final : public RdCodec {
@@ -149,8 +153,9 @@ class WebpAnchor final : public RdCodec {
 
 }  // namespace
 
-RdCodecPtr make_avif_anchor(const fs::path& avifenc, const fs::path& avifdec, const fs::path& ffmpeg) {
-  return std::make_shared<AvifAnchor>(avifenc, avifdec, ffmpeg);
+RdCodecPtr make_avif_anchor(const fs::path& avifenc, const fs::path& avifdec, const fs::path& ffmpeg,
+                            int speed) {
+  return std::make_shared<AvifAnchor>(avifenc, avifdec, ffmpeg, speed);
 }
 
 RdCodecPtr make_hevc_anchor(const fs::path& ffmpeg) { return std::make_shared<HevcAnchor>(ffmpeg); }

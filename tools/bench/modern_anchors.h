@@ -8,10 +8,11 @@
 
 namespace pupwave::bench {
 
-// AVIF 4:4:4 (4:0:0 for grey), speed 4, one quantiser for all planes (--min Q --max Q).
-// ffmpeg converts PPM/PGM to and from the PNG avifenc/avifdec read and write.
+// AVIF 4:4:4 (4:0:0 for grey), libaom at `speed` (named "avif" at speed 4, else "avif-sN"), one
+// quantiser for all planes (--min Q --max Q). ffmpeg converts PPM/PGM to and from the PNG
+// avifenc/avifdec read and write.
 RdCodecPtr make_avif_anchor(const std::filesystem::path& avifenc, const std::filesystem::path& avifdec,
-                            const std::filesystem::path& ffmpeg);
+                            const std::filesystem::path& ffmpeg, int speed);
 
 // HEVC intra: one frame through libx265, preset slow, tune psnr, fixed QP, full-range 4:4:4
 // (yuvj444p; gray for grey images), raw Annex B stream.

@@ -3,7 +3,7 @@
 // exposes every resolution level as a MIP level (level k = 1/2^k size, decoded from only the
 // data it needs). Writing takes the rate from the attributes pupwave:bpp, pupwave:psnr,
 // pupwave:step, pupwave:lossless (or "compression" = "lossless"), pupwave:transform,
-// pupwave:levels, pupwave:entropy and pupwave:effort (the CLI's flags of those names); default
+// pupwave:levels, pupwave:entropy, pupwave:effort and pupwave:tune (the CLI's flags of those names); default
 // PSNR 40 dB.
 // It is built on the public C++ API (pupwave/pupwave.hpp). Not to be confused with
 // tools/oiio/ (libpupwave_oiio.so), the CLI's own loader for PNG/TIFF/EXR input files.
@@ -64,6 +64,12 @@ api::Coder coder(const std::string& name) {
   const auto found = api::coder_from_name(name);
   if (!found)
     throw std::invalid_argument("unknown pupwave:entropy " + name + " (one of " + api::coder_names() + ")");
+  return *found;
+}
+
+api::Tune tune(const std::string& name) {
+  const auto found = api::tune_from_name(name);
+  if (!found) throw std::invalid_argument("unknown pupwave:tune " + name + " (psnr or visual)");
   return *found;
 }
 
@@ -244,6 +250,7 @@ class PwOutput final : public ImageOutput {
     o.levels = m_spec.find_attribute("pupwave:levels") ? int(number(m_spec, "pupwave:levels")) : -1;
     o.coder = coder(m_spec.get_string_attribute("pupwave:entropy", "auto"));
     if (m_spec.find_attribute("pupwave:effort")) o.effort = int(number(m_spec, "pupwave:effort"));
+    o.tune = tune(m_spec.get_string_attribute("pupwave:tune", "psnr"));
     return o;
   }
 

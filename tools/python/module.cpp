@@ -142,7 +142,7 @@ int count_set(std::initializer_list<bool> flags) {
 
 py::tuple compress(const py::object& obj, std::optional<double> bpp, std::optional<double> psnr,
                    std::optional<double> step, bool lossless, const std::optional<std::string>& transform,
-                   std::optional<int> levels, int effort, const std::string& entropy,
+                   std::optional<int> levels, int effort, const std::string& entropy, const std::string& tune,
                    const std::map<std::string, std::string>& attributes, std::optional<int> threads) {
   const py::array given = as_array(obj);
   // The dtype first: readable_in_place divides by its (then nonzero) item size.
@@ -174,6 +174,9 @@ py::tuple compress(const py::object& obj, std::optional<double> bpp, std::option
   const auto coder = api::coder_from_name(entropy);
   if (!coder) throw py::value_error("entropy must be one of " + api::coder_names() + ", got " + entropy);
   options.coder = *coder;
+  const auto tuned = api::tune_from_name(tune);
+  if (!tuned) throw py::value_error("tune must be psnr or visual, got " + tune);
+  options.tune = *tuned;
   options.threads = thread_count(threads);
   std::vector<std::uint8_t> out;
   api::TargetOutcome outcome;
@@ -332,7 +335,8 @@ PYBIND11_MODULE(_pupwave, m) {
   m.def("compress", &compress, py::arg("array"), py::arg("bpp") = py::none(), py::arg("psnr") = py::none(),
         py::arg("step") = py::none(), py::arg("lossless") = false, py::arg("transform") = py::none(),
         py::arg("levels") = py::none(), py::arg("effort") = 1, py::arg("entropy") = "auto",
-        py::arg("attributes") = std::map<std::string, std::string>{}, py::arg("threads") = py::none(),
+        py::arg("tune") = "psnr", py::arg("attributes") = std::map<std::string, std::string>{},
+        py::arg("threads") = py::none(),
         "pupwave.compress on a uint8/uint16/float16/float32 array; attributes (str -> str) are stored "
         "in the stream. Returns (bytes, miss): miss is the CLI's warning text for a missed bpp or psnr "
         "target, '' when it is met.");

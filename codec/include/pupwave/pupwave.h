@@ -99,6 +99,12 @@ const char* pupwave_coder_name(pupwave_coder coder);
 /* Images, BPP targets with PUPWAVE_CODER_EBCOT: encoder effort 1 (default, fastest) or 2 (three
  * base steps per band and RDOQ: about 1 % less rate at equal PSNR for up to 1.9x the encode time). */
 pupwave_status pupwave_options_set_effort(pupwave_options* options, int effort);
+/* Images, lossy: what the coding minimises (pupwave.hpp's Tune): PUPWAVE_TUNE_PSNR (default, the
+ * squared error) or PUPWAVE_TUNE_VISUAL (a contrast-sensitivity-weighted squared error, less
+ * weight on chroma: better perceptual scores at a size, lower PSNR). Rate targets keep their
+ * meaning in both. */
+typedef enum pupwave_tune { PUPWAVE_TUNE_PSNR = 0, PUPWAVE_TUNE_VISUAL = 1 } pupwave_tune;
+pupwave_status pupwave_options_set_tune(pupwave_options* options, pupwave_tune tune);
 
 /* Compressed bytes. */
 typedef struct pupwave_stream pupwave_stream;

@@ -94,6 +94,16 @@ std::string_view coder_name(Coder coder);                     // "auto", "ebcot"
 std::optional<Coder> coder_from_name(std::string_view name);  // any case; nullopt when unknown
 std::string coder_names();                                    // "auto, ebcot, pc, lc, ht"
 
+// What lossy image coding minimises. One set of names for every front door (the CLI's --tune
+// NAME, Python's tune="NAME", the C API's PUPWAVE_TUNE_*, the OIIO plugin's "pupwave:tune"):
+//   psnr    the squared error (default): the best PSNR at a size
+//   visual  a contrast-sensitivity-weighted squared error with less weight on chroma: better
+//           perceptual scores (butteraugli, MS-SSIM) at a size, a lower PSNR
+// Rate targets keep their meaning in both (a PSNR target is met in real PSNR).
+enum class Tune : std::uint8_t { psnr, visual };
+std::string_view tune_name(Tune tune);                      // "psnr", "visual"
+std::optional<Tune> tune_from_name(std::string_view name);  // any case; nullopt when unknown
+
 struct ImageOptions {
   ImageRate rate = ImageRate::psnr;
   double target = 40.0;   // dB, bits per pixel or step; ignored for lossless
@@ -104,6 +114,7 @@ struct ImageOptions {
   // Encoder effort for bpp targets with ebcot: 1 fastest, 2 about 1 % less rate for up to 1.9x the time
   // and more memory (same format; other rates ignore it).
   int effort = 1;
+  Tune tune = Tune::psnr;  // what lossy coding minimises (Tune above); lossless ignores it
   // Stored in the stream (its META chunk).
   std::vector<Attribute> attributes;
 };

@@ -1,7 +1,7 @@
 """Pupwave wavelet codec for numpy arrays (docs/python.md).
 
 compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, levels=None, effort=1,
-         entropy="auto", threads=None, strict=False) -> bytes
+         entropy="auto", threads=None, strict=False, tune="psnr") -> bytes
 decompress(data, level=0, threads=None) -> numpy.ndarray
 compress_volume(array3d, max_error=None, max_error_rel=None, bpv=None, psnr=None, step=None, lossless=False,
                 transform=None, levels=None, brick=None, threads=None, strict=False, fill_value=None) -> bytes
@@ -62,7 +62,7 @@ def _checked(coded, strict):
 
 
 def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=None, levels=None, effort=1,
-             entropy="auto", threads=None, strict=False):
+             entropy="auto", threads=None, strict=False, tune="psnr"):
     """Compress an image to .pw bytes.
 
     array: 2-D (height, width) grey or 3-D (height, width, channels), 1..64 channels, of any
@@ -77,6 +77,9 @@ def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=No
         ebcot, pc, lc or ht (the CLI's --entropy names).
     threads: None or 0 all cores, 1 the calling thread, n at most n (the bytes do not depend on it).
     strict: raise PupwaveTargetError instead of warning when the bpp or psnr target is missed.
+    tune: what lossy coding minimises (the CLI's --tune): "psnr" (default, the squared error) or
+        "visual" (a contrast-sensitivity-weighted error, less weight on chroma: better butteraugli
+        and MS-SSIM at a size, lower PSNR). bpp and psnr targets hold in both.
 
     Returns the stream (bytes). Warns PupwaveTargetWarning (the CLI's `warning:` text) when the
     stream misses its bpp or psnr target. Raises ValueError (bad arguments, the library's message),
@@ -84,7 +87,7 @@ def compress(array, bpp=None, psnr=None, step=None, lossless=False, transform=No
     """
     stored, attributes = dtypes.to_stored(array, dtypes.IMAGE)
     return _checked(_pupwave.compress(stored, bpp, psnr, step, lossless, transform, levels, effort, entropy,
-                                      attributes, threads), strict)
+                                      tune, attributes, threads), strict)
 
 
 def decompress(data, level=0, threads=None):

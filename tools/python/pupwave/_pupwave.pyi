@@ -19,6 +19,7 @@ def compress(
     levels: Optional[int] = None,
     effort: int = 1,
     entropy: str = "auto",
+    tune: str = "psnr",
     attributes: Dict[str, str] = {},
     threads: Optional[int] = None,
 ) -> Tuple[bytes, str]:
