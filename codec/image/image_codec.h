@@ -12,7 +12,7 @@
 #include "codec/image/image.h"
 #include "codec/image/image_stream.h"
 #include "codec/image/image_view.h"
-#include "codec/rate/visual_weights.h"
+#include "codec/image/visual_weights.h"
 #include "transforms/executor.h"
 
 namespace pupwave {

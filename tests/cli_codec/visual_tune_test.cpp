@@ -1,4 +1,4 @@
-// --tune visual (codec/rate/visual_weights.h) on the test photographs: it changes the coding
+// --tune visual (codec/image/visual_weights.h) on the test photographs: it changes the coding
 // (other bytes), scores higher by the harness's own perceptual measure (MS-SSIM, tools/bench/
 // ssim.h) than --tune psnr at no larger size, and every rate target (--bpp budgets, --psnr
 // targets in real PSNR) holds with every lossy coder in both modes.
@@ -8,9 +8,9 @@
 #include <string>
 
 #include "codec/image/image_codec.h"
+#include "codec/image/image_metrics.h"
+#include "codec/image/visual_weights.h"
 #include "codec/rate/byte_budget.h"
-#include "codec/rate/metrics.h"
-#include "codec/rate/visual_weights.h"
 #include "photo_crops.h"
 #include "tools/bench/ssim.h"
 #include "transforms/separable.h"

@@ -1,4 +1,4 @@
-#include "codec/rate/visual_weights.h"
+#include "codec/image/visual_weights.h"
 
 #include <algorithm>
 #include <cmath>
