@@ -2,13 +2,28 @@
 // Test volumes for the volume codec tests: smooth fields with noise, integer volumes, a sparse
 // level set, and independent error measures.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <random>
+#include <vector>
 
 #include "codec/volume/volume.h"
 
 namespace pupwave::test {
+
+// testimages/wmag91.float: the real 91^3 float field (testimages/README.md).
+inline Volume read_wmag91() {
+  Volume v({91, 91, 91}, VoxelType::f32);
+  std::ifstream in(PUPWAVE_TESTIMAGES_DIR "/wmag91.float", std::ios::binary);
+  std::vector<float> raw(v.count());
+  in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * 4));
+  EXPECT_TRUE(in.good()) << "cannot read wmag91.float";
+  for (std::size_t i = 0; i < raw.size(); ++i) v.samples[i] = raw[i];
+  return v;
+}
 
 // A smooth field (sum of waves) plus a little noise, of `type` (integer types are rounded).
 inline Volume smooth_volume(const Extent& dims, VoxelType type, double scale, unsigned seed = 7) {

@@ -67,20 +67,10 @@ TEST(VolumeBoundCoding, RequantizedBrickEqualsTheDecodedBrickBitForBit) {
   }
 }
 
-Volume read_wmag91() {
-  Volume v({91, 91, 91}, VoxelType::f32);
-  std::ifstream in(PUPWAVE_TESTIMAGES_DIR "/wmag91.float", std::ios::binary);
-  std::vector<float> raw(v.count());
-  in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * 4));
-  EXPECT_TRUE(in.good()) << "cannot read wmag91.float";
-  for (std::size_t i = 0; i < raw.size(); ++i) v.samples[i] = raw[i];
-  return v;
-}
-
 TEST(VolumeBoundCoding, Wmag91StreamsAreThreadCountFreeAndBeatSperrByFivePercent) {
   VolumeGrid g;
   g.name = "wmag91";
-  g.volume = read_wmag91();
+  g.volume = test::read_wmag91();
   const double range = test::range_of(g.volume);
   // SPERR's ratios on wmag91 at these bounds (20.97, 6.92; /work/shared/data/README.md) x 1.05.
   const std::pair<double, double> cases[] = {{1e-2, 22.0}, {1e-3, 7.27}};

@@ -23,16 +23,6 @@ VolumeGrid grid_of(Volume v, const std::string& name = "field") {
   return g;
 }
 
-Volume read_wmag91() {
-  Volume v({91, 91, 91}, VoxelType::f32);
-  std::ifstream in(PUPWAVE_TESTIMAGES_DIR "/wmag91.float", std::ios::binary);
-  std::vector<float> raw(v.count());
-  in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * 4));
-  EXPECT_TRUE(in.good()) << "cannot read wmag91.float";
-  for (std::size_t i = 0; i < raw.size(); ++i) v.samples[i] = raw[i];
-  return v;
-}
-
 TEST(VolumeCodec, EveryTransformRoundTripsOddSizesWithinTheBound) {
   const Volume v = test::smooth_volume({17, 23, 9}, VoxelType::f32, 10.0);
   const double bound = 1e-2 * range_of(v);
@@ -88,7 +78,7 @@ TEST(VolumeCodec, LosslessRejectsFloatAndIrreversibleTransforms) {
 }
 
 TEST(VolumeCodec, MaxErrorIsNeverExceededOnWmag91) {
-  const Volume v = read_wmag91();
+  const Volume v = test::read_wmag91();
   for (double rel : {1e-2, 1e-3}) {
     VolumeEncodeOptions o;
     o.target = rel * range_of(v);
@@ -102,7 +92,7 @@ TEST(VolumeCodec, MaxErrorIsNeverExceededOnWmag91) {
 // An unstable bank (coarse-band gain above 1 per level) at a tight bound: a refusal that says
 // what to change, and a working encode with the fewer levels it suggests.
 TEST(VolumeCodec, UnstableBankRefusalNamesTheTransformAndTheRemedy) {
-  const Volume v = read_wmag91();
+  const Volume v = test::read_wmag91();
   VolumeEncodeOptions o;
   o.transform = "pups:cinpact-c3";
   o.target = 1e-4 * range_of(v);

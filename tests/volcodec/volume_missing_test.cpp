@@ -24,16 +24,6 @@ namespace {
 
 constexpr double kFill = -999.0;
 
-Volume read_wmag91() {
-  Volume v({91, 91, 91}, VoxelType::f32);
-  std::ifstream in(PUPWAVE_TESTIMAGES_DIR "/wmag91.float", std::ios::binary);
-  std::vector<float> raw(v.count());
-  in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * 4));
-  EXPECT_TRUE(in.good()) << "cannot read wmag91.float";
-  for (std::size_t i = 0; i < raw.size(); ++i) v.samples[i] = raw[i];
-  return v;
-}
-
 std::uint32_t bits(double v) { return std::bit_cast<std::uint32_t>(float(v)); }
 
 bool missing(double v) { return !std::isfinite(v) || v == kFill; }
@@ -41,7 +31,7 @@ bool missing(double v) { return !std::isfinite(v) || v == kFill; }
 // wmag91 with a land mask: every voxel below 8 (the calm low ground, about a fifth) is NaN, a
 // corner block holds the fill value, and a few voxels hold infinities and a NaN with a payload.
 Volume masked_wmag91() {
-  Volume v = read_wmag91();
+  Volume v = test::read_wmag91();
   for (double& s : v.samples)
     if (s < 8.0) s = std::numeric_limits<float>::quiet_NaN();
   for (std::size_t z = 0; z < 20; ++z)
